@@ -1,0 +1,27 @@
+// Image files through OpenImageIO. Errors throw rtm::IoError whose message names the file and what is wrong.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+#include "warp/image.h"
+
+namespace rtm {
+
+struct IoError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// Largest image a reader accepts (width*height), so a header claiming absurd sizes cannot make us allocate
+// tens of gigabytes: 16384 x 16384 texels.
+inline constexpr long long kMaxImagePixels = 16384LL * 16384LL;
+
+// Reads RGB or RGBA (any format OpenImageIO reads); RGB gets alpha 255, grey is replicated.
+ImageRGBA8 read_rgba8(const std::string& path);
+// Reads one channel (the first), normalized to 0..1 as OpenImageIO converts to float.
+ImageF read_gray(const std::string& path);
+// Writes atomically: to a temporary file beside `path`, renamed on success, so no partial file is left.
+void write_rgba8(const std::string& path, const ImageRGBA8& img);
+void write_gray(const std::string& path, const ImageF& img);  // values 0..1, 16-bit PNG where supported
+
+}  // namespace rtm
