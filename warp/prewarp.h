@@ -30,7 +30,8 @@ struct PrewarpOptions {
 // Intermediate buffers, reused across frames so a steady-state pre-warp allocates nothing.
 struct PrewarpWorkspace {
     ImageRGBA8 mid_color;   // horizontal-pass output
-    ImageF mid_v;           // final v coordinate carried by the horizontal pass
+    ImageF mid_v;           // final v coordinate carried by the horizontal pass (lookup-table path)
+    Image2D<double> mid_v_exact;  // the same in double precision (--exact)
 };
 
 struct PrewarpStats {
