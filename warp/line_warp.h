@@ -16,6 +16,8 @@
 // its position, floor(pos). Pixels outside [0, n) are dropped. Written pixels get alpha 255.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 
@@ -44,6 +46,74 @@ struct LineOutput {
 // Index of the first sample whose source position k + 0.5 is >= split_pos, clamped to [0, n].
 int split_index(double split_pos, int n);
 
+// ---- Building blocks, generic over where pixels go: put(int x, Rgba8 colour, P attr). ----
+
+template <class P>
+inline uint8_t lerp8(uint8_t a, uint8_t b, P t) {
+    return uint8_t(P(a) * (P(1) - t) + P(b) * t + P(0.5));
+}
+
+// A sample that starts a run goes to the pixel containing its position.
+template <class P, class Put>
+inline void raster_point(P p, Rgba8 c, P attr, int n, Put&& put) {
+    if (!(p >= P(0) && p < P(n))) return;
+    c.a = 255;
+    put(int(p), c, attr);
+}
+
+// Pixels with centres between pa (excluded) and pb (included), colour and attribute interpolated at the centre.
+template <class P, class Put>
+inline void raster_span(P pa, Rgba8 ca, P aa, P pb, Rgba8 cb, P ab, int n, Put&& put) {
+    if (pa == pb) return;
+    P lo, hi;  // inclusive range of x, as reals, before clamping
+    if (pb > pa) {
+        lo = std::floor(pa - P(0.5)) + P(1);
+        hi = std::floor(pb - P(0.5));
+    } else {
+        lo = std::ceil(pb - P(0.5));
+        hi = std::ceil(pa - P(0.5)) - P(1);
+    }
+    lo = std::max(lo, P(0));
+    hi = std::min(hi, P(n - 1));
+    if (!(lo <= hi)) return;
+    const P inv = P(1) / (pb - pa);
+    const int x0 = int(lo), x1 = int(hi);
+    for (int x = x0; x <= x1; ++x) {
+        P t = (P(x) + P(0.5) - pa) * inv;
+        t = std::clamp(t, P(0), P(1));
+        const Rgba8 c{lerp8(ca.r, cb.r, t), lerp8(ca.g, cb.g, t), lerp8(ca.b, cb.b, t), 255};
+        put(x, c, aa * (P(1) - t) + ab * t);
+    }
+}
+
+// The whole line in occlusion-compatible order (see the top of this file), pixels to put().
+template <class P, class Put>
+void warp_line_to(const LineInput<P>& in, int split, int n_out, Put&& put) {
+    auto attr = [&](int k) { return in.attr ? in.attr[k] : P(0); };
+    auto part = [&](int first, int last, int step) {
+        int prev = -1;
+        for (int k = first; k != last; k += step) {
+            if (!in.valid[k] || !std::isfinite(in.pos[k])) {
+                prev = -1;
+                continue;
+            }
+            if (prev < 0)
+                raster_point(in.pos[k], in.color[k], attr(k), n_out, put);
+            else
+                raster_span(in.pos[prev], in.color[prev], attr(prev), in.pos[k], in.color[k], attr(k), n_out, put);
+            prev = k;
+        }
+        return prev;
+    };
+    const int left_last = part(0, split, +1);
+    const int right_last = part(in.n - 1, split - 1, -1);
+    // The seam: the two samples nearest the split are adjacent (split - 1 and split) when both are valid.
+    if (left_last >= 0 && right_last >= 0 && left_last == split - 1 && right_last == split)
+        raster_span(in.pos[left_last], in.color[left_last], attr(left_last), in.pos[right_last], in.color[right_last],
+                    attr(right_last), n_out, put);
+}
+
+// The line into a strided buffer.
 template <class P>
 void warp_line(const LineInput<P>& in, int split, const LineOutput<P>& out);
 
