@@ -25,28 +25,37 @@
 
 namespace rtm {
 
+// Attributes carried along a line and interpolated like colour: a scalar, a struct with attr_lerp, or nothing.
+struct NoAttr {};
 template <class P>
+inline NoAttr attr_lerp(NoAttr, NoAttr, P) {
+    return {};
+}
+inline float attr_lerp(float a, float b, float t) { return a * (1.0f - t) + b * t; }
+inline double attr_lerp(double a, double b, double t) { return a * (1.0 - t) + b * t; }
+
+template <class P, class A = P>
 struct LineInput {
     int n = 0;
     const P* pos = nullptr;
     const Rgba8* color = nullptr;
-    const P* attr = nullptr;  // may be null
+    const A* attr = nullptr;  // may be null (then A{} is carried)
     const uint8_t* valid = nullptr;
 };
 
-template <class P>
+template <class P, class A = P>
 struct LineOutput {
     int n = 0;                         // number of output pixels along the line
     Rgba8* color = nullptr;            // pixel 0
     std::ptrdiff_t color_stride = 1;   // in pixels, may be negative
-    P* attr = nullptr;                 // may be null
+    A* attr = nullptr;                 // may be null
     std::ptrdiff_t attr_stride = 1;
 };
 
 // Index of the first sample whose source position k + 0.5 is >= split_pos, clamped to [0, n].
 int split_index(double split_pos, int n);
 
-// ---- Building blocks, generic over where pixels go: put(int x, Rgba8 colour, P attr). ----
+// ---- Building blocks, generic over where pixels go: put(int x, Rgba8 colour, A attr). ----
 
 template <class P>
 inline uint8_t lerp8(uint8_t a, uint8_t b, P t) {
@@ -54,16 +63,16 @@ inline uint8_t lerp8(uint8_t a, uint8_t b, P t) {
 }
 
 // A sample that starts a run goes to the pixel containing its position.
-template <class P, class Put>
-inline void raster_point(P p, Rgba8 c, P attr, int n, Put&& put) {
+template <class P, class A, class Put>
+inline void raster_point(P p, Rgba8 c, const A& attr, int n, Put&& put) {
     if (!(p >= P(0) && p < P(n))) return;
     c.a = 255;
     put(int(p), c, attr);
 }
 
 // Pixels with centres between pa (excluded) and pb (included), colour and attribute interpolated at the centre.
-template <class P, class Put>
-inline void raster_span(P pa, Rgba8 ca, P aa, P pb, Rgba8 cb, P ab, int n, Put&& put) {
+template <class P, class A, class Put>
+inline void raster_span(P pa, Rgba8 ca, const A& aa, P pb, Rgba8 cb, const A& ab, int n, Put&& put) {
     if (pa == pb) return;
     P lo, hi;  // inclusive range of x, as reals, before clamping
     if (pb > pa) {
@@ -82,14 +91,20 @@ inline void raster_span(P pa, Rgba8 ca, P aa, P pb, Rgba8 cb, P ab, int n, Put&&
         P t = (P(x) + P(0.5) - pa) * inv;
         t = std::clamp(t, P(0), P(1));
         const Rgba8 c{lerp8(ca.r, cb.r, t), lerp8(ca.g, cb.g, t), lerp8(ca.b, cb.b, t), 255};
-        put(x, c, aa * (P(1) - t) + ab * t);
+        put(x, c, attr_lerp(aa, ab, t));
     }
 }
 
-// The whole line in occlusion-compatible order (see the top of this file), pixels to put().
-template <class P, class Put>
-void warp_line_to(const LineInput<P>& in, int split, int n_out, Put&& put) {
-    auto attr = [&](int k) { return in.attr ? in.attr[k] : P(0); };
+struct AlwaysConnected {
+    bool operator()(int, int) const { return true; }
+};
+
+// The whole line in occlusion-compatible order (see the top of this file), pixels to put(). connected(a, b)
+// says whether two adjacent valid samples belong to one surface (false across a marked discontinuity: then no
+// span is drawn and b starts a new run).
+template <class P, class A, class Put, class Connected = AlwaysConnected>
+void warp_line_to(const LineInput<P, A>& in, int split, int n_out, Put&& put, Connected&& connected = {}) {
+    auto attr = [&](int k) { return in.attr ? in.attr[k] : A{}; };
     auto part = [&](int first, int last, int step) {
         int prev = -1;
         for (int k = first; k != last; k += step) {
@@ -97,7 +112,7 @@ void warp_line_to(const LineInput<P>& in, int split, int n_out, Put&& put) {
                 prev = -1;
                 continue;
             }
-            if (prev < 0)
+            if (prev < 0 || !connected(prev, k))
                 raster_point(in.pos[k], in.color[k], attr(k), n_out, put);
             else
                 raster_span(in.pos[prev], in.color[prev], attr(prev), in.pos[k], in.color[k], attr(k), n_out, put);
@@ -108,7 +123,8 @@ void warp_line_to(const LineInput<P>& in, int split, int n_out, Put&& put) {
     const int left_last = part(0, split, +1);
     const int right_last = part(in.n - 1, split - 1, -1);
     // The seam: the two samples nearest the split are adjacent (split - 1 and split) when both are valid.
-    if (left_last >= 0 && right_last >= 0 && left_last == split - 1 && right_last == split)
+    if (left_last >= 0 && right_last >= 0 && left_last == split - 1 && right_last == split &&
+        connected(left_last, right_last))
         raster_span(in.pos[left_last], in.color[left_last], attr(left_last), in.pos[right_last], in.color[right_last],
                     attr(right_last), n_out, put);
 }

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <vector>
 
 #include "warp/line_warp.h"
@@ -17,27 +18,53 @@ std::string to_string(Reconstruction m) { return m == Reconstruction::two_pass ?
 
 namespace {
 
+// What the horizontal pass carries along a row besides colour: the final row coordinate and the displacement
+// (for the vertical pass's discontinuity test and for depth correction).
+template <class P>
+struct RowAttr {
+    P v = 0;
+    P d = 0;
+};
+
+template <class P>
+inline RowAttr<P> attr_lerp(const RowAttr<P>& a, const RowAttr<P>& b, P t) {
+    return {a.v * (P(1) - t) + b.v * t, a.d * (P(1) - t) + b.d * t};
+}
+
 // Scratch for one line, reused within a task.
 template <class P>
 struct LineScratch {
-    std::vector<P> pos, attr;
+    std::vector<P> pos;
+    std::vector<RowAttr<P>> attr;
+    std::vector<P> d;
     std::vector<Rgba8> color;
     std::vector<uint8_t> valid;
     void resize(int n) {
         pos.resize(size_t(n));
         attr.resize(size_t(n));
+        d.resize(size_t(n));
         color.resize(size_t(n));
         valid.resize(size_t(n));
     }
 };
 
-// The horizontal warp's input for storage row r: final column (pos) and final row coordinate (attr) of every
-// texel, with validity (non-empty and 1 + k3*d > 0). Returns the number of texels dropped for 1 + k3*d <= 0.
+// The output frame: margins around the quad and the output size.
+struct Frame {
+    int w = 0, h = 0;  // source size
+    PrewarpExtent e;
+    int out_w() const { return w + e.left + e.right; }
+    int out_h() const { return h + e.bottom + e.top; }
+};
+
+// The horizontal warp's input for storage row r: final column (pos, in output pixels) and final row coordinate
+// (attr.v, in output v-lines) of every texel, its displacement, and validity (non-empty and 1 + k3*d > 0).
+// Returns the number of texels dropped for 1 + k3*d <= 0.
 template <class P>
 long long row_samples(const ReliefTexture& t, const PrewarpCoefficients& k, const PrewarpTables& tab, bool exact,
-                      int r, LineScratch<P>& s) {
+                      const Frame& fr, int r, LineScratch<P>& s) {
     const int w = t.width, h = t.height;
     const P vs = P(h - 1 - r) + P(0.5);
+    const P ou = P(fr.e.left), ov = P(fr.e.bottom);
     const ReliefTexel* src = &t.texels[size_t(r) * size_t(w)];
     long long nd = 0;
     for (int x = 0; x < w; ++x) {
@@ -49,48 +76,80 @@ long long row_samples(const ReliefTexture& t, const PrewarpCoefficients& k, cons
             const double den = 1.0 + k.k3 * d;
             const bool ok = tx.q != kEmptyIndex && den > 0.0;
             s.valid[x] = ok;
-            s.pos[x] = ok ? P((double(us) + k.k1 * d) / den) : P(0);
-            s.attr[x] = ok ? P((double(vs) + k.k2 * d) / den) : P(0);
+            s.pos[x] = ok ? P((double(us) + k.k1 * d) / den) + ou : P(0);
+            s.attr[x] = {ok ? P((double(vs) + k.k2 * d) / den) + ov : P(0), P(d)};
             nd += tx.q != kEmptyIndex && !ok;
         } else {
             s.valid[x] = tab.valid[tx.q];
-            s.pos[x] = (us + P(tab.k1d[tx.q])) * P(tab.rcp[tx.q]);
-            s.attr[x] = (vs + P(tab.k2d[tx.q])) * P(tab.rcp[tx.q]);
+            s.pos[x] = (us + P(tab.k1d[tx.q])) * P(tab.rcp[tx.q]) + ou;
+            s.attr[x] = {(vs + P(tab.k2d[tx.q])) * P(tab.rcp[tx.q]) + ov, P(tab.displ[tx.q])};
             nd += tx.q != kEmptyIndex && !tab.valid[tx.q];
         }
     }
     return nd;
 }
 
-// Horizontal pass over storage rows [r0, r1): colour and final row coordinate interpolated along each row.
+// Connectivity along storage row r: texels k and k+1 are connected unless marked.
+struct RowConnected {
+    const uint8_t* breaks;  // row's marks, or null
+    bool operator()(int a, int b) const { return !breaks || !(breaks[std::min(a, b)] & kBreakRight); }
+};
+
+// Connectivity of two samples carried into the vertical direction: displacements within the threshold.
+template <class P>
+struct DisplConnected {
+    const P* d;
+    P threshold;  // 0 = always connected
+    bool operator()(int a, int b) const { return !(threshold > P(0)) || std::abs(d[a] - d[b]) <= threshold; }
+};
+
+// Horizontal pass over storage rows [r0, r1): colour, final row coordinate and displacement interpolated along
+// each row into the intermediate image (output width x source height).
 template <class P>
 void horizontal_pass(const ReliefTexture& t, const PrewarpCoefficients& k, const PrewarpTables& tab, bool exact,
-                     int r0, int r1, ImageRGBA8& mid, Image2D<P>& mid_v, std::atomic<long long>& dropped) {
-    const int w = t.width;
+                     const Frame& fr, int r0, int r1, ImageRGBA8& mid, Image2D<P>& mid_v, Image2D<P>& mid_d,
+                     std::atomic<long long>& dropped) {
+    const int w = t.width, ow = fr.out_w();
     LineScratch<P> s;
     s.resize(w);
     const int split = split_index(k.epipole_u, w);
     long long nd = 0;
     for (int r = r0; r < r1; ++r) {
-        nd += row_samples(t, k, tab, exact, r, s);
-        Rgba8* out = mid.row(r);
-        std::fill(out, out + w, Rgba8{});
-        LineInput<P> in{w, s.pos.data(), s.color.data(), s.attr.data(), s.valid.data()};
-        LineOutput<P> lo{w, out, 1, mid_v.row(r), 1};
-        warp_line(in, split, lo);
+        nd += row_samples(t, k, tab, exact, fr, r, s);
+        Rgba8* oc = mid.row(r);
+        P* ov = mid_v.row(r);
+        P* od = mid_d.row(r);
+        std::fill(oc, oc + ow, Rgba8{});
+        LineInput<P, RowAttr<P>> in{w, s.pos.data(), s.color.data(), s.attr.data(), s.valid.data()};
+        const RowConnected conn{t.breaks.empty() ? nullptr : &t.breaks[size_t(r) * size_t(w)]};
+        warp_line_to(
+            in, split, ow,
+            [&](int x, Rgba8 c, const RowAttr<P>& a) {
+                oc[x] = c;
+                ov[x] = a.v;
+                od[x] = a.d;
+            },
+            conn);
     }
     dropped += nd;
 }
 
-// Vertical pass over columns [x0, x1): intermediate pixels move to their final rows. Lines run in v order
-// (bottom row first), so the output is written from storage row h-1 upwards (negative stride).
+// Writes the quantized displacement of an output pixel (depth correction).
+inline void put_displ(Image2D<uint8_t>* displ_out, const Quantizer& q, int x, int row, double d) {
+    if (displ_out) displ_out->at(x, row) = q.encode(d);
+}
+
+// Vertical pass over intermediate columns [x0, x1): intermediate pixels move to their final rows. Lines run in
+// v order (bottom row first), so storage rows are addressed as oh - 1 - y.
 template <class P>
-void vertical_pass(const PrewarpCoefficients& k, int x0, int x1, const ImageRGBA8& mid, const Image2D<P>& mid_v,
-                   ImageRGBA8& out) {
-    const int w = mid.width, h = mid.height;
+void vertical_pass(const ReliefTexture& t, const PrewarpCoefficients& k, const Frame& fr, int x0, int x1,
+                   const ImageRGBA8& mid, const Image2D<P>& mid_v, const Image2D<P>& mid_d, ImageRGBA8& out,
+                   Image2D<uint8_t>* displ_out) {
+    const int h = fr.h, oh = fr.out_h();
     LineScratch<P> s;
     s.resize(h);
     const int split = split_index(k.epipole_v, h);
+    const DisplConnected<P> conn{s.d.data(), P(t.discontinuity_threshold)};
     for (int x = x0; x < x1; ++x) {
         for (int j = 0; j < h; ++j) {
             const int r = h - 1 - j;
@@ -98,11 +157,19 @@ void vertical_pass(const PrewarpCoefficients& k, int x0, int x1, const ImageRGBA
             s.color[j] = c;
             s.valid[j] = c.a != 0;
             s.pos[j] = mid_v.at(x, r);
+            s.d[j] = mid_d.at(x, r);
         }
-        for (int j = 0; j < h; ++j) out.at(x, j) = Rgba8{};
-        LineInput<P> in{h, s.pos.data(), s.color.data(), nullptr, s.valid.data()};
-        LineOutput<P> lo{h, &out.at(x, h - 1), -std::ptrdiff_t(w), nullptr, 0};
-        warp_line(in, split, lo);
+        for (int y = 0; y < oh; ++y) out.at(x, y) = Rgba8{};
+        if (displ_out)
+            for (int y = 0; y < oh; ++y) displ_out->at(x, y) = kEmptyIndex;
+        LineInput<P, P> in{h, s.pos.data(), s.color.data(), s.d.data(), s.valid.data()};
+        warp_line_to(
+            in, split, oh,
+            [&](int y, Rgba8 c, P d) {
+                out.at(x, oh - 1 - y) = c;
+                put_displ(displ_out, t.quant, x, oh - 1 - y, d);
+            },
+            conn);
     }
 }
 
@@ -122,14 +189,18 @@ void run(int threads, int n, int grain, const Body& body) {
 
 template <class P>
 PrewarpStats two_pass(const ReliefTexture& t, const PrewarpCoefficients& k, const PrewarpTables& tab, bool exact,
-                      int threads, ImageRGBA8& mid, Image2D<P>& mid_v, ImageRGBA8& out) {
-    const int w = t.width, h = t.height;
-    mid.resize(w, h);
-    mid_v.resize(w, h);
+                      const Frame& fr, int threads, ImageRGBA8& mid, Image2D<P>& mid_v, Image2D<P>& mid_d,
+                      ImageRGBA8& out, Image2D<uint8_t>* displ_out) {
+    const int ow = fr.out_w();
+    mid.resize(ow, t.height);
+    mid_v.resize(ow, t.height);
+    mid_d.resize(ow, t.height);
     std::atomic<long long> dropped{0};
-    run(threads, h, 16, [&](int r0, int r1) { horizontal_pass<P>(t, k, tab, exact, r0, r1, mid, mid_v, dropped); });
-    run(threads, w, 16, [&](int x0, int x1) { vertical_pass<P>(k, x0, x1, mid, mid_v, out); });
-    return {(long long)w * h, dropped.load()};
+    run(threads, t.height, 16,
+        [&](int r0, int r1) { horizontal_pass<P>(t, k, tab, exact, fr, r0, r1, mid, mid_v, mid_d, dropped); });
+    run(threads, ow, 16,
+        [&](int x0, int x1) { vertical_pass<P>(t, k, fr, x0, x1, mid, mid_v, mid_d, out, displ_out); });
+    return {(long long)t.width * t.height, dropped.load(), fr.e};
 }
 
 // Pipelined reconstruction (paper section 3.2.2, Figure 11): rows are warped in occlusion-compatible order and
@@ -139,6 +210,7 @@ PrewarpStats two_pass(const ReliefTexture& t, const PrewarpCoefficients& k, cons
 template <class P>
 struct ColumnSample {
     P v;
+    P d;
     Rgba8 c;
 };
 
@@ -149,36 +221,51 @@ struct PipelinedPart {
     long long dropped = 0;
 };
 
-// Rows j (v order, bottom = 0) from `first` towards `last` (exclusive) by `step`; writes only output v-rows in
-// [y0, y1), the half of the texture on this part's side of the epipole, so the two parts never touch the same
+template <class P>
+inline bool column_connected(const ColumnSample<P>& a, const ColumnSample<P>& b, P threshold) {
+    return !(threshold > P(0)) || std::abs(a.d - b.d) <= threshold;
+}
+
+// Rows j (v order, bottom = 0) from `first` towards `last` (exclusive) by `step`; writes only output v-lines in
+// [y0, y1), the part of the output on this part's side of the epipole, so the two parts never touch the same
 // pixel and can run concurrently with a result independent of the schedule.
 template <class P>
 void pipelined_part(const ReliefTexture& t, const PrewarpCoefficients& k, const PrewarpTables& tab, bool exact,
-                    int first, int last, int step, int y0, int y1, PipelinedPart<P>& part, ImageRGBA8& out) {
-    const int w = t.width, h = t.height;
+                    const Frame& fr, int first, int last, int step, int y0, int y1, PipelinedPart<P>& part,
+                    ImageRGBA8& out, Image2D<uint8_t>* displ_out) {
+    const int w = t.width, ow = fr.out_w(), oh = fr.out_h();
+    const P thr = P(t.discontinuity_threshold);
     LineScratch<P> s;
     s.resize(w);
     const int split = split_index(k.epipole_u, w);
-    part.prev.assign(size_t(w), {});
-    part.cur.assign(size_t(w), {});
-    part.prev_ok.assign(size_t(w), 0);
-    part.cur_ok.assign(size_t(w), 0);
+    part.prev.assign(size_t(ow), {});
+    part.cur.assign(size_t(ow), {});
+    part.prev_ok.assign(size_t(ow), 0);
+    part.cur_ok.assign(size_t(ow), 0);
     for (int j = first; j != last; j += step) {
-        const int r = h - 1 - j;
-        part.dropped += row_samples(t, k, tab, exact, r, s);
+        const int r = t.height - 1 - j;
+        part.dropped += row_samples(t, k, tab, exact, fr, r, s);
         std::fill(part.cur_ok.begin(), part.cur_ok.end(), uint8_t(0));
-        LineInput<P> in{w, s.pos.data(), s.color.data(), s.attr.data(), s.valid.data()};
-        warp_line_to(in, split, w, [&](int x, Rgba8 c, P v) {
-            auto put = [&](int y, Rgba8 cc, P) {
-                if (y >= y0 && y < y1) out.at(x, h - 1 - y) = cc;
-            };
-            if (part.prev_ok[x])
-                raster_span(part.prev[x].v, part.prev[x].c, P(0), v, c, P(0), h, put);
-            else if (std::isfinite(v))
-                raster_point(v, c, P(0), h, put);
-            part.cur[x] = {v, c};
-            part.cur_ok[x] = std::isfinite(v);
-        });
+        LineInput<P, RowAttr<P>> in{w, s.pos.data(), s.color.data(), s.attr.data(), s.valid.data()};
+        const RowConnected conn{t.breaks.empty() ? nullptr : &t.breaks[size_t(r) * size_t(w)]};
+        warp_line_to(
+            in, split, ow,
+            [&](int x, Rgba8 c, const RowAttr<P>& a) {
+                auto put = [&](int y, Rgba8 cc, P d) {
+                    if (y < y0 || y >= y1) return;
+                    out.at(x, oh - 1 - y) = cc;
+                    put_displ(displ_out, t.quant, x, oh - 1 - y, d);
+                };
+                const ColumnSample<P> now{a.v, a.d, c};
+                if (!std::isfinite(a.v)) return;
+                if (part.prev_ok[x] && column_connected(part.prev[x], now, thr))
+                    raster_span(part.prev[x].v, part.prev[x].c, part.prev[x].d, a.v, c, a.d, oh, put);
+                else
+                    raster_point(a.v, c, a.d, oh, put);
+                part.cur[x] = now;
+                part.cur_ok[x] = 1;
+            },
+            conn);
         std::swap(part.prev, part.cur);
         std::swap(part.prev_ok, part.cur_ok);
     }
@@ -186,13 +273,19 @@ void pipelined_part(const ReliefTexture& t, const PrewarpCoefficients& k, const 
 
 template <class P>
 PrewarpStats pipelined(const ReliefTexture& t, const PrewarpCoefficients& k, const PrewarpTables& tab, bool exact,
-                       int threads, ImageRGBA8& out) {
-    const int w = t.width, h = t.height;
+                       const Frame& fr, int threads, ImageRGBA8& out, Image2D<uint8_t>* displ_out) {
+    const int ow = fr.out_w(), oh = fr.out_h(), h = t.height;
     std::fill(out.pixels.begin(), out.pixels.end(), Rgba8{});
+    if (displ_out) std::fill(displ_out->pixels.begin(), displ_out->pixels.end(), kEmptyIndex);
     const int split = split_index(k.epipole_v, h);
+    const int ysplit = split_index(k.epipole_v + fr.e.bottom, oh);
     PipelinedPart<P> bottom, top;
-    auto run_bottom = [&] { pipelined_part<P>(t, k, tab, exact, 0, split, +1, 0, split, bottom, out); };
-    auto run_top = [&] { pipelined_part<P>(t, k, tab, exact, h - 1, split - 1, -1, split, h, top, out); };
+    auto run_bottom = [&] {
+        pipelined_part<P>(t, k, tab, exact, fr, 0, split, +1, 0, ysplit, bottom, out, displ_out);
+    };
+    auto run_top = [&] {
+        pipelined_part<P>(t, k, tab, exact, fr, h - 1, split - 1, -1, ysplit, oh, top, out, displ_out);
+    };
     if (threads == 1) {
         run_bottom();
         run_top();
@@ -200,30 +293,78 @@ PrewarpStats pipelined(const ReliefTexture& t, const PrewarpCoefficients& k, con
         tbb::parallel_invoke(run_bottom, run_top);
     }
     // The seam between the last rows of the two parts (rows split - 1 and split).
+    const P thr = P(t.discontinuity_threshold);
     if (split > 0 && split < h) {
-        for (int x = 0; x < w; ++x) {
+        for (int x = 0; x < ow; ++x) {
             if (!bottom.prev_ok[x] || !top.prev_ok[x]) continue;
-            raster_span(bottom.prev[x].v, bottom.prev[x].c, P(0), top.prev[x].v, top.prev[x].c, P(0), h,
-                        [&](int y, Rgba8 c, P) { out.at(x, h - 1 - y) = c; });
+            const ColumnSample<P>& a = bottom.prev[x];
+            const ColumnSample<P>& b = top.prev[x];
+            if (!column_connected(a, b, thr)) continue;
+            raster_span(a.v, a.c, a.d, b.v, b.c, b.d, oh, [&](int y, Rgba8 c, P d) {
+                out.at(x, oh - 1 - y) = c;
+                put_displ(displ_out, t.quant, x, oh - 1 - y, d);
+            });
         }
     }
-    return {(long long)w * h, bottom.dropped + top.dropped};
+    return {(long long)t.width * h, bottom.dropped + top.dropped, fr.e};
 }
 
 }  // namespace
 
+PrewarpExtent outlier_extent(const ReliefTexture& t, const PrewarpCoefficients& k, int max_margin) {
+    PrewarpExtent e;
+    if (k.side == ViewSide::on_plane) return e;
+    // u_i is linear in u_s and monotonic in d, so its extremes are at the corners of [0, w] x [dmin, dmax];
+    // displacements that cannot be pre-warped (1 + k3*d <= 0) are cut just below the eye's plane.
+    double dlo = t.quant.min, dhi = t.quant.max;
+    auto clampd = [&](double d) {
+        if (1.0 + k.k3 * d > 1e-6) return d;
+        return (1e-6 - 1.0) / k.k3;
+    };
+    dlo = clampd(dlo);
+    dhi = clampd(dhi);
+    double umin = 0, umax = t.width, vmin = 0, vmax = t.height;
+    for (double d : {dlo, dhi})
+        for (double us : {0.0, double(t.width)})
+            for (double vs : {0.0, double(t.height)}) {
+                double ui, vi;
+                if (!k.warp(us, vs, d, ui, vi)) continue;
+                umin = std::min(umin, ui);
+                umax = std::max(umax, ui);
+                vmin = std::min(vmin, vi);
+                vmax = std::max(vmax, vi);
+            }
+    auto margin = [&](double over) {
+        const double m = std::ceil(std::max(0.0, over));
+        return int(std::min(m, double(max_margin)));
+    };
+    e.left = margin(-umin);
+    e.right = margin(umax - t.width);
+    e.bottom = margin(-vmin);
+    e.top = margin(vmax - t.height);
+    return e;
+}
+
 PrewarpStats prewarp(const ReliefTexture& relief, const PrewarpCoefficients& k, const PrewarpOptions& options,
-                     PrewarpWorkspace& ws, ImageRGBA8& out) {
-    out.resize(relief.width, relief.height);
-    if (k.side == ViewSide::on_plane || relief.width == 0 || relief.height == 0) return {};
+                     PrewarpWorkspace& ws, ImageRGBA8& out, Image2D<uint8_t>* displ_out) {
+    Frame fr{relief.width, relief.height, {}};
+    if (options.keep_outliers) {
+        const int mm = options.max_margin >= 0 ? options.max_margin : std::max(relief.width, relief.height) / 2;
+        fr.e = outlier_extent(relief, k, mm);
+    }
+    out.resize(fr.out_w(), fr.out_h());
+    if (displ_out) displ_out->resize(fr.out_w(), fr.out_h(), kEmptyIndex);
+    if (k.side == ViewSide::on_plane || relief.width == 0 || relief.height == 0) return {0, 0, fr.e};
     const PrewarpTables tab = PrewarpTables::build(k, relief.quant);
     if (options.method == Reconstruction::pipelined) {
-        if (options.exact) return pipelined<double>(relief, k, tab, true, options.threads, out);
-        return pipelined<float>(relief, k, tab, false, options.threads, out);
+        if (options.exact) return pipelined<double>(relief, k, tab, true, fr, options.threads, out, displ_out);
+        return pipelined<float>(relief, k, tab, false, fr, options.threads, out, displ_out);
     }
     if (options.exact)
-        return two_pass<double>(relief, k, tab, true, options.threads, ws.mid_color, ws.mid_v_exact, out);
-    return two_pass<float>(relief, k, tab, false, options.threads, ws.mid_color, ws.mid_v, out);
+        return two_pass<double>(relief, k, tab, true, fr, options.threads, ws.mid_color, ws.mid_v_exact,
+                                ws.mid_d_exact, out, displ_out);
+    return two_pass<float>(relief, k, tab, false, fr, options.threads, ws.mid_color, ws.mid_v, ws.mid_d, out,
+                           displ_out);
 }
 
 ImageRGBA8 prewarp(const ReliefTexture& relief, const glm::dvec3& eye, const PrewarpOptions& options) {

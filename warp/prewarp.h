@@ -6,7 +6,18 @@
 // and the final row coordinate along the row between non-empty neighbours; a vertical pass moves texels to their
 // final rows, interpolating colour. Each line is warped in occlusion-compatible order: split at the epipole,
 // each part from the border towards the epipole, and the span between the two last texels is filled like any
-// other. Samples that land outside the texture are dropped.
+// other. Samples that land outside the texture are dropped, unless keep_outliers asks for a margin around the
+// quad (paper section 4, Figure 12): then the output covers u in [-left, w + right), v in [-bottom, h + top),
+// with the margins chosen per view to hold every sample (up to max_margin texels per side).
+//
+// Surface discontinuities (section 4.1.1): where the relief carries marks (mark_discontinuities), the horizontal
+// pass never interpolates across a marked edge, and the vertical pass never connects two intermediate pixels
+// whose carried displacements differ by more than the relief's threshold: no "skins".
+//
+// Depth correction (section 4.2): on request, the displacement seen at each output pixel is interpolated along
+// with colour and written, quantized with the relief's 8-bit quantizer (index 255 where empty). Since the
+// pre-warped point P and the surface point X lie on one ray from the eye, X - E = (P - E) * (1 + k3*d): the
+// texture-mapping stage scales the polygon's eye-space depth by 1 + k3*d to get the perceived depth.
 #pragma once
 
 #include <string>
@@ -23,25 +34,39 @@ enum class Reconstruction { two_pass, pipelined };
 
 struct PrewarpOptions {
     Reconstruction method = Reconstruction::two_pass;
-    bool exact = false;  // unquantized displacement and double-precision coordinates (the reference path)
-    int threads = 0;     // 0 = all available; the output never depends on it
+    bool exact = false;          // unquantized displacement and double-precision coordinates (the reference path)
+    int threads = 0;             // 0 = all available; the output never depends on it
+    bool keep_outliers = false;  // keep samples that leave the quad in a margin (for the side polygons)
+    int max_margin = -1;         // largest margin per side in texels; -1 = max(w, h) / 2
+};
+
+// Texels of output beyond the quad on each side (all 0 unless keep_outliers).
+struct PrewarpExtent {
+    int left = 0, right = 0, bottom = 0, top = 0;
+    friend bool operator==(const PrewarpExtent&, const PrewarpExtent&) = default;
 };
 
 // Intermediate buffers, reused across frames so a steady-state pre-warp allocates nothing.
 struct PrewarpWorkspace {
-    ImageRGBA8 mid_color;   // horizontal-pass output
-    ImageF mid_v;           // final v coordinate carried by the horizontal pass (lookup-table path)
+    ImageRGBA8 mid_color;         // horizontal-pass output
+    ImageF mid_v, mid_d;          // final v and displacement carried by the horizontal pass (lookup-table path)
     Image2D<double> mid_v_exact;  // the same in double precision (--exact)
+    Image2D<double> mid_d_exact;
 };
 
 struct PrewarpStats {
     long long texels = 0;        // source texels visited
     long long dropped = 0;       // texels that could not be pre-warped (1 + k3*d <= 0)
+    PrewarpExtent extent;        // the output's margins around the quad
 };
 
-// Pre-warps `relief` for the eye in `k`. `out` is resized to the relief's size.
+// Pre-warps `relief` for the eye in `k`. `out` is resized to the relief's size plus the margins. If `displ_out`
+// is not null it receives the quantized displacement seen at each output pixel (for depth correction).
 PrewarpStats prewarp(const ReliefTexture& relief, const PrewarpCoefficients& k, const PrewarpOptions& options,
-                     PrewarpWorkspace& workspace, ImageRGBA8& out);
+                     PrewarpWorkspace& workspace, ImageRGBA8& out, Image2D<uint8_t>* displ_out = nullptr);
+
+// The margins that hold every sample of this view (before clamping to max_margin).
+PrewarpExtent outlier_extent(const ReliefTexture& relief, const PrewarpCoefficients& k, int max_margin);
 
 // Convenience: computes coefficients and tables itself.
 ImageRGBA8 prewarp(const ReliefTexture& relief, const glm::dvec3& eye, const PrewarpOptions& options = {});

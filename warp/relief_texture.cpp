@@ -109,3 +109,23 @@ ReliefTexture make_relief(const ImageRGBA8& color, const ImageF& displacement, d
 }
 
 }  // namespace rtm
+
+namespace rtm {
+
+void mark_discontinuities(ReliefTexture& t, double threshold) {
+    t.breaks.clear();
+    t.discontinuity_threshold = 0.0;
+    if (!(threshold > 0.0) || !std::isfinite(threshold)) return;
+    t.discontinuity_threshold = threshold;
+    t.breaks.assign(t.texels.size(), 0);
+    for (int r = 0; r < t.height; ++r)
+        for (int x = 0; x < t.width; ++x) {
+            uint8_t m = 0;
+            const double d = t.displ(x, r);
+            if (x + 1 < t.width && std::abs(t.displ(x + 1, r) - d) > threshold) m |= kBreakRight;
+            if (r > 0 && std::abs(t.displ(x, r - 1) - d) > threshold) m |= kBreakUp;
+            t.breaks[size_t(r) * size_t(t.width) + size_t(x)] = m;
+        }
+}
+
+}  // namespace rtm

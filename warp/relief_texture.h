@@ -21,7 +21,9 @@
 namespace rtm {
 
 inline constexpr uint8_t kEmptyIndex = 255;
-inline constexpr int kQuantLevels = 255;  // indices 0..254 carry displacement
+inline constexpr int kQuantLevels = 255;
+inline constexpr uint8_t kBreakRight = 1;
+inline constexpr uint8_t kBreakUp = 2;  // indices 0..254 carry displacement
 
 struct ReliefTexel {
     uint8_t r = 0, g = 0, b = 0;
@@ -61,6 +63,11 @@ struct ReliefTexture {
     Quantizer quant;
     std::vector<ReliefTexel> texels;  // row-major, row 0 = top
     std::vector<float> displacement;  // exact displacement in world units, same layout (undefined where empty)
+    // Surface discontinuities (paper section 4.1.1), filled by mark_discontinuities: bit kBreakRight means "not
+    // connected to the texel on the right", kBreakUp "not connected to the texel above" (v + 1, storage row - 1).
+    // Empty when no discontinuity handling is wanted.
+    std::vector<uint8_t> breaks;
+    double discontinuity_threshold = 0.0;  // world units; 0 = none
 
     const ReliefTexel& texel(int x, int row) const { return texels[size_t(row) * size_t(width) + size_t(x)]; }
     float displ(int x, int row) const { return displacement[size_t(row) * size_t(width) + size_t(x)]; }
@@ -75,5 +82,9 @@ struct ReliefTexture {
 // quantized. Throws std::invalid_argument naming the problem (sizes differ, non-finite values, bad geometry).
 ReliefTexture make_relief(const ImageRGBA8& color, const ImageF& displacement, double range_min, double range_max,
                           const ReliefGeometry& geometry);
+
+// Marks every pair of 4-connected non-empty texels whose displacements differ by more than `threshold` (world
+// units, > 0) as not connected. A threshold <= 0 clears the marks.
+void mark_discontinuities(ReliefTexture& t, double threshold);
 
 }  // namespace rtm

@@ -12,6 +12,7 @@ PrewarpTables PrewarpTables::build(const PrewarpCoefficients& k, const Quantizer
         const bool ok = den > 0.0;
         t.valid[q] = ok;
         t.still[q] = d == 0.0;
+        t.displ[q] = float(d);
         t.k1d[q] = ok ? float(k.k1 * d) : 0.0f;
         t.k2d[q] = ok ? float(k.k2 * d) : 0.0f;
         t.rcp[q] = ok ? float(1.0 / den) : 0.0f;

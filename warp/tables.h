@@ -19,6 +19,7 @@ struct PrewarpTables {
     std::array<float, 256> k1d{};
     std::array<float, 256> k2d{};
     std::array<float, 256> rcp{};
+    std::array<float, 256> displ{};  // d'(q) itself, carried for discontinuities and depth correction
     std::array<uint8_t, 256> valid{};
     std::array<uint8_t, 256> still{};  // 1 where d'(q) == 0: the texel does not move
 
