@@ -25,7 +25,8 @@ struct ReliefManifest {
 };
 
 ReliefManifest parse_relief_manifest(const std::string& path);
-// Parses the manifest, reads both images (sizes must match, displacement finite) and builds the texture.
+// Parses the manifest, reads both images (sizes must match, displacement finite) and builds the texture. When the
+// manifest has a "discontinuity_threshold", the texture's discontinuities are marked with it (mark_discontinuities).
 ReliefTexture load_relief(const std::string& manifest_path, ReliefManifest* manifest_out = nullptr);
 // Writes a manifest (paths relative to its folder) plus images; used by the media generator and `bake`.
 void write_relief(const std::string& manifest_path, const ReliefManifest& m, const ImageRGBA8& color,
