@@ -51,6 +51,8 @@ public:
     // corners: world positions of the texture's (u,v) = (0,0), (w,0), (w,h), (0,h) in that order; the texture's
     // top row is v = h (shared/CONVENTIONS.md).
     void draw_textured_quad(const Camera& cam, const std::array<glm::dvec3, 4>& corners, const GlTexture& tex);
+    // Vertex alpha, like texture alpha, is coverage: fragments whose interpolated alpha is below one half are
+    // discarded; everything drawn is written opaque. Indices must be < vertices.size() (else std::out_of_range).
     void draw_mesh(const Camera& cam, const std::vector<MeshVertex>& vertices, const std::vector<uint32_t>& indices);
     void finish();                                   // glFinish, so a timer around draw calls measures them
     ImageRGBA8 read_pixels(int width, int height);   // top row first

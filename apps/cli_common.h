@@ -1,0 +1,48 @@
+// What the subcommands share: errors and exit codes, CAMERA options, JSON output (shared/CONVENTIONS.md,
+// "Command line"). Exit status: 0 success; 1 runtime failure with one line naming the file or value; 2 usage.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <glm/vec3.hpp>
+#include <nlohmann/json.hpp>
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "objects/bounds.h"
+#include "texmap/camera.h"
+
+namespace rtm::cli {
+
+// A usage error (bad flag value): exit status 2.
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+glm::dvec3 parse_vec3(const std::string& text, const std::string& flag);
+void parse_size(const std::string& text, const std::string& flag, int& w, int& h);
+
+struct CameraArgs {
+    std::string eye, orbit, look_at, up = "0,1,0", size = "512x512";
+    double fov = 45.0;
+    void add_to(CLI::App& app, bool eye_required = false);
+    // Builds the camera for what is rendered (its bounds give the orbit centre and the clip planes).
+    Camera resolve(const Bounds& bounds) const;
+    bool has_eye() const { return !eye.empty() || !orbit.empty(); }
+};
+
+// Writes JSON atomically (temporary file + rename).
+void write_json(const std::string& path, const nlohmann::json& j);
+
+// Statistics over repeated timings.
+nlohmann::json timing_json(std::vector<double> ms);
+
+// Registration of each subcommand (apps/cmd_*.cpp).
+void add_prewarp_command(CLI::App& app);
+void add_render_command(CLI::App& app);
+void add_compare_command(CLI::App& app);
+void add_diff_command(CLI::App& app);
+
+}  // namespace rtm::cli

@@ -1,0 +1,113 @@
+// rtm render: the final view of a relief-textured quad with any method (flat, two-pass, pipelined, and the
+// ground truths micromesh and raycast).
+#include <chrono>
+#include <cstdio>
+#include <memory>
+
+#include <unistd.h>
+
+#include "cli_common.h"
+#include "objects/bounds.h"
+#include "objects/render_relief.h"
+#include "objects/relief_manifest.h"
+#include "objects/relief_quad.h"
+#include "texmap/gl_context.h"
+#include "texmap/image_io.h"
+
+namespace rtm::cli {
+
+namespace {
+
+
+struct RenderArgs {
+    std::string relief, out, json, method = "two-pass", level = "0";
+    CameraArgs camera;
+    bool exact = false, progress = false;
+    int repeat = 1, threads = 0;
+};
+
+void run_render(const RenderArgs& a) {
+    RenderMethod method;
+    try {
+        method = parse_render_method(a.method);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(std::string("--method: ") + e.what());
+    }
+    if (a.level != "0") throw UsageError("--level: only level 0 is available yet, found \"" + a.level + "\"");
+    if (a.repeat < 1) throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
+    if (a.relief.empty()) throw UsageError("render needs --relief M");
+    if (!a.camera.has_eye()) throw UsageError("render needs --eye X,Y,Z or --orbit AZ,EL,D");
+    // Validate the camera's syntax before any file is read.
+    (void)a.camera.resolve(Bounds{glm::dvec3(-1), glm::dvec3(1)});
+
+    ReliefQuad quad(load_relief(a.relief));
+    const Camera cam = a.camera.resolve(relief_bounds(quad.relief()));
+    PrewarpOptions opt;
+    opt.exact = a.exact;
+    opt.threads = a.threads;
+
+    std::vector<double> t_pre, t_up, t_map, t_total;
+    ImageRGBA8 image;
+    RenderSettings rs;
+    rs.method = method;
+    rs.prewarp = opt;
+    if (a.progress || isatty(2))
+        rs.progress = [](double f) { std::fprintf(stderr, "\r%s %5.1f%%", "raycast", 100 * f); };
+    std::unique_ptr<GlContext> ctx;
+    std::unique_ptr<Renderer> renderer;
+    if (method != RenderMethod::raycast) {
+        ctx = GlContext::create_offscreen(cam.width, cam.height);
+        renderer = std::make_unique<Renderer>();
+    }
+    // One warm-up frame when repeating (not for raycast, which is slow and has no state to warm).
+    const int warm = a.repeat > 1 && method != RenderMethod::raycast ? 1 : 0;
+    for (int i = 0; i < a.repeat + warm; ++i) {
+        StageTimes st;
+        image = render_relief_frame(quad, renderer.get(), cam, rs, st);
+        if (i < warm) continue;
+        t_pre.push_back(st.prewarp_ms);
+        t_up.push_back(st.upload_ms);
+        t_map.push_back(st.texture_map_ms);
+        t_total.push_back(st.total_ms);
+    }
+    if (method == RenderMethod::raycast && rs.progress) std::fprintf(stderr, "\n");
+    if (!a.out.empty()) write_rgba8(a.out, image);
+    if (!a.json.empty()) {
+        nlohmann::json j = {
+            {"command", "render"},
+            {"relief", a.relief},
+            {"method", a.method},
+            {"exact", a.exact},
+            {"prewarp_ms", timing_json(t_pre)},
+            {"upload_ms", timing_json(t_up)},
+            {"texture_map_ms", timing_json(t_map)},
+            {"total_ms", timing_json(t_total)},
+            {"texels", (long long)quad.relief().width * quad.relief().height},
+            {"level", 0},
+            {"skips", nlohmann::json::array()},
+            {"eye", {cam.eye.x, cam.eye.y, cam.eye.z}},
+            {"size", {cam.width, cam.height}},
+        };
+        write_json(a.json, j);
+    }
+}
+
+}  // namespace
+
+void add_render_command(CLI::App& app) {
+    auto a = std::make_shared<RenderArgs>();
+    CLI::App* sub = app.add_subcommand("render", "Render a relief texture (or object, scene) to an image");
+    sub->add_option("--relief", a->relief, "Relief texture manifest (NAME.relief.json)");
+    a->camera.add_to(*sub);
+    sub->add_option("--method", a->method, "flat, two-pass, pipelined, micromesh or raycast")->capture_default_str();
+    sub->add_flag("--exact", a->exact, "Pre-warp with unquantized displacement and double-precision coordinates");
+    sub->add_option("--level", a->level, "Relief texture pyramid level N or auto")->capture_default_str();
+    sub->add_option("--out", a->out, "Output image");
+    sub->add_option("--json", a->json, "Write stage times as JSON");
+    sub->add_option("--repeat", a->repeat, "Render N frames after one warm-up, for timing")->capture_default_str();
+    sub->add_option("--threads", a->threads, "Threads (0 = all)")->capture_default_str();
+    sub->add_flag("--progress", a->progress, "Show progress of slow methods");
+    sub->callback([a] { run_render(*a); });
+}
+
+}  // namespace rtm::cli

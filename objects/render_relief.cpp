@@ -1,0 +1,47 @@
+#include "objects/render_relief.h"
+
+#include <chrono>
+#include <stdexcept>
+
+#include "objects/micromesh.h"
+#include "objects/raycast.h"
+
+namespace rtm {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+}  // namespace
+
+ImageRGBA8 render_relief_frame(ReliefQuad& quad, Renderer* renderer, const Camera& cam, const RenderSettings& s,
+                               StageTimes& times) {
+    const auto t0 = Clock::now();
+    if (s.method == RenderMethod::raycast) {
+        RaycastOptions ro;
+        ro.threads = s.prewarp.threads;
+        ro.progress = s.progress;
+        ImageRGBA8 img = raycast_relief(quad.relief(), cam, ro);
+        times.total_ms += ms_since(t0);
+        return img;
+    }
+    if (!renderer) throw std::logic_error("render_relief_frame: " + to_string(s.method) + " needs a renderer");
+    renderer->begin_frame(cam);
+    if (s.method == RenderMethod::micromesh) {
+        const MicroMesh& mesh = quad.micromesh();
+        renderer->draw_mesh(cam, mesh.vertices, mesh.indices);
+        renderer->finish();
+        times.texture_map_ms += ms_since(t0);
+    } else {
+        StageTimes st;
+        quad.draw(*renderer, cam, s.method, s.prewarp, st);
+        times.prewarp_ms += st.prewarp_ms;
+        times.upload_ms += st.upload_ms;
+        times.texture_map_ms += st.texture_map_ms;
+    }
+    times.total_ms += ms_since(t0);
+    return renderer->read_pixels(cam.width, cam.height);
+}
+
+}  // namespace rtm

@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# Bad input on the command line: exit 1 (runtime) or 2 (usage), one line naming the problem, no output file.
+. "$(dirname "$0")/lib.bash"
+make_small_relief "$T/r"
+R=$T/r/ok.relief.json
+
+# The valid relief works.
+expect_ok prewarp --relief "$R" --eye 0.5,0.5,3 --out "$T/ok.png"
+expect_ok render --relief "$R" --eye 0.5,0.5,3 --size 64x64 --out "$T/ok_render.png"
+
+# Missing file.
+expect_fail 1 'nope\.relief\.json' -- prewarp --relief "$T/nope.relief.json" --eye 0,0,1 --out "$T/o1.png"
+# Unreadable image: a manifest whose colour file is text.
+cp "$R" "$T/r/badimg.relief.json"
+echo "not an image" >"$T/r/text.png"
+sed -i 's/"c.ppm"/"text.png"/' "$T/r/badimg.relief.json"
+expect_fail 1 'text\.png' -- prewarp --relief "$T/r/badimg.relief.json" --eye 0,0,1 --out "$T/o2.png"
+# Colour and displacement of different sizes.
+printf 'P2\n3 4\n255\n' >"$T/r/d34.pgm"; for i in $(seq 12); do echo 5 >>"$T/r/d34.pgm"; done
+sed 's/"d.pgm"/"d34.pgm"/' "$R" >"$T/r/sizes.relief.json"
+expect_fail 1 '3x4.*4x4|4x4.*3x4' -- prewarp --relief "$T/r/sizes.relief.json" --eye 0,0,1 --out "$T/o3.png"
+# Non-finite displacement range.
+sed 's/\[0.0, 0.5\]/[0.0, 1e999]/' "$R" >"$T/r/inf.relief.json"
+expect_fail 1 'inf\.relief\.json.*displacement_range' -- prewarp --relief "$T/r/inf.relief.json" --eye 0,0,1 --out "$T/o4.png"
+# Degenerate a/b: zero and parallel.
+sed 's/"a": \[0.25, 0, 0\]/"a": [0, 0, 0]/' "$R" >"$T/r/zero.relief.json"
+expect_fail 1 'zero\.relief\.json.*\ba\b' -- prewarp --relief "$T/r/zero.relief.json" --eye 0,0,1 --out "$T/o5.png"
+sed 's/"b": \[0, 0.25, 0\]/"b": [0.5, 0, 0]/' "$R" >"$T/r/par.relief.json"
+expect_fail 1 'par\.relief\.json.*parallel' -- prewarp --relief "$T/r/par.relief.json" --eye 0,0,1 --out "$T/o6.png"
+# Unknown method.
+expect_fail 2 'method.*bogus' -- render --relief "$R" --eye 0,0,1 --method bogus --out "$T/o7.png"
+expect_fail 2 'method.*bogus' -- prewarp --relief "$R" --eye 0,0,1 --method bogus --out "$T/o8.png"
+# Malformed --eye.
+expect_fail 2 'eye.*1,2' -- prewarp --relief "$R" --eye 1,2 --out "$T/o9.png"
+expect_fail 2 'eye.*a,b,c' -- render --relief "$R" --eye a,b,c --out "$T/o10.png"
+expect_fail 2 'eye.*nan' -- render --relief "$R" --eye nan,0,1 --out "$T/o11.png"
+# Missing required flags and unknown flags are usage errors.
+expect_fail 2 'out' -- prewarp --relief "$R" --eye 0,0,1
+expect_fail 2 'frobnicate' -- prewarp --relief "$R" --eye 0,0,1 --out "$T/o12.png" --frobnicate
+expect_fail 2 'size.*0x5' -- render --relief "$R" --eye 0,0,1 --size 0x5 --out "$T/o13.png"
+
+# No output file was left behind by any failure.
+for i in $(seq 1 13); do
+  if [ -e "$T/o$i.png" ]; then echo "FAIL: partial output $T/o$i.png left behind"; fails=$((fails + 1)); fi
+done
+ls "$T" | grep -q '\.tmp' && { echo "FAIL: temporary file left behind"; fails=$((fails + 1)); }
+finish

@@ -1,0 +1,366 @@
+// The texture-mapping stage in OpenGL 3.3 core.
+//
+// Texture orientation: images are uploaded as stored (row 0 = top of the picture), and glTexImage2D puts the first
+// row at t = 0, so the picture's top row lies at t = 0. The relief convention puts the top row at v = 1
+// (shared/CONVENTIONS.md), hence every texture coordinate is given to GL as (u, t) = (u, 1 - v). Flipping t instead
+// of the rows keeps upload() a straight copy and lets upload_rect() address rows as the image does.
+//
+// Output alpha: what is drawn is opaque. A quad fragment is kept when its bilinearly filtered texture alpha is at
+// least one half (alpha is coverage, not translucency) and is written with alpha 1; so is a mesh fragment, whose
+// alpha is the interpolated vertex alpha. The framebuffer therefore stays opaque everywhere (background 0,0,0,1).
+#include "texmap/renderer.h"
+
+#include <glad/gl.h>
+
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/mat4x4.hpp>
+
+#include <algorithm>
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+
+#include "texmap/gl_context.h"
+
+namespace rtm {
+namespace {
+
+static_assert(sizeof(Rgba8) == 4, "Rgba8 must be 4 tightly packed bytes");
+static_assert(sizeof(MeshVertex) == 16, "MeshVertex must be 3 floats and 4 bytes, tightly packed");
+
+constexpr const char* kQuadVertexShader = R"(#version 330 core
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec2 a_texcoord;
+uniform mat4 u_mvp;
+out vec2 v_texcoord;
+void main() {
+    v_texcoord = a_texcoord;
+    gl_Position = u_mvp * vec4(a_position, 1.0);
+}
+)";
+
+constexpr const char* kQuadFragmentShader = R"(#version 330 core
+in vec2 v_texcoord;
+uniform sampler2D u_texture;
+out vec4 o_color;
+void main() {
+    vec4 t = texture(u_texture, v_texcoord);
+    if (t.a < 0.5) discard;  // empty texels show what is behind
+    o_color = vec4(t.rgb, 1.0);
+}
+)";
+
+constexpr const char* kMeshVertexShader = R"(#version 330 core
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec4 a_color;
+uniform mat4 u_mvp;
+out vec4 v_color;
+void main() {
+    v_color = a_color;
+    gl_Position = u_mvp * vec4(a_position, 1.0);
+}
+)";
+
+constexpr const char* kMeshFragmentShader = R"(#version 330 core
+in vec4 v_color;
+out vec4 o_color;
+void main() {
+    if (v_color.a < 0.5) discard;
+    o_color = vec4(v_color.rgb, 1.0);
+}
+)";
+
+void require_context(const char* what) {
+    // glad's pointers are null until a GlContext was made current.
+    if (!glad_glCreateShader) throw GlError(std::string(what) + ": no OpenGL context is current");
+}
+
+GLuint compile(GLenum type, const char* source, const char* name) {
+    GLuint s = glCreateShader(type);
+    glShaderSource(s, 1, &source, nullptr);
+    glCompileShader(s);
+    GLint ok = 0;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        GLint len = 0;
+        glGetShaderiv(s, GL_INFO_LOG_LENGTH, &len);
+        std::string log(size_t(len > 1 ? len : 1), '\0');
+        glGetShaderInfoLog(s, len, nullptr, log.data());
+        glDeleteShader(s);
+        throw GlError(std::string("cannot compile the ") + name + " shader: " + log.c_str());
+    }
+    return s;
+}
+
+GLuint link(const char* vs_src, const char* fs_src, const char* name) {
+    GLuint vs = compile(GL_VERTEX_SHADER, vs_src, name);
+    GLuint fs = 0;
+    try {
+        fs = compile(GL_FRAGMENT_SHADER, fs_src, name);
+    } catch (...) {
+        glDeleteShader(vs);
+        throw;
+    }
+    GLuint p = glCreateProgram();
+    glAttachShader(p, vs);
+    glAttachShader(p, fs);
+    glLinkProgram(p);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    GLint ok = 0;
+    glGetProgramiv(p, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        GLint len = 0;
+        glGetProgramiv(p, GL_INFO_LOG_LENGTH, &len);
+        std::string log(size_t(len > 1 ? len : 1), '\0');
+        glGetProgramInfoLog(p, len, nullptr, log.data());
+        glDeleteProgram(p);
+        throw GlError(std::string("cannot link the ") + name + " program: " + log.c_str());
+    }
+    return p;
+}
+
+// Model-view-projection in double (the camera's precision), handed to GL as float.
+glm::mat4 mvp_of(const Camera& cam) { return glm::mat4(cam.projection() * cam.view()); }
+
+void check_image(const ImageRGBA8& img, const char* what) {
+    if (img.width <= 0 || img.height <= 0)
+        throw std::invalid_argument(std::string(what) + ": image is " + std::to_string(img.width) + "x" +
+                                    std::to_string(img.height));
+    if (img.pixels.size() != size_t(img.width) * size_t(img.height))
+        throw std::invalid_argument(std::string(what) + ": image claims " + std::to_string(img.width) + "x" +
+                                    std::to_string(img.height) + " but holds " + std::to_string(img.pixels.size()) +
+                                    " pixels");
+}
+
+void reset_unpack_state() {
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+    glPixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
+    glPixelStorei(GL_UNPACK_SKIP_ROWS, 0);
+}
+
+}  // namespace
+
+// -----------------------------------------------------------------------------------------------------------------
+// GlTexture
+
+GlTexture::GlTexture() {
+    require_context("GlTexture");
+    GLuint id = 0;
+    glGenTextures(1, &id);
+    id_ = id;
+    check_gl("GlTexture: glGenTextures");
+}
+
+GlTexture::~GlTexture() {
+    if (id_ && glad_glDeleteTextures) {
+        GLuint id = id_;
+        glDeleteTextures(1, &id);
+    }
+}
+
+void GlTexture::upload(const ImageRGBA8& img) {
+    check_image(img, "GlTexture::upload");
+    glBindTexture(GL_TEXTURE_2D, id_);
+    reset_unpack_state();
+    if (img.width != width_ || img.height != height_) {
+        GLint max_size = 0;
+        glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+        if (img.width > max_size || img.height > max_size)
+            throw GlError("GlTexture::upload: a " + std::to_string(img.width) + "x" + std::to_string(img.height) +
+                          " texture exceeds GL_MAX_TEXTURE_SIZE " + std::to_string(max_size));
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, img.width, img.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                     img.pixels.data());
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+        check_gl("GlTexture::upload: glTexImage2D");
+        width_ = img.width;
+        height_ = img.height;
+    } else {
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, img.width, img.height, GL_RGBA, GL_UNSIGNED_BYTE, img.pixels.data());
+        check_gl("GlTexture::upload: glTexSubImage2D");
+    }
+}
+
+void GlTexture::upload_rect(const ImageRGBA8& img, int x, int row, int w, int h) {
+    check_image(img, "GlTexture::upload_rect");
+    if (img.width != width_ || img.height != height_) {
+        // The texture does not have this image's size yet: the whole image has to go up anyway.
+        upload(img);
+        return;
+    }
+    if (x < 0 || row < 0 || w < 0 || h < 0 || x > img.width - w || row > img.height - h)
+        throw std::invalid_argument("GlTexture::upload_rect: rectangle x=" + std::to_string(x) +
+                                    " row=" + std::to_string(row) + " " + std::to_string(w) + "x" +
+                                    std::to_string(h) + " is outside the " + std::to_string(img.width) + "x" +
+                                    std::to_string(img.height) + " image");
+    if (w == 0 || h == 0) return;
+    glBindTexture(GL_TEXTURE_2D, id_);
+    reset_unpack_state();
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, img.width);
+    // Rows are stored top first and uploaded unflipped, so image row `row` is texture row `row`.
+    glTexSubImage2D(GL_TEXTURE_2D, 0, x, row, w, h, GL_RGBA, GL_UNSIGNED_BYTE, &img.at(x, row));
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+    check_gl("GlTexture::upload_rect: glTexSubImage2D");
+}
+
+// -----------------------------------------------------------------------------------------------------------------
+// Renderer
+
+struct Renderer::Impl {
+    GLuint quad_program = 0, mesh_program = 0;
+    GLint quad_mvp = -1, quad_texture = -1, mesh_mvp = -1;
+    GLuint quad_vao = 0, quad_vbo = 0;
+    GLuint mesh_vao = 0, mesh_vbo = 0, mesh_ebo = 0;
+
+    void destroy() {
+        if (!glad_glDeleteProgram) return;
+        if (quad_program) glDeleteProgram(quad_program);
+        if (mesh_program) glDeleteProgram(mesh_program);
+        GLuint buffers[] = {quad_vbo, mesh_vbo, mesh_ebo};
+        glDeleteBuffers(3, buffers);
+        GLuint arrays[] = {quad_vao, mesh_vao};
+        glDeleteVertexArrays(2, arrays);
+    }
+};
+
+Renderer::Renderer() : impl_(new Impl) {
+    require_context("Renderer");
+    Impl& m = *impl_;
+    try {
+        m.quad_program = link(kQuadVertexShader, kQuadFragmentShader, "textured quad");
+        m.mesh_program = link(kMeshVertexShader, kMeshFragmentShader, "mesh");
+        m.quad_mvp = glGetUniformLocation(m.quad_program, "u_mvp");
+        m.quad_texture = glGetUniformLocation(m.quad_program, "u_texture");
+        m.mesh_mvp = glGetUniformLocation(m.mesh_program, "u_mvp");
+
+        // Quad: 4 vertices of (x, y, z, s, t), rewritten per draw.
+        glGenVertexArrays(1, &m.quad_vao);
+        glGenBuffers(1, &m.quad_vbo);
+        glBindVertexArray(m.quad_vao);
+        glBindBuffer(GL_ARRAY_BUFFER, m.quad_vbo);
+        glBufferData(GL_ARRAY_BUFFER, 4 * 5 * sizeof(float), nullptr, GL_DYNAMIC_DRAW);
+        glEnableVertexAttribArray(0);
+        glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 5 * sizeof(float), reinterpret_cast<void*>(0));
+        glEnableVertexAttribArray(1);
+        glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, 5 * sizeof(float),
+                              reinterpret_cast<void*>(3 * sizeof(float)));
+
+        // Mesh: MeshVertex array and 32-bit indices, re-specified per draw.
+        glGenVertexArrays(1, &m.mesh_vao);
+        glGenBuffers(1, &m.mesh_vbo);
+        glGenBuffers(1, &m.mesh_ebo);
+        glBindVertexArray(m.mesh_vao);
+        glBindBuffer(GL_ARRAY_BUFFER, m.mesh_vbo);
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.mesh_ebo);  // recorded in the VAO
+        glEnableVertexAttribArray(0);
+        glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(MeshVertex),
+                              reinterpret_cast<void*>(offsetof(MeshVertex, position)));
+        glEnableVertexAttribArray(1);
+        glVertexAttribPointer(1, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(MeshVertex),
+                              reinterpret_cast<void*>(offsetof(MeshVertex, color)));
+        glBindVertexArray(0);
+        check_gl("Renderer: creating shaders and buffers");
+    } catch (...) {
+        m.destroy();
+        delete impl_;
+        throw;
+    }
+}
+
+Renderer::~Renderer() {
+    impl_->destroy();
+    delete impl_;
+}
+
+void Renderer::begin_frame(const Camera& cam) {
+    if (cam.width <= 0 || cam.height <= 0)
+        throw std::invalid_argument("Renderer::begin_frame: camera image size " + std::to_string(cam.width) + "x" +
+                                    std::to_string(cam.height) + " is not positive");
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, cam.width, cam.height);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);  // relief quads and mesh faces are visible from both sides
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+    glClearDepth(1.0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    check_gl("Renderer::begin_frame");
+}
+
+void Renderer::draw_textured_quad(const Camera& cam, const std::array<glm::dvec3, 4>& corners, const GlTexture& tex) {
+    if (tex.width() <= 0 || tex.height() <= 0) return;  // nothing uploaded: nothing to draw
+    // (u, v) of the corners, in texture units: (0,0), (1,0), (1,1), (0,1); GL gets t = 1 - v (see the top of file).
+    static constexpr float kUV[4][2] = {{0.f, 0.f}, {1.f, 0.f}, {1.f, 1.f}, {0.f, 1.f}};
+    float data[4][5];
+    for (int i = 0; i < 4; ++i) {
+        data[i][0] = float(corners[size_t(i)].x);
+        data[i][1] = float(corners[size_t(i)].y);
+        data[i][2] = float(corners[size_t(i)].z);
+        data[i][3] = kUV[i][0];
+        data[i][4] = 1.0f - kUV[i][1];
+    }
+    const glm::mat4 mvp = mvp_of(cam);
+    Impl& m = *impl_;
+    glUseProgram(m.quad_program);
+    glUniformMatrix4fv(m.quad_mvp, 1, GL_FALSE, glm::value_ptr(mvp));
+    glUniform1i(m.quad_texture, 0);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, tex.id());
+    glBindVertexArray(m.quad_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, m.quad_vbo);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof(data), data);
+    glDrawArrays(GL_TRIANGLE_FAN, 0, 4);
+    glBindVertexArray(0);
+    check_gl("Renderer::draw_textured_quad");
+}
+
+void Renderer::draw_mesh(const Camera& cam, const std::vector<MeshVertex>& vertices,
+                         const std::vector<uint32_t>& indices) {
+    const size_t count = indices.size() - indices.size() % 3;  // whole triangles only
+    if (vertices.empty() || count == 0) return;
+    for (size_t i = 0; i < count; ++i)
+        if (indices[i] >= vertices.size())
+            throw std::out_of_range("Renderer::draw_mesh: index " + std::to_string(i) + " is " +
+                                    std::to_string(indices[i]) + " but there are only " +
+                                    std::to_string(vertices.size()) + " vertices");
+    const glm::mat4 mvp = mvp_of(cam);
+    Impl& m = *impl_;
+    glUseProgram(m.mesh_program);
+    glUniformMatrix4fv(m.mesh_mvp, 1, GL_FALSE, glm::value_ptr(mvp));
+    glBindVertexArray(m.mesh_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, m.mesh_vbo);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(MeshVertex)), vertices.data(),
+                 GL_STREAM_DRAW);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(count * sizeof(uint32_t)), indices.data(), GL_STREAM_DRAW);
+    glDrawElements(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT, nullptr);
+    glBindVertexArray(0);
+    check_gl("Renderer::draw_mesh");
+}
+
+void Renderer::finish() { glFinish(); }
+
+ImageRGBA8 Renderer::read_pixels(int width, int height) {
+    if (width <= 0 || height <= 0)
+        throw std::invalid_argument("Renderer::read_pixels: size " + std::to_string(width) + "x" +
+                                    std::to_string(height) + " is not positive");
+    ImageRGBA8 flipped(width, height);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glPixelStorei(GL_PACK_ROW_LENGTH, 0);
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, flipped.pixels.data());
+    check_gl("Renderer::read_pixels: glReadPixels");
+    // GL returns the bottom row first; ours is top first.
+    ImageRGBA8 img(width, height);
+    for (int r = 0; r < height; ++r) std::copy(flipped.row(height - 1 - r), flipped.row(height - 1 - r) + width,
+                                               img.row(r));
+    return img;
+}
+
+}  // namespace rtm
