@@ -1,6 +1,7 @@
 // rtm diff: error of a rendering against a reference (objects/image_diff.h). Prints one "name value" line per
-// figure: psnr, rmse, iou, max_error and the coverage counts (non-finite values print as inf / nan, and are null in
-// the JSON).
+// figure: psnr, rmse, iou, max_error and the coverage counts. Non-finite values print as inf / nan; JSON has no
+// such numbers, so there psnr of identical images is the string "inf" and an undefined value (no pixel covered in
+// both images) is null.
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -17,7 +18,11 @@ struct DiffArgs {
     std::string ref, test, heatmap, json;
 };
 
-nlohmann::json number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+nlohmann::json number(double x) {
+    if (std::isfinite(x)) return x;
+    if (x > 0) return "inf";
+    return nullptr;
+}
 
 void run_diff(const DiffArgs& a) {
     const ImageRGBA8 ref = read_rgba8(a.ref);    // IoError naming the file: exit 1

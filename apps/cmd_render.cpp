@@ -1,6 +1,7 @@
 // rtm render: the final view of a relief-textured quad with any method (flat, two-pass, pipelined, and the
 // ground truths micromesh and raycast).
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 
@@ -22,7 +23,8 @@ namespace {
 struct RenderArgs {
     std::string relief, out, json, method = "two-pass", level = "0";
     CameraArgs camera;
-    bool exact = false, progress = false;
+    bool exact = false, progress = false, no_sidewalls = false, depth_correction = false;
+    double discontinuity = -1;
     int repeat = 1, threads = 0;
 };
 
@@ -34,16 +36,21 @@ void run_render(const RenderArgs& a) {
         throw UsageError(std::string("--method: ") + e.what());
     }
     if (a.level != "0") throw UsageError("--level: only level 0 is available yet, found \"" + a.level + "\"");
+    if (!(a.discontinuity >= 0 || a.discontinuity == -1) || !std::isfinite(a.discontinuity))
+        throw UsageError("--discontinuity: expected a threshold >= 0, found " + std::to_string(a.discontinuity));
     if (a.repeat < 1) throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
     if (a.relief.empty()) throw UsageError("render needs --relief M");
     if (!a.camera.has_eye()) throw UsageError("render needs --eye X,Y,Z or --orbit AZ,EL,D");
     // Validate the camera's syntax before any file is read.
     (void)a.camera.resolve(Bounds{glm::dvec3(-1), glm::dvec3(1)});
 
-    ReliefQuad quad(load_relief(a.relief));
+    ReliefTexture relief = load_relief(a.relief);
+    if (a.discontinuity >= 0) mark_discontinuities(relief, a.discontinuity);
+    ReliefQuad quad(std::move(relief));
     const Camera cam = a.camera.resolve(relief_bounds(quad.relief()));
     PrewarpOptions opt;
     opt.exact = a.exact;
+    opt.keep_outliers = !a.no_sidewalls;
     opt.threads = a.threads;
 
     std::vector<double> t_pre, t_up, t_map, t_total;
@@ -51,6 +58,7 @@ void run_render(const RenderArgs& a) {
     RenderSettings rs;
     rs.method = method;
     rs.prewarp = opt;
+    rs.depth_correction = a.depth_correction;
     if (a.progress || isatty(2))
         rs.progress = [](double f) { std::fprintf(stderr, "\r%s %5.1f%%", "raycast", 100 * f); };
     std::unique_ptr<GlContext> ctx;
@@ -107,6 +115,10 @@ void add_render_command(CLI::App& app) {
     sub->add_option("--repeat", a->repeat, "Render N frames after one warm-up, for timing")->capture_default_str();
     sub->add_option("--threads", a->threads, "Threads (0 = all)")->capture_default_str();
     sub->add_flag("--progress", a->progress, "Show progress of slow methods");
+    sub->add_flag("--no-sidewalls", a->no_sidewalls, "Drop samples that leave the quad (no side polygons)");
+    sub->add_flag("--depth-correction", a->depth_correction, "Per-fragment depth from the perceived displacement");
+    sub->add_option("--discontinuity", a->discontinuity,
+                    "Depth threshold (world units) marking surface discontinuities; 0 = off; default: the manifest's");
     sub->callback([a] { run_render(*a); });
 }
 

@@ -28,11 +28,16 @@ std::vector<CompareView> default_compare_views() {
 std::vector<CompareMethod> default_compare_methods() {
     std::vector<CompareMethod> m;
     m.push_back({"flat", RenderMethod::flat, {}});
-    m.push_back({"two-pass", RenderMethod::two_pass, {}});
-    PrewarpOptions exact;
+    PrewarpOptions walls;
+    walls.keep_outliers = true;
+    m.push_back({"two-pass-no-sidewalls", RenderMethod::two_pass, {}});
+    m.push_back({"two-pass", RenderMethod::two_pass, walls});
+    PrewarpOptions exact = walls;
     exact.exact = true;
     m.push_back({"two-pass-exact", RenderMethod::two_pass, exact});
-    m.push_back({"pipelined", RenderMethod::pipelined, {.method = Reconstruction::pipelined}});
+    PrewarpOptions pipe = walls;
+    pipe.method = Reconstruction::pipelined;
+    m.push_back({"pipelined", RenderMethod::pipelined, pipe});
     m.push_back({"micromesh", RenderMethod::micromesh, {}});
     return m;
 }

@@ -26,7 +26,8 @@ struct CompareMethod {
     PrewarpOptions prewarp;
 };
 
-std::vector<CompareMethod> default_compare_methods();  // flat, two-pass, two-pass-exact, pipelined, micromesh
+// flat, two-pass without and with side polygons, two-pass-exact, pipelined (with side polygons), micromesh.
+std::vector<CompareMethod> default_compare_methods();
 
 struct CompareRow {
     std::string view, method;

@@ -40,22 +40,26 @@ public:
     bool faces(const glm::dvec3& eye) const;
 
     // Pre-warps for `eye` into the CPU image returned by prewarped(). Returns the time in milliseconds.
-    double prewarp(const glm::dvec3& eye, const PrewarpOptions& options);
+    double prewarp(const glm::dvec3& eye, const PrewarpOptions& options, bool with_displ = false);
     const ImageRGBA8& prewarped() const { return prewarped_; }
     const PrewarpStats& last_stats() const { return stats_; }
     // The micro-polygon mesh of this relief (ground truth), built on first use.
     const MicroMesh& micromesh();
 
     // Draws with `method` (flat, two_pass or pipelined) into the current frame. Requires a current GL context.
+    // options.keep_outliers draws the side polygons (paper section 4, Figure 12); depth_correction sets each
+    // fragment's depth from the perceived displacement (section 4.2) so interpenetrating polygons are hidden
+    // where they should be.
     void draw(Renderer& renderer, const Camera& cam, RenderMethod method, const PrewarpOptions& options,
-              StageTimes& times);
+              StageTimes& times, bool depth_correction = false);
 
 private:
     ReliefTexture relief_;
     PrewarpWorkspace workspace_;
     ImageRGBA8 prewarped_;
     PrewarpStats stats_;
-    std::unique_ptr<GlTexture> texture_;
+    Image2D<uint8_t> displ_;  // quantized displacement seen at each pre-warped pixel (depth correction)
+    std::unique_ptr<GlTexture> texture_, displ_texture_;
     ImageRGBA8 flat_;  // source colours as an ordinary texture (alpha 0 where empty)
     std::unique_ptr<MicroMesh> micromesh_;
 };

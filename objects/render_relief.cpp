@@ -35,7 +35,7 @@ ImageRGBA8 render_relief_frame(ReliefQuad& quad, Renderer* renderer, const Camer
         times.texture_map_ms += ms_since(t0);
     } else {
         StageTimes st;
-        quad.draw(*renderer, cam, s.method, s.prewarp, st);
+        quad.draw(*renderer, cam, s.method, s.prewarp, st, s.depth_correction);
         times.prewarp_ms += st.prewarp_ms;
         times.upload_ms += st.upload_ms;
         times.texture_map_ms += st.texture_map_ms;

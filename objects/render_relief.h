@@ -11,7 +11,8 @@ namespace rtm {
 
 struct RenderSettings {
     RenderMethod method = RenderMethod::two_pass;
-    PrewarpOptions prewarp;
+    PrewarpOptions prewarp;        // keep_outliers = side polygons
+    bool depth_correction = false;  // section 4.2
     std::function<void(double)> progress;  // for slow methods (raycast); may be empty
 };
 

@@ -12,10 +12,14 @@
 
 #include <glad/gl.h>
 
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/mat4x4.hpp>
 
 #include <algorithm>
+#include <array>
+#include <vector>
 #include <cstddef>
 #include <stdexcept>
 #include <string>
@@ -47,6 +51,53 @@ void main() {
     vec4 t = texture(u_texture, v_texcoord);
     if (t.a < 0.5) discard;  // empty texels show what is behind
     o_color = vec4(t.rgb, 1.0);
+}
+)";
+
+// Relief surface: positions are relative to the eye (computed in double on the CPU), so the ray-plane
+// intersection in the fragment shader works on small numbers whatever the world's scale.
+constexpr const char* kReliefVertexShader = R"(#version 330 core
+layout(location = 0) in vec3 a_rel;
+uniform mat4 u_mvp_rel;
+out vec3 v_rel;
+void main() {
+    v_rel = a_rel;
+    gl_Position = u_mvp_rel * vec4(a_rel, 1.0);
+}
+)";
+
+constexpr const char* kReliefFragmentShader = R"(#version 330 core
+in vec3 v_rel;
+uniform sampler2D u_color;
+uniform sampler2D u_displ;
+uniform vec3 u_f, u_c, u_da, u_db, u_forward;
+uniform float u_cf;
+uniform vec4 u_uv;       // (margin_left, margin_bottom, 1 / texture width, 1 / texture height)
+uniform vec2 u_size;     // the quad in texels
+uniform int u_is_wall, u_depth;
+uniform float u_k3, u_dmin, u_dmax, u_qs;
+uniform vec2 u_ndc;      // ndc z = u_ndc.x + u_ndc.y / Z for eye-space distance Z along the view direction
+out vec4 o_color;
+void main() {
+    vec3 p = v_rel * (u_cf / dot(v_rel, u_f));  // where the eye ray meets the relief plane
+    vec3 q = p - u_c;
+    float u = dot(q, u_da), v = dot(q, u_db);
+    if (u_is_wall == 1 && u >= 0.0 && u <= u_size.x && v >= 0.0 && v <= u_size.y) discard;  // the quad's part
+    vec2 st = vec2((u + u_uv.x) * u_uv.z, 1.0 - (v + u_uv.y) * u_uv.w);
+    if (st.x < 0.0 || st.x > 1.0 || st.y < 0.0 || st.y > 1.0) discard;
+    vec4 t = texture(u_color, st);
+    if (t.a < 0.5) discard;  // empty texels show what is behind
+    o_color = vec4(t.rgb / t.a, 1.0);
+    float depth = gl_FragCoord.z;
+    if (u_depth == 1) {
+        ivec2 ts = textureSize(u_displ, 0);
+        ivec2 ij = clamp(ivec2(st * vec2(ts)), ivec2(0), ts - 1);
+        float qi = texelFetch(u_displ, ij, 0).r * 255.0;
+        float z = dot(p, u_forward);
+        if (qi < 254.5) z *= 1.0 + u_k3 * (qi > 253.5 ? u_dmax : u_dmin + qi * u_qs);
+        depth = 0.5 * (u_ndc.x + u_ndc.y / z) + 0.5;
+    }
+    gl_FragDepth = depth;
 }
 )";
 
@@ -145,6 +196,28 @@ void reset_unpack_state() {
 // -----------------------------------------------------------------------------------------------------------------
 // GlTexture
 
+void GlTexture::upload_gray(const Image2D<uint8_t>& img) {
+    if (img.width <= 0 || img.height <= 0 || img.pixels.size() != size_t(img.width) * size_t(img.height))
+        throw std::invalid_argument("GlTexture::upload_gray: image is " + std::to_string(img.width) + "x" +
+                                    std::to_string(img.height));
+    glBindTexture(GL_TEXTURE_2D, id_);
+    reset_unpack_state();
+    if (img.width != width_ || img.height != height_) {
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, img.width, img.height, 0, GL_RED, GL_UNSIGNED_BYTE, img.pixels.data());
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+        width_ = img.width;
+        height_ = img.height;
+    } else {
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, img.width, img.height, GL_RED, GL_UNSIGNED_BYTE, img.pixels.data());
+    }
+    check_gl("GlTexture::upload_gray");
+}
+
 GlTexture::GlTexture() {
     require_context("GlTexture");
     GLuint id = 0;
@@ -213,7 +286,8 @@ void GlTexture::upload_rect(const ImageRGBA8& img, int x, int row, int w, int h)
 // Renderer
 
 struct Renderer::Impl {
-    GLuint quad_program = 0, mesh_program = 0;
+    GLuint quad_program = 0, mesh_program = 0, relief_program = 0;
+    GLuint relief_vao = 0, relief_vbo = 0;
     GLint quad_mvp = -1, quad_texture = -1, mesh_mvp = -1;
     GLuint quad_vao = 0, quad_vbo = 0;
     GLuint mesh_vao = 0, mesh_vbo = 0, mesh_ebo = 0;
@@ -222,10 +296,11 @@ struct Renderer::Impl {
         if (!glad_glDeleteProgram) return;
         if (quad_program) glDeleteProgram(quad_program);
         if (mesh_program) glDeleteProgram(mesh_program);
-        GLuint buffers[] = {quad_vbo, mesh_vbo, mesh_ebo};
-        glDeleteBuffers(3, buffers);
-        GLuint arrays[] = {quad_vao, mesh_vao};
-        glDeleteVertexArrays(2, arrays);
+        if (relief_program) glDeleteProgram(relief_program);
+        GLuint buffers[] = {quad_vbo, mesh_vbo, mesh_ebo, relief_vbo};
+        glDeleteBuffers(4, buffers);
+        GLuint arrays[] = {quad_vao, mesh_vao, relief_vao};
+        glDeleteVertexArrays(3, arrays);
     }
 };
 
@@ -238,6 +313,16 @@ Renderer::Renderer() : impl_(new Impl) {
         m.quad_mvp = glGetUniformLocation(m.quad_program, "u_mvp");
         m.quad_texture = glGetUniformLocation(m.quad_program, "u_texture");
         m.mesh_mvp = glGetUniformLocation(m.mesh_program, "u_mvp");
+        m.relief_program = link(kReliefVertexShader, kReliefFragmentShader, "relief surface");
+
+        // Relief surface: up to 5 quads (the relief quad and 4 side polygons) of eye-relative positions.
+        glGenVertexArrays(1, &m.relief_vao);
+        glGenBuffers(1, &m.relief_vbo);
+        glBindVertexArray(m.relief_vao);
+        glBindBuffer(GL_ARRAY_BUFFER, m.relief_vbo);
+        glBufferData(GL_ARRAY_BUFFER, 5 * 4 * 3 * sizeof(float), nullptr, GL_DYNAMIC_DRAW);
+        glEnableVertexAttribArray(0);
+        glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), reinterpret_cast<void*>(0));
 
         // Quad: 4 vertices of (x, y, z, s, t), rewritten per draw.
         glGenVertexArrays(1, &m.quad_vao);
@@ -320,6 +405,79 @@ void Renderer::draw_textured_quad(const Camera& cam, const std::array<glm::dvec3
     glDrawArrays(GL_TRIANGLE_FAN, 0, 4);
     glBindVertexArray(0);
     check_gl("Renderer::draw_textured_quad");
+}
+
+void Renderer::draw_relief(const Camera& cam, const ReliefSurface& rs, const GlTexture& color) {
+    if (color.width() <= 0 || color.height() <= 0 || rs.width <= 0 || rs.height <= 0) return;
+    const glm::dvec3 E = cam.eye;
+    const glm::dvec3 f = glm::normalize(glm::cross(rs.a, rs.b));
+    const glm::dvec3 c = rs.origin - E;
+    const glm::dvec3 aw = rs.a * double(rs.width), bh = rs.b * double(rs.height);
+    // Dual basis of (a, b) in the plane: u = dot(p - origin, da), v = dot(p - origin, db).
+    const double aa = glm::dot(rs.a, rs.a), ab = glm::dot(rs.a, rs.b), bb = glm::dot(rs.b, rs.b);
+    const double det = aa * bb - ab * ab;
+    const glm::dvec3 da = (rs.a * bb - rs.b * ab) / det, db = (rs.b * aa - rs.a * ab) / det;
+
+    std::vector<std::array<glm::dvec3, 4>> quads;
+    quads.push_back({rs.origin, rs.origin + aw, rs.origin + aw + bh, rs.origin + bh});
+    const size_t first_wall = quads.size();
+    if (rs.wall_height > 0.0) {
+        const glm::dvec3 up = f * rs.wall_height;
+        auto wall = [&](glm::dvec3 p0, glm::dvec3 p1) { quads.push_back({p0, p1, p1 + up, p0 + up}); };
+        if (rs.margin_left > 0) wall(rs.origin, rs.origin + bh);
+        if (rs.margin_right > 0) wall(rs.origin + aw, rs.origin + aw + bh);
+        if (rs.margin_bottom > 0) wall(rs.origin, rs.origin + aw);
+        if (rs.margin_top > 0) wall(rs.origin + bh, rs.origin + aw + bh);
+    }
+    std::vector<float> data;
+    for (const auto& q : quads)
+        for (const glm::dvec3& p : q) {
+            const glm::dvec3 r = p - E;
+            data.insert(data.end(), {float(r.x), float(r.y), float(r.z)});
+        }
+    const glm::dmat4 mvp_rel = cam.projection() * cam.view() * glm::translate(glm::dmat4(1.0), E);
+    const glm::dmat4 proj = cam.projection();
+    const glm::dvec3 forward = glm::normalize(cam.look_at - cam.eye);
+
+    Impl& m = *impl_;
+    const GLuint prog = m.relief_program;
+    glUseProgram(prog);
+    auto loc = [&](const char* name) { return glGetUniformLocation(prog, name); };
+    auto vec3u = [&](const char* name, const glm::dvec3& v) { glUniform3f(loc(name), float(v.x), float(v.y), float(v.z)); };
+    const glm::mat4 mvpf(mvp_rel);
+    glUniformMatrix4fv(loc("u_mvp_rel"), 1, GL_FALSE, glm::value_ptr(mvpf));
+    vec3u("u_f", f);
+    vec3u("u_c", c);
+    vec3u("u_da", da);
+    vec3u("u_db", db);
+    vec3u("u_forward", forward);
+    glUniform1f(loc("u_cf"), float(glm::dot(c, f)));
+    glUniform4f(loc("u_uv"), float(rs.margin_left), float(rs.margin_bottom), float(1.0 / color.width()),
+                float(1.0 / color.height()));
+    glUniform2f(loc("u_size"), float(rs.width), float(rs.height));
+    glUniform1i(loc("u_depth"), rs.displ ? 1 : 0);
+    glUniform1f(loc("u_k3"), float(rs.k3));
+    glUniform1f(loc("u_dmin"), float(rs.dmin));
+    glUniform1f(loc("u_dmax"), float(rs.dmax));
+    glUniform1f(loc("u_qs"), float(rs.qs));
+    // Perspective: ndc z = -P[2][2] + P[3][2] / Z for a point at distance Z in front of the eye.
+    glUniform2f(loc("u_ndc"), float(-proj[2][2]), float(proj[3][2]));
+    glUniform1i(loc("u_color"), 0);
+    glUniform1i(loc("u_displ"), 1);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, color.id());
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, rs.displ ? rs.displ->id() : color.id());
+    glActiveTexture(GL_TEXTURE0);
+    glBindVertexArray(m.relief_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, m.relief_vbo);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(data.size() * sizeof(float)), data.data());
+    for (size_t i = 0; i < quads.size(); ++i) {
+        glUniform1i(loc("u_is_wall"), i >= first_wall ? 1 : 0);
+        glDrawArrays(GL_TRIANGLE_FAN, GLint(4 * i), 4);
+    }
+    glBindVertexArray(0);
+    check_gl("Renderer::draw_relief");
 }
 
 void Renderer::draw_mesh(const Camera& cam, const std::vector<MeshVertex>& vertices,

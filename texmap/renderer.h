@@ -26,6 +26,8 @@ public:
     GlTexture& operator=(const GlTexture&) = delete;
     void upload(const ImageRGBA8& img);
     void upload_rect(const ImageRGBA8& img, int x, int row, int w, int h);
+    // One 8-bit channel (GL_R8), nearest filtering: quantized displacement indices for depth correction.
+    void upload_gray(const Image2D<uint8_t>& img);
     unsigned id() const { return id_; }
     int width() const { return width_; }
     int height() const { return height_; }
@@ -38,6 +40,21 @@ private:
 struct MeshVertex {
     glm::vec3 position;
     glm::u8vec4 color;
+};
+
+// A relief quad with its pre-warped texture, for draw_relief. The texture covers the quad plus margins (samples
+// kept beyond the quad, paper section 4): texel units u in [-margin_left, width + margin_right), v likewise.
+struct ReliefSurface {
+    glm::dvec3 origin{0.0}, a{1, 0, 0}, b{0, 1, 0};  // the relief plane (shared/CONVENTIONS.md)
+    int width = 0, height = 0;                        // the quad, in texels
+    int margin_left = 0, margin_right = 0, margin_bottom = 0, margin_top = 0;
+    // > 0: side polygons perpendicular to the quad, from the plane up to this displacement along f, along each
+    // border that has a margin. Their fragments show the samples that left the quad through that border.
+    double wall_height = 0.0;
+    // Depth correction (paper section 4.2): when `displ` is set, each fragment's eye-space depth is the plane
+    // point's depth scaled by 1 + k3*d, d decoded from the index texture (min + q*qs, 254 = max, 255 = none).
+    const GlTexture* displ = nullptr;
+    double k3 = 0.0, dmin = 0.0, dmax = 0.0, qs = 0.0;
 };
 
 class Renderer {
@@ -53,6 +70,11 @@ public:
     void draw_textured_quad(const Camera& cam, const std::array<glm::dvec3, 4>& corners, const GlTexture& tex);
     // Vertex alpha, like texture alpha, is coverage: fragments whose interpolated alpha is below one half are
     // discarded; everything drawn is written opaque. Indices must be < vertices.size() (else std::out_of_range).
+    // Draws the relief quad (and its side polygons) for a camera whose eye is the pre-warp's centre of
+    // projection. Each fragment looks up the texture where its eye ray meets the relief plane, so the side
+    // polygons show exactly what the plane's extension would, clipped to the walls. Texture convention: empty
+    // texels are (0, 0, 0, 0), so bilinear filtering divided by alpha gives no dark fringe at silhouettes.
+    void draw_relief(const Camera& cam, const ReliefSurface& surface, const GlTexture& color);
     void draw_mesh(const Camera& cam, const std::vector<MeshVertex>& vertices, const std::vector<uint32_t>& indices);
     void finish();                                   // glFinish, so a timer around draw calls measures them
     ImageRGBA8 read_pixels(int width, int height);   // top row first

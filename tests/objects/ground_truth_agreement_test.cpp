@@ -12,8 +12,11 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <string>
 #include <memory>
 
 #include "ground_truth_util.h"
@@ -76,7 +79,7 @@ ReliefTexture rough(int n) {
     return truth_test::make_relief_fn(n, n, g, height, colour, [](int, int) { return false; });
 }
 
-void agree(const char* relief_name, const ReliefTexture& t, double min_iou, double min_psnr) {
+void agree(const char* relief_name, const ReliefTexture& t, double min_iou, std::array<double, 3> min_psnr) {
     SCOPED_TRACE(relief_name);
     const Bounds b = relief_bounds(t);
     const int size = 128;
@@ -114,10 +117,12 @@ void agree(const char* relief_name, const ReliefTexture& t, double min_iou, doub
         const ImageRGBA8 rc = raycast_relief(t, cam);
         const DiffResult d = diff_images(rc, gl);
         std::printf("[ measured ] %s %s: %s\n", relief_name, v.name, d.to_string().c_str());
-        if (const char* dir = std::getenv("RTM_TRUTH_DUMP")) {
+        if (const char* dir = std::getenv("RTM_TRUTH_DUMP")) {  // to look at a failure: both images as PPM
             for (int k = 0; k < 2; ++k) {
                 const ImageRGBA8& im = k ? gl : rc;
-                FILE* fp = std::fopen((std::string(dir) + "/" + relief_name + "_" + v.name + (k ? "_gl.ppm" : "_rc.ppm")).c_str(), "wb");
+                const std::string path = std::string(dir) + "/" + relief_name + "_" + v.name + (k ? "_gl.ppm" : "_rc.ppm");
+                FILE* fp = std::fopen(path.c_str(), "wb");
+                if (!fp) continue;
                 std::fprintf(fp, "P6 %d %d 255\n", im.width, im.height);
                 for (const Rgba8& p : im.pixels) std::fwrite(&p, 1, 3, fp);
                 std::fclose(fp);
@@ -125,13 +130,30 @@ void agree(const char* relief_name, const ReliefTexture& t, double min_iou, doub
         }
         EXPECT_GT(d.either, size * size / 8);  // not vacuous: the relief fills a good part of the view
         EXPECT_GT(d.iou, min_iou);
-        EXPECT_GT(d.psnr, min_psnr);
+        EXPECT_GT(d.psnr, min_psnr[size_t(&v - views)]);
     }
 }
 
-TEST(GroundTruthAgreement, MicromeshMatchesRaycastOnSmoothHills) { agree("hills", hills(64), 0.98, 0.0); }
+// Thresholds, from measurements on Mesa 22.3.6 llvmpipe (Debian 12), 128x128, views front / oblique / grazing. For scale,
+// "shift" is the PSNR of the ray-cast image against itself moved by one pixel (a small, real disagreement).
+//
+// hills: PSNR 64.2 / 63.0 / 61.6 dB (rmse 0.16-0.21 levels, max error 4), IoU 1 / 0.99986 / 0.99977 (one pixel on
+//   the silhouette); shift 38.1 / 32.1 / 34.4 dB. Over smooth cells the triangle pair and the bilinear patch differ
+//   by far less than a level; what remains is OpenGL's 8-bit rounding of the interpolated colour. Threshold 45 dB
+//   (rmse below 1.44 levels): "every covered pixel agrees to about one level" whatever rounding another Mesa
+//   version uses, and still 7 dB above a one-pixel shift.
+// rough: PSNR 35.5 / 29.0 / 27.4 dB (rmse 4.3 / 9.1 / 10.9), IoU 0.99946 / 0.99366 / 0.98822; shift 25.8 / 24.3 /
+//   20.9 dB. Inside each cell the colours differ by up to |c00 - c10 - c01 + c11|/4 (up to ~32 levels with this
+//   noise) and the heights by up to |h00 - h10 - h01 + h11|/4 (up to 2 texels), so occluding ridges move by pixels
+//   and the colour seen there jumps. The mesh covers slightly more (only_test ~50, only_ref ~1): the diagonal is
+//   always the low-to-high one, and where that diagonal is a crease pointing out of the surface the triangle pair
+//   bulges beyond the bilinear patch (where it is a valley, the silhouette is made by the cell edges, which the two
+//   share). Thresholds 31 / 26 / 24 dB: between the measurement and the one-pixel shift, with at least 3 dB
+//   (rmse x1.4) of room above the measurement.
+// IoU > 0.98 for both: the ground truths must agree on what is covered.
+TEST(GroundTruthAgreement, MicromeshMatchesRaycastOnSmoothHills) { agree("hills", hills(64), 0.98, {45, 45, 45}); }
 
-TEST(GroundTruthAgreement, MicromeshMatchesRaycastOnRoughRelief) { agree("rough", rough(64), 0.98, 0.0); }
+TEST(GroundTruthAgreement, MicromeshMatchesRaycastOnRoughRelief) { agree("rough", rough(64), 0.98, {31, 26, 24}); }
 
 }  // namespace
 }  // namespace rtm
