@@ -25,7 +25,7 @@ nlohmann::json number(double x) {
 }
 
 void run_diff(const DiffArgs& a) {
-    const ImageRGBA8 ref = read_rgba8(a.ref);    // IoError naming the file: exit 1
+    const ImageRGBA8 ref = read_rgba8(a.ref);  // IoError naming the file: exit 1
     const ImageRGBA8 test = read_rgba8(a.test);
     if (ref.width != test.width || ref.height != test.height)
         throw IoError(a.test + ": image is " + std::to_string(test.width) + "x" + std::to_string(test.height) +
@@ -51,9 +51,10 @@ void run_diff(const DiffArgs& a) {
                                {"only_test", d.only_test},
                            });
     }
-    std::printf("psnr %.6g\nrmse %.6g\niou %.6g\nmax_error %.6g\ncovered_both %lld\ncovered_either %lld\n"
-                "only_ref %lld\nonly_test %lld\n",
-                d.psnr, d.rmse, d.iou, d.max_error, d.both, d.either, d.only_ref, d.only_test);
+    std::printf(
+        "psnr %.6g\nrmse %.6g\niou %.6g\nmax_error %.6g\ncovered_both %lld\ncovered_either %lld\n"
+        "only_ref %lld\nonly_test %lld\n",
+        d.psnr, d.rmse, d.iou, d.max_error, d.both, d.either, d.only_ref, d.only_test);
 }
 
 }  // namespace

@@ -25,11 +25,12 @@
 // on a shared cell border is found in one of the two cells) is the hit. If rounding loses a root that a sign
 // change of F over the segment proves, bisection finds it. Grazing tangencies (discriminant < 0 by rounding) are
 // misses, a set of measure zero. Colour: bilinear interpolation of the four texel colours at the hit, rounded.
+//
+// Speed: media/bumps (256x256 texels) at 512x512 pixels, --orbit 20,35,1.6: 80 ms on one thread, 43 ms on two
+// (2-core machine shared with other jobs, so two threads measure anywhere between 43 and 80 ms); facade 80 ms,
+// ridges 110 ms on one thread. The quadtree keeps a ray to about log2(256) node tests plus the cells it really
+// passes close to.
 #include "objects/raycast.h"
-
-#include <glm/geometric.hpp>
-#include <glm/mat3x3.hpp>
-#include <glm/matrix.hpp>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -37,7 +38,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
 #include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
 
 namespace rtm {
 
@@ -57,9 +64,11 @@ struct MinMaxPyramid {
 
 struct Hit {
     double t = kInf;
-    int i = 0, j = 0;   // cell
+    int i = 0, j = 0;     // cell
     double s = 0, r = 0;  // position in the cell
 };
+
+bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 // Time at which the line q0 + t*qd crosses coordinate `line` (+inf when it runs parallel to it).
 inline double crossing(double line, double o, double d) { return d == 0.0 ? kInf : (line - o) / d; }
@@ -122,6 +131,7 @@ public:
         RayState ray;
         ray.q0 = minv_ * (origin - t_.geometry.origin);
         ray.qd = minv_ * dir;
+        if (!finite(ray.q0) || !finite(ray.qd) || (ray.qd.x == 0.0 && ray.qd.y == 0.0 && ray.qd.z == 0.0)) return out;
         ray.eps = kRelTol * (scale_ + std::abs(ray.q0.z));
         // Clip to t >= 0, the rectangle of texel centres and the displacement slab.
         double t0 = 0.0, t1 = kInf;
@@ -232,8 +242,7 @@ private:
         bool found = false;
         for (int j = 0; j < L.h; ++j)
             for (int i = 0; i < L.w; ++i) {
-                if (!(L.lo[size_t(j) * size_t(L.w) + size_t(i)] <= L.hi[size_t(j) * size_t(L.w) + size_t(i)]))
-                    continue;
+                if (!(L.lo[size_t(j) * size_t(L.w) + size_t(i)] <= L.hi[size_t(j) * size_t(L.w) + size_t(i)])) continue;
                 double ta = t0, tb = t1;
                 const double lo[2] = {i + 0.5, j + 0.5}, hi[2] = {i + 1.5, j + 1.5};
                 bool miss = false;
@@ -349,6 +358,7 @@ ReliefRayHit ReliefRaycaster::cast(const glm::dvec3& origin, const glm::dvec3& d
 bool ReliefRaycaster::has_surface() const { return impl_->caster.has_surface(); }
 
 ImageRGBA8 raycast_relief(const ReliefTexture& t, const Camera& cam, const RaycastOptions& options, ImageF* depth) {
+    if (std::string why = cam.validate(); !why.empty()) throw std::invalid_argument("raycast: camera: " + why);
     ImageRGBA8 img(cam.width, cam.height, Rgba8{0, 0, 0, 255});
     if (depth) depth->resize(cam.width, cam.height, std::numeric_limits<float>::infinity());
     const Caster caster(t);
@@ -366,25 +376,27 @@ ImageRGBA8 raycast_relief(const ReliefTexture& t, const Camera& cam, const Rayca
         }
     };
     // Each row is written by exactly one task and depends on nothing else: the output is the same for any number
-    // of threads. Rows run in chunks so progress can be reported from the calling thread between them.
-    const auto run = [&] {
-        if (!caster.has_surface()) {
-            if (options.progress) options.progress(1.0);
-            return;
-        }
-        const int chunk = options.progress ? std::max(8, 4 * tbb::this_task_arena::max_concurrency()) : cam.height;
-        for (int r0 = 0; r0 < cam.height; r0 += chunk) {
-            const int r1 = std::min(cam.height, r0 + chunk);
+    // of threads. Rows run in chunks so that progress is reported between them, from the calling thread (outside
+    // any arena: task_arena::execute may hand its functor to a worker).
+    if (!caster.has_surface()) {
+        if (options.progress) options.progress(1.0);
+        return img;
+    }
+    std::unique_ptr<tbb::task_arena> arena;
+    if (options.threads > 0) arena = std::make_unique<tbb::task_arena>(options.threads);
+    const int concurrency = arena ? options.threads : tbb::this_task_arena::max_concurrency();
+    const int chunk = options.progress ? std::max(8, 4 * concurrency) : std::max(cam.height, 1);
+    for (int r0 = 0; r0 < cam.height; r0 += chunk) {
+        const int r1 = std::min(cam.height, r0 + chunk);
+        const auto loop = [&] {
             tbb::parallel_for(tbb::blocked_range<int>(r0, r1, 1),
                               [&](const tbb::blocked_range<int>& r) { rows(r.begin(), r.end()); });
-            if (options.progress) options.progress(double(r1) / double(cam.height));
-        }
-    };
-    if (options.threads > 0) {
-        tbb::task_arena arena(options.threads);
-        arena.execute(run);
-    } else {
-        run();
+        };
+        if (arena)
+            arena->execute(loop);
+        else
+            loop();
+        if (options.progress) options.progress(double(r1) / double(cam.height));
     }
     return img;
 }

@@ -25,7 +25,7 @@ struct RaycastOptions {
 };
 
 // Returns the image (row 0 = top) and, if depth is not null, the eye-space distance along each ray (infinity
-// where nothing was hit).
+// where nothing was hit). Throws std::invalid_argument when the camera is unusable (Camera::validate).
 ImageRGBA8 raycast_relief(const ReliefTexture& t, const Camera& cam, const RaycastOptions& options = {},
                           ImageF* depth = nullptr);
 
@@ -45,7 +45,7 @@ public:
     ReliefRaycaster(const ReliefRaycaster&) = delete;
     ReliefRaycaster& operator=(const ReliefRaycaster&) = delete;
     // The first intersection with t >= 0 of origin + t*dir (dir need not be normalized; t is then in units of
-    // |dir|). brute_force: the reference path (RaycastOptions::brute_force).
+    // |dir|). A zero or non-finite ray is a miss. brute_force: the reference path (RaycastOptions::brute_force).
     ReliefRayHit cast(const glm::dvec3& origin, const glm::dvec3& dir, bool brute_force = false) const;
     bool has_surface() const;  // false when no cell has four non-empty texels (nothing can be hit)
 

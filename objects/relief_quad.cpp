@@ -100,7 +100,10 @@ void ReliefQuad::draw(Renderer& renderer, const Camera& cam, RenderMethod method
         rs.margin_right = e.right;
         rs.margin_bottom = e.bottom;
         rs.margin_top = e.top;
-        if (options.keep_outliers) rs.wall_height = std::max(0.0, relief_.quant.max);
+        if (options.keep_outliers) {
+            rs.wall_low = std::min(0.0, relief_.quant.min);
+            rs.wall_high = std::max(0.0, relief_.quant.max);
+        }
     } else {
         throw std::invalid_argument("ReliefQuad::draw: method " + to_string(method) + " is not a texture method");
     }

@@ -421,9 +421,9 @@ void Renderer::draw_relief(const Camera& cam, const ReliefSurface& rs, const GlT
     std::vector<std::array<glm::dvec3, 4>> quads;
     quads.push_back({rs.origin, rs.origin + aw, rs.origin + aw + bh, rs.origin + bh});
     const size_t first_wall = quads.size();
-    if (rs.wall_height > 0.0) {
-        const glm::dvec3 up = f * rs.wall_height;
-        auto wall = [&](glm::dvec3 p0, glm::dvec3 p1) { quads.push_back({p0, p1, p1 + up, p0 + up}); };
+    if (rs.wall_high > rs.wall_low) {
+        const glm::dvec3 lo = f * rs.wall_low, hi = f * rs.wall_high;
+        auto wall = [&](glm::dvec3 p0, glm::dvec3 p1) { quads.push_back({p0 + lo, p1 + lo, p1 + hi, p0 + hi}); };
         if (rs.margin_left > 0) wall(rs.origin, rs.origin + bh);
         if (rs.margin_right > 0) wall(rs.origin + aw, rs.origin + aw + bh);
         if (rs.margin_bottom > 0) wall(rs.origin, rs.origin + aw);

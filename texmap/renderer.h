@@ -48,9 +48,10 @@ struct ReliefSurface {
     glm::dvec3 origin{0.0}, a{1, 0, 0}, b{0, 1, 0};  // the relief plane (shared/CONVENTIONS.md)
     int width = 0, height = 0;                        // the quad, in texels
     int margin_left = 0, margin_right = 0, margin_bottom = 0, margin_top = 0;
-    // > 0: side polygons perpendicular to the quad, from the plane up to this displacement along f, along each
-    // border that has a margin. Their fragments show the samples that left the quad through that border.
-    double wall_height = 0.0;
+    // wall_low < wall_high: side polygons perpendicular to the quad, spanning these displacements along f, along
+    // each border that has a margin. Their fragments show the samples that left the quad through that border:
+    // standing-out texels leave it on the side away from the epipole, recessed texels (d < 0) towards it.
+    double wall_low = 0.0, wall_high = 0.0;
     // Depth correction (paper section 4.2): when `displ` is set, each fragment's eye-space depth is the plane
     // point's depth scaled by 1 + k3*d, d decoded from the index texture (min + q*qs, 254 = max, 255 = none).
     const GlTexture* displ = nullptr;

@@ -9,15 +9,14 @@
 // one surface to another or to the background.
 #include <gtest/gtest.h>
 
-#include <glm/geometric.hpp>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <string>
+#include <glm/geometric.hpp>
 #include <memory>
+#include <string>
 
 #include "ground_truth_util.h"
 #include "objects/bounds.h"
@@ -73,8 +72,8 @@ ReliefTexture rough(int n) {
         const auto ch = [&](double base, uint32_t salt) {
             return uint8_t(std::clamp(base + 32.0 * noise(x, r, salt), 0.0, 255.0));
         };
-        return Rgba8{ch(40 + 170 * u, 2u), ch(128 + 90 * std::sin(9.0 * v), 3u), ch(128 + 90 * std::cos(7.0 * (u + v)), 4u),
-                     255};
+        return Rgba8{ch(40 + 170 * u, 2u), ch(128 + 90 * std::sin(9.0 * v), 3u),
+                     ch(128 + 90 * std::cos(7.0 * (u + v)), 4u), 255};
     };
     return truth_test::make_relief_fn(n, n, g, height, colour, [](int, int) { return false; });
 }
@@ -120,7 +119,8 @@ void agree(const char* relief_name, const ReliefTexture& t, double min_iou, std:
         if (const char* dir = std::getenv("RTM_TRUTH_DUMP")) {  // to look at a failure: both images as PPM
             for (int k = 0; k < 2; ++k) {
                 const ImageRGBA8& im = k ? gl : rc;
-                const std::string path = std::string(dir) + "/" + relief_name + "_" + v.name + (k ? "_gl.ppm" : "_rc.ppm");
+                const std::string path =
+                    std::string(dir) + "/" + relief_name + "_" + v.name + (k ? "_gl.ppm" : "_rc.ppm");
                 FILE* fp = std::fopen(path.c_str(), "wb");
                 if (!fp) continue;
                 std::fprintf(fp, "P6 %d %d 255\n", im.width, im.height);
@@ -134,8 +134,8 @@ void agree(const char* relief_name, const ReliefTexture& t, double min_iou, std:
     }
 }
 
-// Thresholds, from measurements on Mesa 22.3.6 llvmpipe (Debian 12), 128x128, views front / oblique / grazing. For scale,
-// "shift" is the PSNR of the ray-cast image against itself moved by one pixel (a small, real disagreement).
+// Thresholds, from measurements on Mesa 22.3.6 llvmpipe (Debian 12), 128x128, views front / oblique / grazing. For
+// scale, "shift" is the PSNR of the ray-cast image against itself moved by one pixel (a small, real disagreement).
 //
 // hills: PSNR 64.2 / 63.0 / 61.6 dB (rmse 0.16-0.21 levels, max error 4), IoU 1 / 0.99986 / 0.99977 (one pixel on
 //   the silhouette); shift 38.1 / 32.1 / 34.4 dB. Over smooth cells the triangle pair and the bilinear patch differ

@@ -3,13 +3,12 @@
 // Header-only so it does not clash with other helpers compiled into objects_tests.
 #pragma once
 
-#include <glm/geometric.hpp>
-#include <glm/mat3x3.hpp>
-#include <glm/matrix.hpp>
-
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
 #include <random>
 
 #include "warp/relief_texture.h"

@@ -25,7 +25,7 @@ TEST(ImageDiff, IdenticalImages) {
     EXPECT_EQ(d.only_ref + d.only_test, 0);
     EXPECT_EQ(d.max_error, 0.0);
     EXPECT_EQ(heat.at(1, 1), (Rgba8{64, 64, 64, 255}));  // error 0: dark grey
-    EXPECT_EQ(heat.at(0, 0), kBg);                         // neither covered: black
+    EXPECT_EQ(heat.at(0, 0), kBg);                       // neither covered: black
 }
 
 TEST(ImageDiff, KnownDifferences) {
@@ -58,8 +58,8 @@ TEST(ImageDiff, KnownDifferences) {
 
 TEST(ImageDiff, CoverageIgnoresAlphaOfCoveredPixelsButNotTransparency) {
     EXPECT_FALSE(covered(kBg));
-    EXPECT_FALSE(covered({10, 20, 30, 0}));   // transparent (an empty texel of a pre-warped texture)
-    EXPECT_TRUE(covered({0, 0, 0, 128}));     // not the opaque-black background
+    EXPECT_FALSE(covered({10, 20, 30, 0}));  // transparent (an empty texel of a pre-warped texture)
+    EXPECT_TRUE(covered({0, 0, 0, 128}));    // not the opaque-black background
     EXPECT_TRUE(covered({1, 0, 0, 255}));
     ImageRGBA8 ref(2, 1, kBg), test(2, 1, kBg);
     ref.pixels = {{10, 10, 10, 255}, {20, 20, 20, 255}};

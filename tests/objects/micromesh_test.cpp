@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
-
 #include <random>
 
 #include "ground_truth_util.h"

@@ -8,10 +8,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
-
-#include <cmath>
+#include <limits>
 #include <random>
 #include <thread>
 
@@ -85,10 +85,10 @@ TEST(Raycast, FlatReliefMatchesThePlaneIntersection) {
                 const glm::dvec3 sol = glm::inverse(m) * (o - g.origin - g.f() * d0);
                 const double u = sol.x, v = sol.y, tt = sol.z;
                 const double margin = 1e-6;
-                const bool inside = tt > 0 && u > 0.5 + margin && u < w - 0.5 - margin && v > 0.5 + margin &&
-                                    v < h - 0.5 - margin;
-                const bool outside = tt < 0 || u < 0.5 - margin || u > w - 0.5 + margin || v < 0.5 - margin ||
-                                     v > h - 0.5 + margin;
+                const bool inside =
+                    tt > 0 && u > 0.5 + margin && u < w - 0.5 - margin && v > 0.5 + margin && v < h - 0.5 - margin;
+                const bool outside =
+                    tt < 0 || u < 0.5 - margin || u > w - 0.5 + margin || v < 0.5 - margin || v > h - 0.5 + margin;
                 const Rgba8 p = img.at(px, py);
                 const ReliefRayHit hit = caster.cast(o, dir);
                 SCOPED_TRACE("pixel " + std::to_string(px) + "," + std::to_string(py) + " " + t.to_string());
@@ -101,7 +101,8 @@ TEST(Raycast, FlatReliefMatchesThePlaneIntersection) {
                     EXPECT_NEAR(depth.at(px, py), tt, 2e-7 * tt);
                     const uint8_t ch[3] = {p.r, p.g, p.b};
                     for (int k = 0; k < 3; ++k)
-                        ASSERT_NEAR(double(ch[k]), truth_test::surface_color(t, u, v, k), 0.5 + 1e-6) << "channel " << k;
+                        ASSERT_NEAR(double(ch[k]), truth_test::surface_color(t, u, v, k), 0.5 + 1e-6)
+                            << "channel " << k;
                     EXPECT_EQ(p.a, 255);
                     EXPECT_EQ(p, hit.color);
                 } else if (outside) {
@@ -359,6 +360,14 @@ TEST(Raycast, DegenerateSizesHaveNoSurface) {
         5, 5, ReliefGeometry{}, [](int, int) { return 0.0; }, truth_test::hash_color, [](int, int) { return true; });
     EXPECT_FALSE(ReliefRaycaster(e).has_surface());
     EXPECT_FALSE(ReliefRaycaster(e).cast({2, 2, 5}, {0, 0, -1}).hit);
+    Camera bad = look({1, 1, 5}, {1, 1, 0}, 8);
+    bad.width = 0;
+    EXPECT_THROW(raycast_relief(t, bad), std::invalid_argument);
+    // Degenerate rays are misses, not NaN.
+    const ReliefRaycaster c(t);
+    EXPECT_FALSE(c.cast({1, 1, 5}, {0, 0, 0}).hit);
+    EXPECT_FALSE(c.cast({1, 1, 5}, {0, 0, std::nan("")}).hit);
+    EXPECT_FALSE(c.cast({1, std::numeric_limits<double>::infinity(), 5}, {0, 0, -1}).hit);
 }
 
 TEST(Raycast, SameOutputForOneAndTwoThreadsAndProgressFromTheCaller) {
