@@ -35,6 +35,15 @@ glm::dvec3 parse_vec3(const std::string& text, const std::string& flag) {
     return {v[0], v[1], v[2]};
 }
 
+int parse_level(const std::string& text) {
+    if (text == "auto") return -1;
+    int n = 0;
+    char extra = 0;
+    if (std::sscanf(text.c_str(), "%d%c", &n, &extra) != 1 || n < 0 || n > 30)
+        throw UsageError("--level: expected N (0..30) or auto, found \"" + text + "\"");
+    return n;
+}
+
 void parse_size(const std::string& text, const std::string& flag, int& w, int& h) {
     int a = 0, b = 0;
     char x = 0, extra = 0;
@@ -59,7 +68,11 @@ void CameraArgs::add_to(CLI::App& app, bool eye_required) {
 Camera CameraArgs::resolve(const Bounds& bounds) const {
     Camera cam;
     parse_size(size, "--size", cam.width, cam.height);
-    if (!(fov > 0.0 && fov < 180.0)) throw UsageError("--fov: expected degrees in (0, 180), found " + std::to_string(fov));
+    if (!(fov > 0.0 && fov < 180.0)) {
+        std::ostringstream found;
+        found << fov;  // shortest form: "0", "180", "nan" rather than "0.000000"
+        throw UsageError("--fov: expected degrees in (0, 180), found " + found.str());
+    }
     cam.fov_deg = fov;
     const glm::dvec3 centre = bounds.centre();
     cam.look_at = look_at.empty() ? centre : parse_vec3(look_at, "--look-at");
@@ -75,7 +88,40 @@ Camera CameraArgs::resolve(const Bounds& bounds) const {
     } else {
         throw UsageError("a camera needs --eye X,Y,Z or --orbit AZ,EL,D");
     }
-    if (std::string why = cam.validate(); !why.empty()) throw UsageError("camera: " + why);
+    // Past this, squared lengths in the camera's own checks overflow and single-precision rendering has no digits
+    // left for the scene (docs/DESIGN.md, "Input limits").
+    constexpr double kMaxCoordinate = 1e30;
+    auto too_far = [&](const glm::dvec3& v) {
+        return std::abs(v.x) > kMaxCoordinate || std::abs(v.y) > kMaxCoordinate || std::abs(v.z) > kMaxCoordinate;
+    };
+    auto fmt = [](const glm::dvec3& v) {
+        std::ostringstream os;
+        os << v.x << "," << v.y << "," << v.z;
+        return os.str();
+    };
+    if (too_far(cam.eye))
+        throw UsageError(std::string(eye.empty() ? "--orbit" : "--eye") + ": the eye " + fmt(cam.eye) +
+                         " has a coordinate beyond +-1e30");
+    if (too_far(cam.look_at))
+        throw UsageError("--look-at: " + std::string(look_at.empty() ? "the default, the centre of what is rendered, " : "") +
+                         fmt(cam.look_at) + " has a coordinate beyond +-1e30");
+    if (too_far(cam.up)) throw UsageError("--up: " + fmt(cam.up) + " has a coordinate beyond +-1e30");
+    // Camera::validate() is the one judge of a usable camera; its message is prefixed with the flag to change.
+    if (std::string why = cam.validate(); !why.empty()) {
+        const std::string eye_flag = eye.empty() ? "--orbit" : "--eye";
+        std::string flag = "camera";
+        if (why.rfind("up ", 0) == 0)
+            flag = "--up";
+        else if (why.find("equals look-at") != std::string::npos)
+            flag = eye_flag + (look_at.empty() ? "" : " and --look-at");
+        else if (why.rfind("eye ", 0) == 0)
+            flag = eye_flag;
+        else if (why.rfind("look-at ", 0) == 0)
+            flag = "--look-at";
+        else if (why.rfind("fov ", 0) == 0)
+            flag = "--fov";
+        throw UsageError(flag + ": " + why);
+    }
     cam.fit_clip_planes(centre, std::max(bounds.radius(), 1e-12));
     return cam;
 }

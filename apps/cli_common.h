@@ -22,6 +22,8 @@ struct UsageError : std::runtime_error {
 };
 
 glm::dvec3 parse_vec3(const std::string& text, const std::string& flag);
+// --level N|auto: N >= 0, or -1 for auto.
+int parse_level(const std::string& text);
 void parse_size(const std::string& text, const std::string& flag, int& w, int& h);
 
 struct CameraArgs {

@@ -1,10 +1,13 @@
 // rtm prewarp: writes the pre-warped texture itself (paper Figure 9c).
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <memory>
 
 #include "cli_common.h"
+#include "objects/bounds.h"
 #include "objects/relief_manifest.h"
+#include "objects/relief_quad.h"
 #include "texmap/image_io.h"
 #include "warp/prewarp.h"
 
@@ -27,13 +30,23 @@ void run_prewarp(const PrewarpArgs& a) {
         opt.method = Reconstruction::pipelined;
     else
         throw UsageError("--method: unknown method \"" + a.method + "\" for prewarp; known: two-pass, pipelined");
-    if (a.level != "0") throw UsageError("--level: only level 0 is available yet, found \"" + a.level + "\"");
+    const int level_arg = parse_level(a.level);
     if (a.repeat < 1) throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
     if (a.threads < 0) throw UsageError("--threads: expected N >= 0, found " + std::to_string(a.threads));
     opt.exact = a.exact;
     opt.threads = a.threads;
 
-    const ReliefTexture relief = load_relief(a.relief);
+    ReliefQuad quad(load_relief(a.relief));
+    int level = level_arg;
+    if (level < 0) {  // auto: the level for a 512x512, 45-degree view from the eye towards the relief's centre
+        Camera cam;
+        cam.eye = eye;
+        cam.look_at = relief_bounds(quad.relief()).centre();
+        if (!cam.validate().empty()) cam.look_at = eye - quad.relief().geometry.f();
+        level = quad.auto_level(cam);
+    }
+    level = std::min(level, quad.levels() - 1);
+    const ReliefTexture& relief = quad.level(level);
     const PrewarpCoefficients k = compute_coefficients(relief.geometry, eye);
     PrewarpWorkspace ws;
     ImageRGBA8 out;
@@ -57,7 +70,7 @@ void run_prewarp(const PrewarpArgs& a) {
             {"dropped_texels", stats.dropped},
             {"width", relief.width},
             {"height", relief.height},
-            {"level", 0},
+            {"level", level},
             {"skips", nlohmann::json::array()},
             {"eye", {eye.x, eye.y, eye.z}},
             {"k", {k.k1, k.k2, k.k3}},

@@ -1,5 +1,6 @@
 // rtm render: the final view of a relief-textured quad with any method (flat, two-pass, pipelined, and the
 // ground truths micromesh and raycast).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -23,7 +24,7 @@ namespace {
 struct RenderArgs {
     std::string relief, out, json, method = "two-pass", level = "0";
     CameraArgs camera;
-    bool exact = false, progress = false, no_sidewalls = false, depth_correction = false;
+    bool exact = false, progress = false, no_sidewalls = false, depth_correction = false, no_skips = false;
     double discontinuity = -1;
     int repeat = 1, threads = 0;
 };
@@ -35,7 +36,7 @@ void run_render(const RenderArgs& a) {
     } catch (const std::invalid_argument& e) {
         throw UsageError(std::string("--method: ") + e.what());
     }
-    if (a.level != "0") throw UsageError("--level: only level 0 is available yet, found \"" + a.level + "\"");
+    const int level = parse_level(a.level);
     if (!(a.discontinuity >= 0 || a.discontinuity == -1) || !std::isfinite(a.discontinuity))
         throw UsageError("--discontinuity: expected a threshold >= 0, found " + std::to_string(a.discontinuity));
     if (a.repeat < 1) throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
@@ -54,11 +55,15 @@ void run_render(const RenderArgs& a) {
     opt.threads = a.threads;
 
     std::vector<double> t_pre, t_up, t_map, t_total;
+    std::vector<std::string> skips;
+    int used_level = 0;
     ImageRGBA8 image;
     RenderSettings rs;
     rs.method = method;
     rs.prewarp = opt;
-    rs.depth_correction = a.depth_correction;
+    rs.draw.depth_correction = a.depth_correction;
+    rs.draw.skips = !a.no_skips;
+    rs.draw.level = level;
     if (a.progress || isatty(2))
         rs.progress = [](double f) { std::fprintf(stderr, "\r%s %5.1f%%", "raycast", 100 * f); };
     std::unique_ptr<GlContext> ctx;
@@ -71,7 +76,11 @@ void run_render(const RenderArgs& a) {
     const int warm = a.repeat > 1 && method != RenderMethod::raycast ? 1 : 0;
     for (int i = 0; i < a.repeat + warm; ++i) {
         StageTimes st;
-        image = render_relief_frame(quad, renderer.get(), cam, rs, st);
+        DrawReport rep;
+        image = render_relief_frame(quad, renderer.get(), cam, rs, st, &rep);
+        used_level = rep.level;
+        for (const std::string& sk : rep.skips)
+            if (std::find(skips.begin(), skips.end(), sk) == skips.end()) skips.push_back(sk);
         if (i < warm) continue;
         t_pre.push_back(st.prewarp_ms);
         t_up.push_back(st.upload_ms);
@@ -91,8 +100,8 @@ void run_render(const RenderArgs& a) {
             {"texture_map_ms", timing_json(t_map)},
             {"total_ms", timing_json(t_total)},
             {"texels", (long long)quad.relief().width * quad.relief().height},
-            {"level", 0},
-            {"skips", nlohmann::json::array()},
+            {"level", used_level},
+            {"skips", skips},
             {"eye", {cam.eye.x, cam.eye.y, cam.eye.z}},
             {"size", {cam.width, cam.height}},
         };
@@ -115,6 +124,7 @@ void add_render_command(CLI::App& app) {
     sub->add_option("--repeat", a->repeat, "Render N frames after one warm-up, for timing")->capture_default_str();
     sub->add_option("--threads", a->threads, "Threads (0 = all)")->capture_default_str();
     sub->add_flag("--progress", a->progress, "Show progress of slow methods");
+    sub->add_flag("--no-skips", a->no_skips, "Always pre-warp and upload everything (to measure what skips save)");
     sub->add_flag("--no-sidewalls", a->no_sidewalls, "Drop samples that leave the quad (no side polygons)");
     sub->add_flag("--depth-correction", a->depth_correction, "Per-fragment depth from the perceived displacement");
     sub->add_option("--discontinuity", a->discontinuity,

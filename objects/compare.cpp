@@ -75,6 +75,7 @@ std::vector<CompareRow> run_comparison(ReliefQuad& quad, const CompareOptions& o
             s.method = m.method;
             s.prewarp = m.prewarp;
             s.prewarp.threads = o.threads;
+            s.draw.skips = false;  // every frame does all the work: the times compare methods, not caches
             ImageRGBA8 img;
             std::vector<double> total, pre;
             for (int i = 0; i < std::max(1, o.repeat) + 1; ++i) {  // the first frame warms up

@@ -226,9 +226,11 @@ void check_geometry(const std::string& path, const ReliefGeometry& g) {
     if (glm::length(glm::cross(a, b)) <= 1e-12 * la * lb)
         fail(path, "fields \"a\" and \"b\" are parallel, expected two independent directions, found a = " +
                        fmt_vec(g.a) + " and b = " + fmt_vec(g.b));
-    // The warp library's own check is the final word (e.g. vectors so tiny that cross(a, b) underflows).
+    // The warp library's own check is the final word. Having passed the scaled checks above, it can only fail on
+    // magnitude: |a| and |b| so tiny (or huge) that their cross product underflows (or overflows) a double.
     if (const std::string why = g.validate(); !why.empty())
-        fail(path, "fields \"origin\", \"a\", \"b\" do not describe a usable plane: " + why);
+        fail(path, "fields \"a\" and \"b\" are too small or too large for double precision (" + why +
+                       " after rounding), found a = " + fmt_vec(g.a) + " and b = " + fmt_vec(g.b));
 }
 
 std::string default_name(const std::string& path) {
@@ -342,11 +344,15 @@ ReliefTexture load_relief(const std::string& manifest_path, ReliefManifest* mani
     ImageF world(disp.width, disp.height);
     for (int row = 0; row < disp.height; ++row) {
         for (int x = 0; x < disp.width; ++x) {
-            const float n = disp.at(x, row);
-            if (!std::isfinite(n))
-                fail(manifest_path, "displacement image " + disp_name + " has a non-finite value (" + fmt_double(n) +
-                                        ") at texel (" + std::to_string(x) + ", " + std::to_string(row) +
-                                        "), expected a finite value in 0..1");
+            float n = disp.at(x, row);
+            // Integer formats always convert to 0..1; float formats (PFM, EXR, TIFF) can hold anything. A hair
+            // outside (float rounding) is clamped, as write_relief does.
+            if (!std::isfinite(n) || n < -1e-6f || n > 1.0f + 1e-6f)
+                fail(manifest_path, "displacement image " + disp_name + " has " +
+                                        (std::isfinite(n) ? "the value " : "a non-finite value (") + fmt_double(n) +
+                                        (std::isfinite(n) ? "" : ")") + " at texel (" + std::to_string(x) + ", " +
+                                        std::to_string(row) + "), expected a finite value in 0..1");
+            n = std::clamp(n, 0.0f, 1.0f);
             const float d = float(m.range_min + double(n) * span);
             if (!std::isfinite(d))
                 fail(manifest_path, "field \"displacement_range\" [" + fmt_double(m.range_min) + ", " +

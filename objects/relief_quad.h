@@ -6,6 +6,7 @@
 #include <array>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "texmap/camera.h"
 #include "texmap/renderer.h"
@@ -28,6 +29,31 @@ struct StageTimes {
     double total_ms = 0.0;
 };
 
+// How draw() chooses what to do for a frame. Each "skip" keeps the cost proportional to what the viewer sees;
+// `skips` in the report lists those that fired (names as in kSkipNames).
+struct DrawOptions {
+    bool depth_correction = false;  // section 4.2
+    int level = 0;                  // relief texture pyramid level; -1 = auto (texel density ~ pixel density)
+    bool skips = true;              // enable the skips below (off: always pre-warp and upload everything)
+    double subpixel_parallax = 0.25;  // pixels: below this largest parallax, draw as a plain texture (far away)
+    double reuse_tolerance = 0.05;    // texels: below this largest motion since the last pre-warp, reuse it
+};
+
+// Skip names, reported in --json "skips".
+inline constexpr const char* kSkipBackFacing = "back-facing";
+inline constexpr const char* kSkipOutsideFrustum = "outside-frustum";
+inline constexpr const char* kSkipSubpixelParallax = "subpixel-parallax";
+inline constexpr const char* kSkipReuse = "reuse-prewarp";
+inline constexpr const char* kSkipPartialUpload = "partial-upload";
+inline constexpr const char* kSkipInsideSlab = "inside-slab-micromesh";
+inline constexpr const char* kSkipZeroRuns = "zero-displacement-runs";
+
+struct DrawReport {
+    int level = 0;
+    std::vector<std::string> skips;
+    long long uploaded_texels = 0;
+};
+
 class ReliefQuad {
 public:
     explicit ReliefQuad(ReliefTexture relief);
@@ -38,30 +64,47 @@ public:
     std::array<glm::dvec3, 4> corners() const;  // (0,0), (w,0), (w,h), (0,h) in texel units
     // True when the camera sees the front (+f) side of the quad.
     bool faces(const glm::dvec3& eye) const;
+    // Pyramid level i (0 = the relief itself); built on first use.
+    const ReliefTexture& level(int i);
+    int levels();
+    // The level `auto` picks for this camera: texel density roughly matching pixel density.
+    int auto_level(const Camera& cam);
 
-    // Pre-warps for `eye` into the CPU image returned by prewarped(). Returns the time in milliseconds.
+    // Pre-warps level 0 for `eye` into prewarped(). Returns the time in milliseconds.
     double prewarp(const glm::dvec3& eye, const PrewarpOptions& options, bool with_displ = false);
     const ImageRGBA8& prewarped() const { return prewarped_; }
     const PrewarpStats& last_stats() const { return stats_; }
     // The micro-polygon mesh of this relief (ground truth), built on first use.
     const MicroMesh& micromesh();
 
-    // Draws with `method` (flat, two_pass or pipelined) into the current frame. Requires a current GL context.
-    // options.keep_outliers draws the side polygons (paper section 4, Figure 12); depth_correction sets each
-    // fragment's depth from the perceived displacement (section 4.2) so interpenetrating polygons are hidden
-    // where they should be.
+    // Draws with `method` (flat, two_pass or pipelined) into the current frame. Requires a current GL context,
+    // the same one for the life of the quad. options.keep_outliers draws the side polygons (paper section 4,
+    // Figure 12).
     void draw(Renderer& renderer, const Camera& cam, RenderMethod method, const PrewarpOptions& options,
-              StageTimes& times, bool depth_correction = false);
+              StageTimes& times, const DrawOptions& draw = {}, DrawReport* report = nullptr);
 
 private:
     ReliefTexture relief_;
+    std::vector<ReliefTexture> pyramid_;  // levels 1.. (level 0 is relief_)
     PrewarpWorkspace workspace_;
-    ImageRGBA8 prewarped_;
-    PrewarpStats stats_;
+    ImageRGBA8 prewarped_, uploaded_;
     Image2D<uint8_t> displ_;  // quantized displacement seen at each pre-warped pixel (depth correction)
+    PrewarpStats stats_;
     std::unique_ptr<GlTexture> texture_, displ_texture_;
-    ImageRGBA8 flat_;  // source colours as an ordinary texture (alpha 0 where empty)
+    ImageRGBA8 flat_;  // source colours of level flat_level_ as an ordinary texture (alpha 0 where empty)
+    int flat_level_ = -1;
     std::unique_ptr<MicroMesh> micromesh_;
+    // What the current pre-warp was made for (reuse when the eye barely moved).
+    struct Cached {
+        bool valid = false;
+        int level = -1;
+        RenderMethod method = RenderMethod::flat;
+        bool exact = false, keep_outliers = false, displ = false;
+        PrewarpCoefficients k;
+    } cached_;
+    int uploaded_kind_ = -1;  // what texture_ holds: -1 nothing, 0 flat, 1 pre-warp
+
+    const ReliefTexture& level_texture(int i);
 };
 
 // The relief's colours as an ordinary texture (the conventional texture mapping of Figure 1).

@@ -16,7 +16,7 @@ double ms_since(Clock::time_point t0) {
 }  // namespace
 
 ImageRGBA8 render_relief_frame(ReliefQuad& quad, Renderer* renderer, const Camera& cam, const RenderSettings& s,
-                               StageTimes& times) {
+                               StageTimes& times, DrawReport* report) {
     const auto t0 = Clock::now();
     if (s.method == RenderMethod::raycast) {
         RaycastOptions ro;
@@ -35,7 +35,7 @@ ImageRGBA8 render_relief_frame(ReliefQuad& quad, Renderer* renderer, const Camer
         times.texture_map_ms += ms_since(t0);
     } else {
         StageTimes st;
-        quad.draw(*renderer, cam, s.method, s.prewarp, st, s.depth_correction);
+        quad.draw(*renderer, cam, s.method, s.prewarp, st, s.draw, report);
         times.prewarp_ms += st.prewarp_ms;
         times.upload_ms += st.upload_ms;
         times.texture_map_ms += st.texture_map_ms;

@@ -27,7 +27,7 @@ ImageRGBA8 render(Gl& gl, ReliefQuad& quad, const Camera& cam, RenderMethod m, P
     RenderSettings s;
     s.method = m;
     s.prewarp = o;
-    s.depth_correction = depth;
+    s.draw.depth_correction = depth;
     StageTimes t;
     return render_relief_frame(quad, &r, cam, s, t);
 }
@@ -97,7 +97,9 @@ TEST(ReliefRender, DepthCorrectionAgainstInterpenetratingPolygon) {
                 StageTimes st;
                 PrewarpOptions o;
                 o.keep_outliers = true;
-                quad.draw(r, cam, m, o, st, depth);
+                DrawOptions dopt;
+                dopt.depth_correction = depth;
+                quad.draw(r, cam, m, o, st, dopt);
             }
             r.draw_mesh(cam, plane, idx);
             return r.read_pixels(cam.width, cam.height);
