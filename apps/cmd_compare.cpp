@@ -55,7 +55,10 @@ void run_compare(const CompareArgs& a) {
                      {"prewarp_ms", r.prewarp_ms},
                      {"psnr", std::isfinite(r.error.psnr) ? nlohmann::json(r.error.psnr) : nlohmann::json(nullptr)},
                      {"rmse", r.error.rmse},
-                     {"iou", r.error.iou}});
+                     {"iou", r.error.iou},
+                     {"psnr_vs_micromesh",
+                      std::isfinite(r.vs_micromesh.psnr) ? nlohmann::json(r.vs_micromesh.psnr) : nlohmann::json(nullptr)},
+                     {"iou_vs_micromesh", r.vs_micromesh.iou}});
     write_json(a.out + "/compare.json", {{"relief", a.relief}, {"rows", j}});
     const std::string mdpath = a.out + "/compare.md";
     {

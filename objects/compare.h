@@ -34,6 +34,7 @@ struct CompareRow {
     double ms = 0;        // median total frame time (raycast: one run)
     double prewarp_ms = 0;
     DiffResult error;     // against raycast
+    DiffResult vs_micromesh;  // against the micro-polygon mesh
 };
 
 struct CompareOptions {
