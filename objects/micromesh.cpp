@@ -7,8 +7,10 @@
 // Diagonal: always c00-c11, the one from low (u, v) to high (u, v) (bottom-left to top-right as the image file is
 // looked at). Triangles (c00, c10, c11) and (c00, c11, c01) are counter-clockwise seen from +f, so an OpenGL
 // front face is the side the relief stands out towards (the renderer does not cull; this only fixes the order).
+// With discontinuity marks (ReliefTexture::breaks) triangles crossing a marked pair are left out.
 #include "objects/micromesh.h"
 
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 
@@ -37,7 +39,19 @@ MicroMesh build_micromesh(const ReliefTexture& t) {
             const uint32_t c00 = index[size_t(row + 1) * size_t(w) + size_t(x)];
             const uint32_t c10 = index[size_t(row + 1) * size_t(w) + size_t(x + 1)];
             if (c00 == kNone || c10 == kNone || c01 == kNone || c11 == kNone) continue;  // a hole
-            m.indices.insert(m.indices.end(), {c00, c10, c11, c00, c11, c01});
+            if (t.breaks.empty()) {
+                m.indices.insert(m.indices.end(), {c00, c10, c11, c00, c11, c01});
+                continue;
+            }
+            // Surface discontinuities (section 4.1.1): the same cut as the pre-warp makes. A triangle is kept
+            // only when none of its edges crosses a marked pair; the diagonal is tested against the threshold.
+            auto br = [&](int xx, int rr) { return t.breaks[size_t(rr) * size_t(w) + size_t(xx)]; };
+            const bool diag_ok =
+                std::abs(t.displ(x, row + 1) - t.displ(x + 1, row)) <= t.discontinuity_threshold;
+            const bool lower_ok = diag_ok && !(br(x, row + 1) & kBreakRight) && !(br(x + 1, row + 1) & kBreakUp);
+            const bool upper_ok = diag_ok && !(br(x, row) & kBreakRight) && !(br(x, row + 1) & kBreakUp);
+            if (lower_ok) m.indices.insert(m.indices.end(), {c00, c10, c11});
+            if (upper_ok) m.indices.insert(m.indices.end(), {c00, c11, c01});
         }
     return m;
 }
