@@ -46,6 +46,7 @@ void add_prewarp_command(CLI::App& app);
 void add_render_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
 void add_bench_skips_command(CLI::App& app);
+void add_view_command(CLI::App& app);
 void add_diff_command(CLI::App& app);
 
 }  // namespace rtm::cli
