@@ -103,8 +103,9 @@ Camera CameraArgs::resolve(const Bounds& bounds) const {
         throw UsageError(std::string(eye.empty() ? "--orbit" : "--eye") + ": the eye " + fmt(cam.eye) +
                          " has a coordinate beyond +-1e30");
     if (too_far(cam.look_at))
-        throw UsageError("--look-at: " + std::string(look_at.empty() ? "the default, the centre of what is rendered, " : "") +
-                         fmt(cam.look_at) + " has a coordinate beyond +-1e30");
+        throw UsageError(
+            "--look-at: " + std::string(look_at.empty() ? "the default, the centre of what is rendered, " : "") +
+            fmt(cam.look_at) + " has a coordinate beyond +-1e30");
     if (too_far(cam.up)) throw UsageError("--up: " + fmt(cam.up) + " has a coordinate beyond +-1e30");
     // Camera::validate() is the one judge of a usable camera; its message is prefixed with the flag to change.
     if (std::string why = cam.validate(); !why.empty()) {

@@ -48,5 +48,6 @@ void add_compare_command(CLI::App& app);
 void add_bench_skips_command(CLI::App& app);
 void add_view_command(CLI::App& app);
 void add_diff_command(CLI::App& app);
+void add_bench_command(CLI::App& app);
 
 }  // namespace rtm::cli

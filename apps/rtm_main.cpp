@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
     rtm::cli::add_bench_skips_command(app);
     rtm::cli::add_view_command(app);
     rtm::cli::add_diff_command(app);
+    rtm::cli::add_bench_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, and runs the whole test suite: the Release build's tests, then the same
-# tests built with AddressSanitizer and UndefinedBehaviorSanitizer (build-asan/). Exit status non-zero on any
-# failure. Set RTM_SKIP_SANITIZE=1 to run only the Release suite.
+# tests built with AddressSanitizer and UndefinedBehaviorSanitizer (build-asan/), then the libFuzzer targets of
+# fuzz/ for RTM_FUZZ_SECONDS (default 30) each, side by side (scripts/fuzz.sh, build-fuzz/). Exit status non-zero
+# on any failure. Set RTM_SKIP_SANITIZE=1 to run only the Release suite, RTM_SKIP_FUZZ=1 to leave out the fuzzers.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -19,4 +20,9 @@ if [ "${RTM_SKIP_SANITIZE:-0}" != 1 ]; then
   # OSMesa/llvmpipe and TBB keep some allocations for the life of the process: leaks are not checked here.
   ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir build-asan --output-on-failure -j"$jobs" -LE no_sanitize
+
+  if [ "${RTM_SKIP_FUZZ:-0}" != 1 ]; then
+    # Bounded: about a minute of building (only the readers are instrumented) and RTM_FUZZ_SECONDS of fuzzing.
+    RTM_FUZZ_SECONDS=${RTM_FUZZ_SECONDS:-30} bash scripts/fuzz.sh
+  fi
 fi

@@ -1,8 +1,9 @@
 // Image files through OpenImageIO 2.4.
 //
-// Reading checks the file itself (exists, is a regular file, is not empty) and then the header's claimed size
-// against kMaxImagePixels before any pixel buffer is allocated. Alpha stays unassociated ("oiio:UnassociatedAlpha"),
-// so a PNG round trip is bit-exact and the colour of a texel with alpha 0 survives.
+// Reading checks the file itself (exists, is a regular file, is not empty, no PNG chunk or OpenEXR attribute
+// claims more bytes than the file holds) and then the header's claimed size against kMaxImagePixels before any
+// pixel buffer is allocated (docs/DESIGN.md, "Input limits"). Alpha stays unassociated
+// ("oiio:UnassociatedAlpha"), so a PNG round trip is bit-exact and the colour of a texel with alpha 0 survives.
 //
 // Writing goes to a temporary file in the destination folder (same file system, so std::rename is atomic) and is
 // renamed over `path` only when the writer reports success; on any failure the temporary file is removed.
@@ -12,14 +13,17 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <memory>
 #include <mutex>
 #include <system_error>
+#include <vector>
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -94,6 +98,93 @@ void check_readable_file(const std::string& path) {
     if (size == 0) fail(path, "file is empty");
 }
 
+// Some decoders allocate, and clear, whatever a length field in the file claims before reading that many bytes:
+// libpng for an ancillary chunk (OpenImageIO 2.4 lets it go up to 2 GB), OpenEXR 3.1 for a header attribute. A
+// 348-byte PNG whose tEXt chunk claims 2016634473 bytes, and a 594-byte EXR whose string attribute claims 1.9 GB,
+// each made rtm touch 2 GB of memory (found by fuzz/fuzz_relief_loader). So, for these two formats (recognized by
+// their signature, whatever the file's extension), no such field may claim more bytes than the file has left.
+// PNG's IDAT is left to libpng, which streams it and says more about a file cut short in its pixel data.
+class ContainerCheck {
+public:
+    explicit ContainerCheck(const std::string& path)
+        : path_(path), f_(std::fopen(path.c_str(), "rb"), &std::fclose) {
+        std::error_code ec;
+        size_ = fs::file_size(path, ec);
+        if (ec) f_.reset();
+    }
+    void run() {
+        unsigned char magic[8];
+        if (!f_ || !read_at(0, magic, 8)) return;  // the reader reports what is wrong
+        if (std::memcmp(magic, "\x89PNG\r\n\x1a\n", 8) == 0) png();
+        if (std::memcmp(magic, "\x76\x2f\x31\x01", 4) == 0) exr(magic[5] & 0x10);  // flags: bit 12 = multi-part
+    }
+
+private:
+    bool read_at(std::uintmax_t pos, unsigned char* out, size_t n) {
+        if (pos + n > size_) return false;
+        if (pos != at_ && ::fseeko(f_.get(), off_t(pos), SEEK_SET) != 0) return false;
+        at_ = pos + n;
+        return std::fread(out, 1, n, f_.get()) == n;
+    }
+    void check(const char* format, const char* what, const std::string& name, std::uintmax_t pos,
+               std::uintmax_t claimed, std::uintmax_t from) {
+        if (claimed <= size_ - std::min(size_, from)) return;
+        std::string printable;
+        for (char c : name) printable += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
+        fail(path_, std::string("cannot read as an image: ") + format + " " + what + " \"" + printable +
+                        "\" at byte " + std::to_string(pos) + " claims " + std::to_string(claimed) +
+                        " bytes, more than the " + std::to_string(size_ - std::min(size_, from)) +
+                        " left in the file (truncated or corrupt)");
+    }
+    void png() {
+        unsigned char h[8];
+        for (std::uintmax_t pos = 8; read_at(pos, h, 8);) {
+            const std::uintmax_t length = std::uintmax_t(h[0]) << 24 | std::uintmax_t(h[1]) << 16 |
+                                          std::uintmax_t(h[2]) << 8 | std::uintmax_t(h[3]);
+            const std::string type(reinterpret_cast<const char*>(h + 4), 4);
+            if (type == "IEND") return;
+            if (type != "IDAT") check("PNG", "chunk", type, pos, length, pos + 8);
+            pos += 12 + length;
+        }
+    }
+    // A string ending in \0 (at most 255 characters) at `pos`, which moves past it.
+    bool read_string(std::uintmax_t& pos, std::string& out) {
+        out.clear();
+        for (unsigned char c; read_at(pos++, &c, 1);) {
+            if (c == 0) return true;
+            if (out.size() == 255) return false;
+            out += char(c);
+        }
+        return false;
+    }
+    // A header is a list of attributes (name\0 type\0 int32 size, then the value) ended by an empty name; a
+    // multi-part file has several headers, the list ended by an empty header.
+    void exr(bool multi_part) {
+        std::uintmax_t pos = 8;
+        std::string name, type;
+        do {
+            if (!read_string(pos, name) || name.empty()) return;
+            while (!name.empty()) {
+                const std::uintmax_t at = pos - name.size() - 1;
+                unsigned char n[4];
+                if (!read_string(pos, type) || !read_at(pos, n, 4)) return;
+                pos += 4;
+                const int32_t claimed =
+                    int32_t(uint32_t(n[0]) | uint32_t(n[1]) << 8 | uint32_t(n[2]) << 16 | uint32_t(n[3]) << 24);
+                if (claimed < 0) return;  // OpenEXR refuses that itself
+                check("OpenEXR", "attribute", name, at, std::uintmax_t(claimed), pos);
+                pos += std::uintmax_t(claimed);
+                if (!read_string(pos, name)) return;
+            }
+        } while (multi_part);
+    }
+
+    std::string path_;
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> f_;
+    std::uintmax_t size_ = 0;
+    std::uintmax_t at_ = 0;  // the stream's position
+};
+
 // An opened image whose size has been checked; `spec` describes subimage 0, mip level 0.
 struct OpenedImage {
     std::unique_ptr<OIIO::ImageInput> in;
@@ -102,6 +193,7 @@ struct OpenedImage {
 
 OpenedImage open_checked(const std::string& path) {
     check_readable_file(path);
+    ContainerCheck(path).run();
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
     std::unique_ptr<OIIO::ImageInput> in;
@@ -116,7 +208,8 @@ OpenedImage open_checked(const std::string& path) {
     OIIO::ImageSpec spec = in->spec();
     // Check the claimed size before anything allocates pixel memory.
     if (spec.width <= 0 || spec.height <= 0)
-        fail(path, "image is " + std::to_string(spec.width) + "x" + std::to_string(spec.height));
+        fail(path, "image header claims " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                       " pixels, expected a width and height of at least 1");
     if (spec.depth > 1) fail(path, "is a volume image (depth " + std::to_string(spec.depth) + "), not a 2-D image");
     if ((long long)spec.width * (long long)spec.height > kMaxImagePixels)
         fail(path, "image claims " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
@@ -125,11 +218,38 @@ OpenedImage open_checked(const std::string& path) {
     return {std::move(in), spec};
 }
 
-void read_channels(const std::string& path, OpenedImage& im, int nch, OIIO::TypeDesc type, void* data) {
-    bool ok;
+// Reads the first `nch` channels of the whole image as `type` into `data`, whose pixels are `out_nch` >= nch
+// channels apart (the channels past nch are left as they are).
+void read_channels(const std::string& path, OpenedImage& im, int nch, int out_nch, OIIO::TypeDesc type, void* data) {
+    const OIIO::ImageSpec& s = im.spec;
+    const OIIO::stride_t out_pixel = OIIO::stride_t(out_nch) * OIIO::stride_t(type.size());
+    const OIIO::stride_t out_row = out_pixel * OIIO::stride_t(s.width);
+    bool ok = true;
     {
         QuietStderr quiet;
-        ok = im.in->read_image(0, 0, 0, nch, type, data);
+        if (s.tile_width == 0 && s.channelformats.empty() && s.format.size() > 0) {
+            // A scanline file: read in its own format a band of rows at a time, and converted here into place.
+            // OpenImageIO 2.4's read_image would convert through a 64 MB scratch buffer per call, whatever the
+            // image's size (ImageInput::read_scanlines allocates it for any requested format but the "native"
+            // UNKNOWN): untouched and cheap normally, but AddressSanitizer poisons all of it, which made every read
+            // of a small image cost milliseconds in the sanitizer suite and the fuzzers. Bands of about 4 MB.
+            const size_t file_row = s.scanline_bytes(true);  // all channels: what the reader decodes
+            const size_t in_row = size_t(s.width) * size_t(nch) * s.format.size();
+            const int band = int(std::clamp<size_t>((size_t(1) << 22) / std::max<size_t>(file_row, 1), 1,
+                                                    size_t(s.height)));
+            std::vector<unsigned char> buf(size_t(band) * in_row);
+            for (int y = 0; ok && y < s.height; y += band) {
+                const int rows = std::min(band, s.height - y);
+                ok = im.in->read_scanlines(0, 0, s.y + y, s.y + y + rows, s.z, 0, nch, OIIO::TypeDesc::UNKNOWN,
+                                           buf.data()) &&
+                     OIIO::convert_image(nch, s.width, rows, 1, buf.data(), s.format, OIIO::AutoStride,
+                                         OIIO::AutoStride, OIIO::AutoStride,
+                                         static_cast<unsigned char*>(data) + size_t(y) * size_t(out_row), type,
+                                         out_pixel, out_row, OIIO::AutoStride);
+            }
+        } else {
+            ok = im.in->read_image(0, 0, 0, nch, type, data, out_pixel, out_row);
+        }
     }
     if (!ok) {
         std::string msg = one_line(im.in->geterror());
@@ -215,23 +335,18 @@ void write_atomic(const std::string& path, int width, int height, int nch, OIIO:
 
 ImageRGBA8 read_rgba8(const std::string& path) {
     OpenedImage im = open_checked(path);
-    const int w = im.spec.width, h = im.spec.height, nch = im.spec.nchannels;
-    ImageRGBA8 img(w, h);
-    if (nch >= 4) {
-        read_channels(path, im, 4, OIIO::TypeDesc::UINT8, img.pixels.data());
-    } else {
-        const size_t n = size_t(w) * size_t(h);
-        std::vector<uint8_t> buf(n * size_t(nch));
-        read_channels(path, im, nch, OIIO::TypeDesc::UINT8, buf.data());
-        for (size_t i = 0; i < n; ++i) {
-            const uint8_t* s = &buf[i * size_t(nch)];
-            Rgba8& d = img.pixels[i];
+    const int nch = std::min(im.spec.nchannels, 4);
+    ImageRGBA8 img(im.spec.width, im.spec.height);
+    // Straight into the RGBA pixels, then filled out in place: no second image-sized buffer.
+    read_channels(path, im, nch, 4, OIIO::TypeDesc::UINT8, img.pixels.data());
+    if (nch < 4) {
+        for (Rgba8& d : img.pixels) {
             if (nch == 1) {
-                d = {s[0], s[0], s[0], 255};
+                d = {d.r, d.r, d.r, 255};
             } else if (nch == 2) {  // grey + alpha
-                d = {s[0], s[0], s[0], s[1]};
+                d = {d.r, d.r, d.r, d.g};
             } else {
-                d = {s[0], s[1], s[2], 255};
+                d.a = 255;
             }
         }
     }
@@ -241,7 +356,7 @@ ImageRGBA8 read_rgba8(const std::string& path) {
 ImageF read_gray(const std::string& path) {
     OpenedImage im = open_checked(path);
     ImageF img(im.spec.width, im.spec.height);
-    read_channels(path, im, 1, OIIO::TypeDesc::FLOAT, img.pixels.data());
+    read_channels(path, im, 1, 1, OIIO::TypeDesc::FLOAT, img.pixels.data());
     return img;
 }
 

@@ -14,6 +14,7 @@
 #include <atomic>
 #include <cstdint>
 
+#include "warp/fast_tables.h"
 #include "warp/image.h"
 #include "warp/prewarp.h"
 #include "warp/relief_texture.h"
@@ -22,29 +23,20 @@ namespace rtm::fast {
 
 // Lookup tables in the form the kernels use: K1 is NaN at every level that cannot be pre-warped (and at 255),
 // so validity is "the position is finite", which the reference also requires.
-struct alignas(64) FastTables {
-    float k1[256];
-    float k2[256];
-    float rcp[256];
-    int32_t dropped[256];  // 1 for a non-empty level that cannot be pre-warped
-    bool any_dropped = false;
-};
-
-FastTables make_fast_tables(const PrewarpTables& tab);
-
 struct TwoPassJob {
     const ReliefTexture* relief = nullptr;
     const FastTables* tables = nullptr;
     PrewarpExtent extent;
     int split_u = 0, split_v = 0;  // split_index of the epipole along rows and columns
-    ImageRGBA8* mid = nullptr;     // out width x relief height
-    ImageF* mid_v = nullptr;
+    // The intermediate image in column tiles: 16 columns x all rows per tile, tile after tile, so that the vertical
+    // pass reads each tile as one sequential stream. Pixel (x, row) is at ((x / 16) * height + row) * 16 + x % 16.
+    // Both start on a 64-byte boundary.
+    uint32_t* mid = nullptr;
+    float* mid_v = nullptr;
+    int mid_width = 0;  // out width (the tiles' width is rounded up)
     ImageRGBA8* out = nullptr;     // out width x out height
     std::atomic<long long>* dropped = nullptr;
 };
-
-// True when this CPU runs the AVX-512 kernels (F, BW, DQ, VL).
-bool cpu_supported();
 
 void horizontal_rows(const TwoPassJob& job, int r0, int r1);
 void vertical_columns(const TwoPassJob& job, int x0, int x1);  // x0 a multiple of 16

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <vector>
 
+#include "warp/fast_prewarp.h"
 #include "warp/line_warp.h"
 
 namespace rtm {
@@ -349,9 +350,10 @@ PrewarpStats prewarp(const ReliefTexture& relief, const PrewarpCoefficients& k, 
                      PrewarpWorkspace& ws, ImageRGBA8& out, Image2D<uint8_t>* displ_out) {
     Frame fr{relief.width, relief.height, {}};
     if (options.keep_outliers) {
-        const int mm = options.max_margin >= 0 ? options.max_margin : std::max(relief.width, relief.height) / 2;
+        const int mm = options.max_margin >= 0 ? options.max_margin : std::max(relief.width, relief.height) * 2;
         fr.e = outlier_extent(relief, k, mm);
     }
+    if (fast_prewarp_covers(relief, k, options, fr.e, displ_out)) return fast_prewarp(relief, k, options, fr.e, ws, out);
     out.resize(fr.out_w(), fr.out_h());
     if (displ_out) displ_out->resize(fr.out_w(), fr.out_h(), kEmptyIndex);
     if (k.side == ViewSide::on_plane || relief.width == 0 || relief.height == 0) return {0, 0, fr.e};

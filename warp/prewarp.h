@@ -37,7 +37,8 @@ struct PrewarpOptions {
     bool exact = false;          // unquantized displacement and double-precision coordinates (the reference path)
     int threads = 0;             // 0 = all available; the output never depends on it
     bool keep_outliers = false;  // keep samples that leave the quad in a margin (for the side polygons)
-    int max_margin = -1;         // largest margin per side in texels; -1 = max(w, h) / 2
+    int max_margin = -1;         // largest margin per side in texels; -1 = 2 * max(w, h)
+    bool fast = true;            // use the fast kernels where they apply (warp/fast_prewarp.h); same output
 };
 
 // Texels of output beyond the quad on each side (all 0 unless keep_outliers).

@@ -1,0 +1,77 @@
+// rtm bench: pre-warp throughput against the memory bound, and the paper's Table 1 (objects/bench.h). Progress on
+// stderr, a Markdown report on stdout, JSON with --json FILE.
+#include <cstdio>
+#include <memory>
+#include <sstream>
+
+#include "cli_common.h"
+#include "objects/bench.h"
+#include "objects/procedural_media.h"
+
+namespace rtm::cli {
+
+namespace {
+
+struct BenchArgs {
+    std::string json, sizes, reliefs, threads;
+    bool full = false, no_exact = false, no_reference = false, no_table1 = false;
+    double min_time = -1;
+};
+
+std::vector<int> parse_ints(const std::string& text, const std::string& flag, int lo, int hi) {
+    std::vector<int> v;
+    std::stringstream ss(text);
+    for (std::string item; std::getline(ss, item, ',');) {
+        char* end = nullptr;
+        const long x = std::strtol(item.c_str(), &end, 10);
+        if (item.empty() || *end || x < lo || x > hi)
+            throw UsageError(flag + ": expected integers " + std::to_string(lo) + ".." + std::to_string(hi) +
+                             " separated by commas, found \"" + text + "\"");
+        v.push_back(int(x));
+    }
+    if (v.empty()) throw UsageError(flag + ": expected at least one value");
+    return v;
+}
+
+void run_bench_command(const BenchArgs& a) {
+    BenchConfig c = default_bench_config(a.full);
+    if (!a.sizes.empty()) c.sizes = parse_ints(a.sizes, "--sizes", 8, 8192);
+    if (!a.threads.empty()) c.threads = parse_ints(a.threads, "--threads", 1, 1024);
+    if (!a.reliefs.empty()) {
+        c.reliefs.clear();
+        std::stringstream ss(a.reliefs);
+        const std::vector<std::string> known = procedural_names();
+        for (std::string item; std::getline(ss, item, ',');) {
+            if (std::find(known.begin(), known.end(), item) == known.end())
+                throw UsageError("--reliefs: unknown relief \"" + item + "\"; known: bricks, facade, bumps, ridges");
+            c.reliefs.push_back(item);
+        }
+    }
+    if (a.min_time >= 0) c.min_seconds = a.min_time;
+    c.exact = !a.no_exact;
+    c.reference = !a.no_reference;
+    c.table1 = !a.no_table1;
+    c.progress = [](const std::string& line) { std::fprintf(stderr, "bench: %s\n", line.c_str()); };
+    const BenchResult r = run_bench(c);
+    if (!a.json.empty()) write_json(a.json, bench_json(r));
+    std::printf("%s", bench_markdown(r).c_str());
+}
+
+}  // namespace
+
+void add_bench_command(CLI::App& app) {
+    auto a = std::make_shared<BenchArgs>();
+    CLI::App* sub = app.add_subcommand("bench", "Pre-warp throughput against the memory bound, and Table 1");
+    sub->add_option("--json", a->json, "Write the figures as JSON");
+    sub->add_flag("--full", a->full, "All sizes up to 4096^2 (default: 128^2 to 1024^2, about a minute)");
+    sub->add_option("--sizes", a->sizes, "Texture sizes, e.g. 256,1024 (overrides the default set)");
+    sub->add_option("--reliefs", a->reliefs, "Procedural reliefs, e.g. bumps,bricks,ridges");
+    sub->add_option("--threads", a->threads, "Thread counts of the fast kernels, e.g. 1,2");
+    sub->add_option("--min-time", a->min_time, "Seconds of repeats per measurement (default 0.25)");
+    sub->add_flag("--no-exact", a->no_exact, "Skip the --exact (double precision) path");
+    sub->add_flag("--no-reference", a->no_reference, "Skip the generic reference kernels");
+    sub->add_flag("--no-table1", a->no_table1, "Skip the OpenGL frame (Table 1)");
+    sub->callback([a] { run_bench_command(*a); });
+}
+
+}  // namespace rtm::cli

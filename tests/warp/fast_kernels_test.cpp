@@ -1,0 +1,284 @@
+// The fast pre-warp kernels (warp/fast_prewarp.h) against the generic implementation, pixel by pixel: random
+// reliefs (smooth, mostly flat with steps, noisy and foldover-heavy, with empty texels), sizes from 1x1 through
+// 1xN, Nx1, odd sizes and sizes around multiples of 16, views with the epipole inside, outside, on texel centres and
+// boundaries, far, near, grazing, below the highest texels, margins on and off, one and two threads.
+// The seed is printed on failure; RTM_SEED overrides it.
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <new>
+#include <random>
+#include <sstream>
+
+#include "test_util.h"
+#include "warp/fast_prewarp.h"
+#include "warp/prewarp.h"
+
+// Counts every allocation of the test program (for the steady-state test below; harmless elsewhere).
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+namespace {
+std::atomic<long long> g_allocations{0};
+}
+void* operator new(std::size_t n) {
+    ++g_allocations;
+    if (void* p = std::malloc(n ? n : 1)) return p;
+    throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+namespace rtm {
+namespace {
+
+struct Case {
+    ReliefTexture relief;
+    glm::dvec3 eye;
+    PrewarpOptions options;
+    std::string describe;
+};
+
+double hash01(int x, int y, uint32_t s) {
+    uint32_t h = uint32_t(x) * 0x9E3779B1u ^ (uint32_t(y) * 0x85EBCA77u + s * 0x27d4eb2du);
+    h ^= h >> 15;
+    h *= 0x2c1b3c6du;
+    h ^= h >> 12;
+    return double(h >> 8) / 16777216.0;
+}
+
+Case random_case(std::mt19937_64& rng) {
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    auto pick = [&](int n) { return int(rng() % uint64_t(n)); };
+    int w, h;
+    switch (pick(8)) {
+        case 0: w = h = 1; break;
+        case 1: w = 1; h = 1 + pick(80); break;
+        case 2: w = 1 + pick(80); h = 1; break;
+        case 3: w = 15 + pick(4); h = 31 + pick(4); break;  // around multiples of 16
+        case 4: w = 64 + pick(150); h = 64 + pick(150); break;
+        default: w = 1 + pick(70); h = 1 + pick(70); break;
+    }
+    const ReliefGeometry g = test::random_geometry(rng);
+    const double size = std::max(glm::length(g.a) * w, glm::length(g.b) * h);
+    const double amp = size * (0.02 + U(rng) * (pick(3) == 0 ? 1.0 : 0.2));
+    const uint32_t salt = uint32_t(rng());
+    const int kind = pick(5);
+    const double fx = 0.05 + U(rng) * 0.5, fy = 0.05 + U(rng) * 0.5;
+    auto displ = [&](int x, int r) -> double {
+        switch (kind) {
+            case 0: return amp * (0.5 + 0.5 * std::sin(x * fx) * std::cos(r * fy));  // smooth bumps
+            case 1: return ((x % 9) == 0 || (r % 5) == 0) ? -amp * 0.3 : 0.0;    // bricks: mostly 0, recessed mortar
+            case 2: return amp * hash01(x, r, salt);                             // noise: foldovers everywhere
+            case 3: return amp * std::abs(std::sin(x * fx * 3));                 // ridges
+            default: return amp * 0.5;                                           // constant
+        }
+    };
+    const double lo = kind == 1 ? -amp * 0.3 : 0.0, hi = kind == 1 ? 0.0 : amp;
+    Case c{test::make_test_relief(w, h, lo, hi, displ, g), {}, {}, {}};
+    const int empties = pick(4);
+    if (empties == 1)
+        for (size_t i = 0; i < c.relief.texels.size(); i += 3) c.relief.texels[i].q = kEmptyIndex;
+    if (empties == 2)
+        for (size_t i = 0; i < c.relief.texels.size(); ++i)
+            if (hash01(int(i), 7, salt) < 0.3) c.relief.texels[i].q = kEmptyIndex;
+
+    // The eye: epipole position in texels, distance along f.
+    double eu = U(rng) * 3 * w - w, ev = U(rng) * 3 * h - h;
+    std::string where = "anywhere";
+    switch (pick(6)) {
+        case 0: eu = std::floor(eu) + 0.5; ev = std::floor(ev) + 0.5; where = "over a texel centre"; break;
+        case 1: eu = std::floor(eu); ev = std::floor(ev); where = "on texel boundaries"; break;
+        case 2: eu = U(rng) * w; ev = U(rng) * h; where = "inside"; break;
+        case 3: eu = -w * (1 + U(rng) * 20); where = "outside"; break;
+        default: break;
+    }
+    double dist;
+    switch (pick(6)) {
+        case 0: dist = size * (20 + U(rng) * 1000); where += ", far"; break;
+        case 1: dist = amp * (1.05 + U(rng)); where += ", near"; break;
+        case 2: dist = amp * U(rng); where += ", below the highest texels"; break;
+        case 3: {
+            const double off = size * (2 + U(rng) * 20);
+            eu = w * 0.5 + off / glm::length(g.a);
+            dist = off * std::tan(0.002 + U(rng) * 0.08);
+            where = "grazing";
+            break;
+        }
+        case 4: dist = -size * (0.1 + U(rng)); where += ", behind"; break;
+        default: dist = size * (0.2 + U(rng) * 3); break;
+    }
+    c.eye = g.origin + g.a * eu + g.b * ev + g.f() * dist;
+    c.options.keep_outliers = pick(3) == 0;
+    if (pick(4) == 0) c.options.max_margin = pick(20);
+    std::ostringstream s;
+    s << w << "x" << h << " kind " << kind << " empties " << empties << " eye " << where << " ("
+      << c.eye.x << ", " << c.eye.y << ", " << c.eye.z << ") outliers " << c.options.keep_outliers << " max_margin "
+      << c.options.max_margin;
+    c.describe = s.str();
+    return c;
+}
+
+// First differing pixel, or "" when the images are equal.
+std::string first_difference(const ImageRGBA8& ref, const ImageRGBA8& got) {
+    if (ref.width != got.width || ref.height != got.height)
+        return "size " + std::to_string(got.width) + "x" + std::to_string(got.height) + ", expected " +
+               std::to_string(ref.width) + "x" + std::to_string(ref.height);
+    for (int r = 0; r < ref.height; ++r)
+        for (int x = 0; x < ref.width; ++x)
+            if (!(ref.at(x, r) == got.at(x, r)))
+                return "pixel (" + std::to_string(x) + ", " + std::to_string(r) + "): " + to_string(got.at(x, r)) +
+                       ", expected " + to_string(ref.at(x, r));
+    return "";
+}
+
+class FastKernels : public ::testing::TestWithParam<Reconstruction> {
+protected:
+    void SetUp() override {
+        if (!fast_prewarp_available()) GTEST_SKIP() << "no AVX-512 on this CPU: the fast kernels are not used";
+    }
+};
+
+TEST_P(FastKernels, MatchTheReferencePixelByPixel) {
+    const uint64_t seed = test::test_seed(80001);
+    std::mt19937_64 rng(seed);
+    const int cases = 2000;
+    PrewarpWorkspace ws_ref, ws_fast;
+    ImageRGBA8 ref, fast;
+    int covered = 0;
+    for (int i = 0; i < cases; ++i) {
+        Case c = random_case(rng);
+        c.options.method = GetParam();
+        SCOPED_TRACE("seed " + std::to_string(seed) + " case " + std::to_string(i) + ": " + c.describe);
+        const PrewarpCoefficients k = compute_coefficients(c.relief.geometry, c.eye);
+        PrewarpOptions o = c.options;
+        o.fast = false;
+        o.threads = 1;
+        const PrewarpStats sr = prewarp(c.relief, k, o, ws_ref, ref);
+        for (int threads : {1, 2}) {
+            o.fast = true;
+            o.threads = threads;
+            const PrewarpStats sf = prewarp(c.relief, k, o, ws_fast, fast);
+            const std::string diff = first_difference(ref, fast);
+            ASSERT_EQ(diff, "") << "threads " << threads << " " << k.to_string();
+            ASSERT_EQ(sf.texels, sr.texels);
+            ASSERT_EQ(sf.dropped, sr.dropped);
+            ASSERT_EQ(sf.extent, sr.extent);
+        }
+        covered += fast_prewarp_covers(c.relief, k, o, sr.extent, nullptr);
+    }
+    // Everything but the eye in the relief's plane goes through the fast kernels.
+    EXPECT_GT(covered, cases * 9 / 10);
+}
+
+TEST_P(FastKernels, LargeReliefsAndManyThreadsMatch) {
+    // Long lines (several 32-sample windows, gathers under minification), and all threads.
+    const uint64_t seed = test::test_seed(80002);
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    PrewarpWorkspace ws_ref, ws_fast;
+    ImageRGBA8 ref, fast;
+    for (int i = 0; i < 8; ++i) {
+        const int w = 300 + int(rng() % 300), h = 250 + int(rng() % 300);
+        ReliefGeometry g;
+        g.a = {1.0 / w, 0, 0};
+        g.b = {0, 1.0 / w, 0};
+        g.origin = {-0.5, -0.5, 0};
+        const uint32_t salt = uint32_t(rng());
+        const bool noisy = i % 3 == 2;
+        const ReliefTexture t = test::make_test_relief(
+            w, h, 0.0, 0.2,
+            [&](int x, int r) {
+                return noisy ? 0.2 * hash01(x / 3, r / 3, salt) : 0.1 + 0.1 * std::sin(x * 0.03) * std::sin(r * 0.05);
+            },
+            g);
+        const double az = (U(rng) - 0.5) * 2.6, el = 0.1 + U(rng) * 1.4, d = 0.8 + U(rng) * 3;
+        const glm::dvec3 eye{d * std::cos(el) * std::sin(az), d * std::sin(el) * 0.5, d * std::cos(el) * std::cos(az)};
+        const PrewarpCoefficients k = compute_coefficients(g, eye);
+        PrewarpOptions o;
+        o.method = GetParam();
+        o.keep_outliers = i % 2 == 0;
+        o.fast = false;
+        o.threads = 1;
+        SCOPED_TRACE("seed " + std::to_string(seed) + " case " + std::to_string(i) + " " + std::to_string(w) + "x" +
+                     std::to_string(h) + " " + k.to_string());
+        prewarp(t, k, o, ws_ref, ref);
+        for (int threads : {1, 2, 0}) {
+            o.fast = true;
+            o.threads = threads;
+            prewarp(t, k, o, ws_fast, fast);
+            ASSERT_EQ(first_difference(ref, fast), "") << "threads " << threads;
+        }
+    }
+}
+
+TEST_P(FastKernels, ExtremeConfigurationsMatch) {
+    // World scales from 1e-4 to 1e4, eyes a hair above the plane, far outside, grazing, below the highest texels,
+    // huge and tiny coefficients: positions far outside the output, non-finite ones, spans of zero length.
+    const uint64_t seed = test::test_seed(80003);
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    PrewarpWorkspace ws_ref, ws_fast;
+    ImageRGBA8 ref, fast;
+    for (int i = 0; i < 3000; ++i) {
+        const int w = 1 + int(rng() % 40), h = 1 + int(rng() % 40);
+        const double scale = std::pow(10.0, U(rng) * 8 - 4);
+        ReliefGeometry g = test::random_geometry(rng);
+        g.origin *= scale * 100;
+        g.a *= scale * 100;
+        g.b *= scale * 100;
+        const double size = std::max(glm::length(g.a) * w, glm::length(g.b) * h);
+        const double lo = -size * U(rng) * 0.5, hi = size * U(rng) * 2;
+        double eu = U(rng) * 3 * w - w, ev = U(rng) * 3 * h - h, dist = size * (0.05 + U(rng) * 5);
+        switch (rng() % 5) {
+            case 0: eu *= 1e6; break;
+            case 1: dist = size * std::pow(10.0, -12 + U(rng) * 10); break;
+            case 2: dist = size * std::pow(10.0, 3 + U(rng) * 9); break;
+            case 3: dist = hi * U(rng); break;
+            default: eu = std::floor(eu) + 0.5; break;
+        }
+        const glm::dvec3 eye = g.origin + g.a * eu + g.b * ev + g.f() * dist;
+        const ReliefTexture t = test::make_test_relief(
+            w, h, lo, hi, [&](int x, int r) { return lo + (hi - lo) * (((x * 31 + r * 17) % 13) / 12.0); }, g);
+        const PrewarpCoefficients k = compute_coefficients(g, eye);
+        PrewarpOptions o;
+        o.method = GetParam();
+        o.keep_outliers = i % 3 == 0;
+        o.fast = false;
+        o.threads = 1;
+        SCOPED_TRACE("seed " + std::to_string(seed) + " case " + std::to_string(i) + " " + std::to_string(w) + "x" +
+                     std::to_string(h) + " " + k.to_string());
+        const PrewarpStats sr = prewarp(t, k, o, ws_ref, ref);
+        o.fast = true;
+        const PrewarpStats sf = prewarp(t, k, o, ws_fast, fast);
+        ASSERT_EQ(first_difference(ref, fast), "");
+        ASSERT_EQ(sf.dropped, sr.dropped);
+    }
+}
+
+TEST_P(FastKernels, SteadyStateAllocatesNothing) {
+    ReliefGeometry g;
+    g.a = {0.01, 0, 0};
+    g.b = {0, 0.01, 0};
+    const ReliefTexture t =
+        test::make_test_relief(300, 200, 0.0, 0.2, [](int x, int r) { return 0.1 + 0.1 * std::sin(x * 0.1 + r * 0.07); }, g);
+    PrewarpOptions o;
+    o.method = GetParam();
+    o.threads = 1;
+    o.keep_outliers = true;
+    PrewarpWorkspace ws;
+    ImageRGBA8 out;
+    const PrewarpCoefficients k = compute_coefficients(g, {1.2, 0.8, 1.5});
+    prewarp(t, k, o, ws, out);  // warm-up: buffers grow to size
+    const long long before = g_allocations.load();
+    for (int i = 0; i < 3; ++i) prewarp(t, compute_coefficients(g, {1.2 + 0.01 * i, 0.8, 1.5}), o, ws, out);
+    EXPECT_EQ(g_allocations.load() - before, 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, FastKernels, ::testing::Values(Reconstruction::two_pass, Reconstruction::pipelined),
+                         [](const auto& info) { return info.param == Reconstruction::two_pass ? "TwoPass" : "Pipelined"; });
+
+}  // namespace
+}  // namespace rtm

@@ -1,0 +1,44 @@
+// The fast pipelined pre-warp kernel (AVX-512): the same output as prewarp()'s pipelined lookup-table path
+// (warp/prewarp.cpp, paper section 3.2.2) bit for bit, for reliefs without discontinuity marks and without depth
+// output. Scheduling lives in warp/fast_prewarp.cpp.
+//
+// A part (the rows below the epipole, bottom up, or the rows above it, top down) is processed row by row: each row
+// is prepared and warped by the line kernel of warp/fast_line.h into a row buffer, and every group of pixels the
+// line kernel reports is rasterized at once into its columns, 16 columns at a time, each connected to the last
+// sample its column received from the previous row (vertical spans shaded in SIMD and scattered into the output).
+// A part can be split into column ranges that run on different threads: each range warps every row (the
+// horizontal work is repeated) and rasterizes only its own columns.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+
+#include "warp/fast_tables.h"
+#include "warp/image.h"
+#include "warp/prewarp.h"
+#include "warp/relief_texture.h"
+
+namespace rtm::fast {
+
+struct PipelinedJob {
+    const ReliefTexture* relief = nullptr;
+    const FastTables* tables = nullptr;
+    PrewarpExtent extent;
+    int split_u = 0, split_v = 0;  // split_index of the epipole along rows and columns (source)
+    int ysplit = 0;                // split of the output rows between the parts (v order)
+    ImageRGBA8* out = nullptr;
+    // The last sample each column received in each part (part 0: bottom, 1: top), for the seam between the parts:
+    // final row coordinate and colour, alpha 0 where the column received nothing. Out width entries each.
+    float* seam_v[2] = {nullptr, nullptr};
+    uint32_t* seam_c[2] = {nullptr, nullptr};
+    std::atomic<long long>* dropped = nullptr;
+};
+
+// Part 0 (rows from the bottom up to the split, output v-rows [0, ysplit)) or 1 (rows from the top down to the
+// split, output v-rows [ysplit, out height)), output columns [x0, x1): clears that region, then fills it.
+void pipelined_part(const PipelinedJob& job, int part, int x0, int x1);
+
+// The span between the last rows of the two parts, in every column where both have a sample.
+void pipelined_seam(const PipelinedJob& job);
+
+}  // namespace rtm::fast

@@ -1,0 +1,214 @@
+#include "warp/fast_prewarp.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/info.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <memory>
+#include <mutex>
+
+#include "warp/fast_pipelined.h"
+#include "warp/fast_two_pass.h"
+#include "warp/line_warp.h"
+#include "warp/tables.h"
+
+namespace rtm {
+
+namespace {
+
+// Largest output side the kernels accept: pixel indices and span ends stay exact in float far below 2^24.
+constexpr int kMaxSide = 1 << 22;
+
+// One task arena per explicit thread count, created on first use (creating an arena per call costs tens of
+// microseconds, a sizeable part of a 256^2 pre-warp).
+tbb::task_arena& arena_for(int threads) {
+    static std::mutex mu;
+    static std::map<int, std::unique_ptr<tbb::task_arena>> arenas;
+    std::lock_guard<std::mutex> lock(mu);
+    auto& a = arenas[threads];
+    if (!a) a = std::make_unique<tbb::task_arena>(threads);
+    return *a;
+}
+
+// Runs body(begin, end) over [0, n) in chunks of at least `grain`: inline for one thread (no TBB overhead at all),
+// in the caller's arena for threads == 0, in a cached arena otherwise.
+template <class Body>
+void run_ranges(int threads, int n, int grain, const Body& body) {
+    if (threads == 1 || n <= grain) {
+        body(0, n);
+        return;
+    }
+    auto loop = [&] {
+        tbb::parallel_for(tbb::blocked_range<int>(0, n, grain),
+                          [&](const tbb::blocked_range<int>& r) { body(r.begin(), r.end()); });
+    };
+    if (threads > 0)
+        arena_for(threads).execute(loop);
+    else
+        loop();
+}
+
+template <class T>
+T* aligned64(T* p) {
+    static_assert(sizeof(T) == 4);
+    return p + ((64 - reinterpret_cast<uintptr_t>(p) % 64) % 64) / 4;
+}
+
+template <class T>
+void ensure_size(Image2D<T>& img, int w, int h) {
+    if (img.width != w || img.height != h) img.resize(w, h);
+}
+
+}  // namespace
+
+namespace fast {
+
+bool cpu_supported() {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+           __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vl") &&
+           __builtin_cpu_supports("avx512vbmi") && __builtin_cpu_supports("bmi2");
+}
+
+FastTables make_fast_tables(const PrewarpTables& tab) {
+    FastTables t;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    for (int q = 0; q < 256; ++q) {
+        const bool ok = tab.valid[q] != 0;
+        const float v[3] = {ok ? tab.k1d[q] : nan, tab.k2d[q], tab.rcp[q]};
+        for (int i = 0; i < 3; ++i) {
+            uint32_t bits;
+            std::memcpy(&bits, &v[i], 4);
+            for (int b = 0; b < 4; ++b) t.plane[i][b][q] = uint8_t(bits >> (8 * b));
+        }
+        t.dropped[q] = q != kEmptyIndex && !ok;
+        t.any_dropped = t.any_dropped || t.dropped[q];
+    }
+    return t;
+}
+
+}  // namespace fast
+
+bool fast_prewarp_available() {
+    static const bool ok = fast::cpu_supported();
+    return ok;
+}
+
+bool fast_prewarp_covers(const ReliefTexture& relief, const PrewarpCoefficients& k, const PrewarpOptions& options,
+                         const PrewarpExtent& e, const Image2D<uint8_t>* displ_out) {
+    if (!options.fast || options.exact || displ_out) return false;
+    if (!relief.breaks.empty() || relief.discontinuity_threshold > 0.0) return false;
+    if (k.side == ViewSide::on_plane || relief.width <= 0 || relief.height <= 0) return false;
+    const long long ow = (long long)relief.width + e.left + e.right, oh = (long long)relief.height + e.bottom + e.top;
+    if (ow > kMaxSide || oh > kMaxSide) return false;
+    // The pipelined kernel scatters into the output with 32-bit pixel offsets.
+    if (options.method == Reconstruction::pipelined && ow * oh >= (1LL << 31)) return false;
+    return fast_prewarp_available();
+}
+
+namespace {
+
+PrewarpStats fast_two_pass(const ReliefTexture& relief, const PrewarpCoefficients& k, const PrewarpOptions& options,
+                           const PrewarpExtent& e, const fast::FastTables& tables, PrewarpWorkspace& ws,
+                           ImageRGBA8& out) {
+    const int w = relief.width, h = relief.height;
+    const int ow = w + e.left + e.right, oh = h + e.bottom + e.top;
+    std::atomic<long long> dropped{0};
+    ensure_size(out, ow, oh);
+    // The intermediate images hold column tiles of 16 (fast_two_pass.h), hence the rounded width, and start on a
+    // 64-byte boundary (one cache line per tile row), hence the spare row.
+    const int tiled = (ow + 15) / 16 * 16;
+    ensure_size(ws.mid_color, tiled, h + 1);
+    ensure_size(ws.mid_v, tiled, h + 1);
+    fast::TwoPassJob job;
+    job.relief = &relief;
+    job.tables = &tables;
+    job.extent = e;
+    job.split_u = split_index(k.epipole_u, w);
+    job.split_v = split_index(k.epipole_v, h);
+    job.mid = aligned64(reinterpret_cast<uint32_t*>(ws.mid_color.pixels.data()));
+    job.mid_v = aligned64(ws.mid_v.pixels.data());
+    job.mid_width = ow;
+    job.out = &out;
+    job.dropped = &dropped;
+    // Grain: 8 rows, and 2 blocks of 16 columns, keep every task above ~20 us at 256^2 while leaving enough
+    // tasks to balance two threads.
+    run_ranges(options.threads, h, 8, [&](int r0, int r1) { fast::horizontal_rows(job, r0, r1); });
+    const int blocks = (ow + 15) / 16;
+    run_ranges(options.threads, blocks, 2, [&](int b0, int b1) {
+        fast::vertical_columns(job, b0 * 16, b1 * 16 < ow ? b1 * 16 : ow);
+    });
+    return {(long long)w * h, dropped.load(), e};
+}
+
+PrewarpStats fast_pipelined(const ReliefTexture& relief, const PrewarpCoefficients& k, const PrewarpOptions& options,
+                            const PrewarpExtent& e, const fast::FastTables& tables, PrewarpWorkspace& ws,
+                            ImageRGBA8& out) {
+    const int w = relief.width, h = relief.height;
+    const int ow = w + e.left + e.right, oh = h + e.bottom + e.top;
+    std::atomic<long long> dropped{0};
+    ensure_size(out, ow, oh);
+    // The seam rows (the last sample of each part per column) live in the intermediate images, unused otherwise.
+    ensure_size(ws.mid_color, ow, 2);
+    ensure_size(ws.mid_v, ow, 2);
+    fast::PipelinedJob job;
+    job.relief = &relief;
+    job.tables = &tables;
+    job.extent = e;
+    job.split_u = split_index(k.epipole_u, w);
+    job.split_v = split_index(k.epipole_v, h);
+    job.ysplit = split_index(k.epipole_v + e.bottom, oh);
+    job.out = &out;
+    for (int p = 0; p < 2; ++p) {
+        job.seam_v[p] = ws.mid_v.row(p);
+        job.seam_c[p] = reinterpret_cast<uint32_t*>(ws.mid_color.row(p));
+    }
+    job.dropped = &dropped;
+    // Tasks: each part (bottom, top) that has rows, split into column ranges so that all threads have work even
+    // when the epipole is outside the relief and one part holds every row. A range repeats the horizontal warp
+    // of every row of its part but rasterizes only its columns.
+    const bool parts[2] = {job.split_v > 0, job.split_v < h};
+    const int np = int(parts[0]) + int(parts[1]);
+    const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
+    const int cols = std::max(1, std::min(threads / std::max(np, 1), ow / 64));
+    struct Task {
+        int part, x0, x1;
+    };
+    Task tasks[2 * 64];
+    int nt = 0;
+    for (int p = 0; p < 2; ++p) {
+        if (!parts[p]) {
+            // No rows: nothing received.
+            std::fill(job.seam_c[p], job.seam_c[p] + ow, 0u);
+            continue;
+        }
+        const int n = std::min(cols, 64);
+        for (int i = 0; i < n; ++i) {
+            const int x0 = int((long long)ow * i / n) / 16 * 16, x1 = i + 1 == n ? ow : int((long long)ow * (i + 1) / n) / 16 * 16;
+            if (x0 < x1) tasks[nt++] = {p, x0, x1};
+        }
+    }
+    run_ranges(options.threads, nt, 1, [&](int t0, int t1) {
+        for (int t = t0; t < t1; ++t) fast::pipelined_part(job, tasks[t].part, tasks[t].x0, tasks[t].x1);
+    });
+    fast::pipelined_seam(job);
+    return {(long long)w * h, dropped.load(), e};
+}
+
+}  // namespace
+
+PrewarpStats fast_prewarp(const ReliefTexture& relief, const PrewarpCoefficients& k, const PrewarpOptions& options,
+                          const PrewarpExtent& e, PrewarpWorkspace& ws, ImageRGBA8& out) {
+    const fast::FastTables tables = fast::make_fast_tables(PrewarpTables::build(k, relief.quant));
+    if (options.method == Reconstruction::pipelined) return fast_pipelined(relief, k, options, e, tables, ws, out);
+    return fast_two_pass(relief, k, options, e, tables, ws, out);
+}
+
+}  // namespace rtm

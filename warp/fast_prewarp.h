@@ -1,0 +1,34 @@
+// The fast pre-warp: prewarp() (warp/prewarp.h) hands the cases below to kernels written for speed, whose
+// output is bit-identical to the generic implementation's (tests/warp/fast_kernels_test.cpp compares them pixel by
+// pixel over random reliefs, views, sizes and thread counts).
+//
+// Covered: two-pass and pipelined reconstruction on the lookup-table path (not --exact), without depth output
+// (displ_out), without surface-discontinuity marks or threshold, margins (keep_outliers) or not, on a CPU with
+// AVX-512 (F, BW, DQ, VL). Everything else stays with the generic implementation, which remains the reference.
+//
+// Scheduling lives here, kernels in warp/fast_two_pass.cpp and warp/fast_pipelined.cpp: a kernel takes a range of
+// rows or columns and every output pixel is computed by exactly one call, so the output does not depend on the
+// number of threads. Steady state allocates nothing: intermediate images live in the PrewarpWorkspace, per-thread
+// line buffers in thread-local storage that only grows, and the task arenas for explicit thread counts are created
+// once per count.
+#pragma once
+
+#include "warp/image.h"
+#include "warp/prewarp.h"
+#include "warp/prewarp_coefficients.h"
+#include "warp/relief_texture.h"
+
+namespace rtm {
+
+// True when fast_prewarp computes this pre-warp (see the top of this file). `extent` is the output's margins.
+bool fast_prewarp_covers(const ReliefTexture& relief, const PrewarpCoefficients& k, const PrewarpOptions& options,
+                         const PrewarpExtent& extent, const Image2D<uint8_t>* displ_out);
+
+// The pre-warp of prewarp() for a covered case; `out` is resized to the relief plus the margins.
+PrewarpStats fast_prewarp(const ReliefTexture& relief, const PrewarpCoefficients& k, const PrewarpOptions& options,
+                          const PrewarpExtent& extent, PrewarpWorkspace& workspace, ImageRGBA8& out);
+
+// True when this CPU can run the fast kernels.
+bool fast_prewarp_available();
+
+}  // namespace rtm

@@ -1,0 +1,94 @@
+// Preparing one row of a relief for the fast line kernel (AVX-512): for fast_two_pass.cpp and fast_pipelined.cpp
+// only, included after their `#pragma GCC target` like warp/fast_line.h.
+#pragma once
+
+#include "warp/fast_line.h"
+#include "warp/fast_tables.h"
+#include "warp/prewarp.h"
+#include "warp/relief_texture.h"
+
+namespace rtm {
+namespace {
+
+// ---- Table lookups for 64 texels with byte permutes ----
+//
+// The 64 levels are arranged in a permuted order qp so that, after the byte planes are looked up and interleaved
+// with unpacks (which work within 128-bit lanes), vector m holds texels 16m .. 16m + 15 in order:
+// qp[16L + 4m + i] = q[16m + 4L + i]. (Gathers of the three tables took 40% of the horizontal pass: 4.4 cycles a
+// texel; these permutes take about 1.)
+struct LookupConstants {
+    alignas(64) uint8_t from01[64] = {};  // byte index into texels 0..31 (two registers) of each qp lane
+    alignas(64) uint8_t from23[64] = {};  // the same into texels 32..63
+    uint64_t use23 = 0;              // lanes of qp taken from texels 32..63
+    constexpr LookupConstants() {
+        for (int j = 0; j < 64; ++j) {
+            const int L = j / 16, m = (j / 4) % 4, i = j % 4;
+            const int t = 16 * m + 4 * L + i;  // texel of lane j
+            from01[j] = uint8_t(4 * (t % 32) + 3);  // byte 3 of the texel: its level
+            from23[j] = uint8_t(4 * (t % 32) + 3);
+            if (t >= 32) use23 |= uint64_t(1) << j;
+        }
+    }
+};
+// Computed at compile time: no code of this AVX-512 file runs before the CPU has been checked.
+constexpr LookupConstants kLookup;
+
+inline __m512i lookup256(const uint8_t* table, __m512i q, __mmask64 high) {
+    const __m512i lo = _mm512_permutex2var_epi8(_mm512_load_si512(table), q, _mm512_load_si512(table + 64));
+    const __m512i hi = _mm512_permutex2var_epi8(_mm512_load_si512(table + 128), q, _mm512_load_si512(table + 192));
+    return _mm512_mask_blend_epi8(high, lo, hi);
+}
+
+inline void lookup_floats(const uint8_t (*planes)[256], __m512i qp, __mmask64 high, __m512 out[4]) {
+    const __m512i b0 = lookup256(planes[0], qp, high), b1 = lookup256(planes[1], qp, high);
+    const __m512i b2 = lookup256(planes[2], qp, high), b3 = lookup256(planes[3], qp, high);
+    const __m512i l01 = _mm512_unpacklo_epi8(b0, b1), h01 = _mm512_unpackhi_epi8(b0, b1);
+    const __m512i l23 = _mm512_unpacklo_epi8(b2, b3), h23 = _mm512_unpackhi_epi8(b2, b3);
+    out[0] = _mm512_castsi512_ps(_mm512_unpacklo_epi16(l01, l23));
+    out[1] = _mm512_castsi512_ps(_mm512_unpackhi_epi16(l01, l23));
+    out[2] = _mm512_castsi512_ps(_mm512_unpacklo_epi16(h01, h23));
+    out[3] = _mm512_castsi512_ps(_mm512_unpackhi_epi16(h01, h23));
+}
+
+
+// Fills `s` with storage row r of the relief: u_i = (u_s + K1[q]) * R[q] + left margin as position and the final
+// row coordinate v_i = (v_s + K2[q]) * R[q] + bottom margin as attribute, in float exactly as the reference's
+// row_samples computes them. Returns the number of non-empty texels that cannot be pre-warped.
+inline long long prepare_row(const ReliefTexture& t, const fast::FastTables& tab, const PrewarpExtent& e, int n_out,
+                             int r, LineSoA& s) {
+    const int w = t.width, h = t.height;
+    const uint32_t* src = reinterpret_cast<const uint32_t*>(t.texels.data() + size_t(r) * size_t(w));
+    const __m512 ou = _mm512_set1_ps(float(e.left)), ov = _mm512_set1_ps(float(e.bottom));
+    const __m512 half = _mm512_set1_ps(0.5f);
+    const __m512i from01 = _mm512_load_si512(kLookup.from01), from23 = _mm512_load_si512(kLookup.from23);
+    const __m512 vs = _mm512_set1_ps(float(h - 1 - r) + 0.5f);  // P(h - 1 - r) + P(0.5)
+    long long dropped = 0;
+    if (tab.any_dropped)
+        for (int x = 0; x < w; ++x) dropped += tab.dropped[src[x] >> 24];
+    LineWriter lw(s, w, n_out);
+    for (int x = 0; x < w; x += 64) {
+        __m512i d[4];
+        for (int m = 0; m < 4; ++m) d[m] = _mm512_maskz_loadu_epi32(first_lanes(w - x - 16 * m), src + x + 16 * m);
+        const __m512i qp = _mm512_mask_blend_epi8(kLookup.use23, _mm512_permutex2var_epi8(d[0], from01, d[1]),
+                                                  _mm512_permutex2var_epi8(d[2], from23, d[3]));
+        const __mmask64 high = _mm512_movepi8_mask(qp);
+        __m512 k1[4], k2[4], rc[4];
+        lookup_floats(tab.plane[0], qp, high, k1);
+        lookup_floats(tab.plane[1], qp, high, k2);
+        lookup_floats(tab.plane[2], qp, high, rc);
+        for (int m = 0; m < 4 && x + 16 * m < w; ++m) {
+            const int xm = x + 16 * m;
+            const __m512 us = _mm512_add_ps(_mm512_cvtepi32_ps(_mm512_add_epi32(_mm512_set1_epi32(xm), iota16())), half);
+            // (us + K1[q]) * R[q] + ou and (vs + K2[q]) * R[q] + ov, operation by operation as row_samples; K1 is
+            // NaN where the level cannot be pre-warped, which makes the position non-finite: not valid.
+            const __m512 pos = _mm512_add_ps(_mm512_mul_ps(_mm512_add_ps(us, k1[m]), rc[m]), ou);
+            const __m512 v = _mm512_add_ps(_mm512_mul_ps(_mm512_add_ps(vs, k2[m]), rc[m]), ov);
+            lw.put<true>(pos, d[m], v, 0xFFFF);
+        }
+    }
+    lw.finish();
+    return dropped;
+}
+
+}  // namespace
+}  // namespace rtm

@@ -1,0 +1,25 @@
+// Per-view tables of the fast pre-warp kernels (warp/fast_prewarp.h), built from the reference's PrewarpTables.
+#pragma once
+
+#include <cstdint>
+
+#include "warp/tables.h"
+
+namespace rtm::fast {
+
+// The three float tables (K1, K2, R of warp/tables.h) held as byte planes, plane[t][b][q] = byte b of table t at
+// level q, so that 64 texels look them up with 128-byte two-register byte permutes (AVX-512 VBMI) instead of
+// gathers. K1 is NaN at every level that cannot be pre-warped (and at 255): validity becomes "the position is
+// finite", which the reference also requires.
+struct alignas(64) FastTables {
+    uint8_t plane[3][4][256];
+    uint8_t dropped[256];  // 1 for a non-empty level that cannot be pre-warped
+    bool any_dropped = false;
+};
+
+FastTables make_fast_tables(const PrewarpTables& tab);
+
+// True when this CPU runs the fast kernels (AVX-512 F, BW, DQ, VL, VBMI, and BMI2).
+bool cpu_supported();
+
+}  // namespace rtm::fast
