@@ -84,7 +84,8 @@ private:
     int saved_ = -1;
 };
 
-void check_readable_file(const std::string& path) {
+// Returns the file's size.
+std::uintmax_t check_readable_file(const std::string& path) {
     std::error_code ec;
     fs::file_status st = fs::status(path, ec);
     if (ec || !fs::exists(st)) {
@@ -96,6 +97,7 @@ void check_readable_file(const std::string& path) {
     auto size = fs::file_size(path, ec);
     if (ec) fail(path, "cannot open: " + ec.message());
     if (size == 0) fail(path, "file is empty");
+    return size;
 }
 
 // Some decoders allocate, and clear, whatever a length field in the file claims before reading that many bytes:
@@ -192,7 +194,7 @@ struct OpenedImage {
 };
 
 OpenedImage open_checked(const std::string& path) {
-    check_readable_file(path);
+    const std::uintmax_t file_size = check_readable_file(path);
     ContainerCheck(path).run();
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
@@ -211,9 +213,14 @@ OpenedImage open_checked(const std::string& path) {
         fail(path, "image header claims " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
                        " pixels, expected a width and height of at least 1");
     if (spec.depth > 1) fail(path, "is a volume image (depth " + std::to_string(spec.depth) + "), not a 2-D image");
-    if ((long long)spec.width * (long long)spec.height > kMaxImagePixels)
+    const long long pixels = (long long)spec.width * (long long)spec.height;
+    if (pixels > kMaxImagePixels)
         fail(path, "image claims " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
                        " pixels, more than the limit of 16384x16384");
+    if (std::uintmax_t(pixels / kMaxPixelsPerFileByte) > file_size)
+        fail(path, "image claims " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                       " pixels, more than " + std::to_string(kMaxPixelsPerFileByte) + " per byte of a " +
+                       std::to_string(file_size) + "-byte file (truncated or corrupt)");
     if (spec.nchannels < 1) fail(path, "image has no channels");
     return {std::move(in), spec};
 }

@@ -15,6 +15,9 @@ struct IoError : std::runtime_error {
 // Largest image a reader accepts (width*height), so a header claiming absurd sizes cannot make us allocate
 // tens of gigabytes: 16384 x 16384 texels.
 inline constexpr long long kMaxImagePixels = 16384LL * 16384LL;
+// Most pixels a header may claim per byte of its file: a 21-byte TGA claiming 13856 x 15834 pixels made the reader
+// allocate 2 GB before finding no data. The densest real encoding (a constant 1-bit PNG) stays near 8200 per byte.
+inline constexpr long long kMaxPixelsPerFileByte = 16384;
 
 // Reads RGB or RGBA (any format OpenImageIO reads); RGB gets alpha 255, grey is replicated.
 ImageRGBA8 read_rgba8(const std::string& path);

@@ -264,7 +264,8 @@ void pipelined_part(const PipelinedJob& job, int part, int x0, int x1) {
     const int first = part == 0 ? 0 : h - 1, end = part == 0 ? split : split - 1, step = part == 0 ? 1 : -1;
     const int y0 = part == 0 ? 0 : job.ysplit, y1 = part == 0 ? job.ysplit : oh;
     uint32_t* out = reinterpret_cast<uint32_t*>(job.out->pixels.data());
-    for (int y = y0; y < y1; ++y) std::memset(out + size_t(oh - 1 - y) * size_t(ow) + size_t(x0), 0, size_t(x1 - x0) * 4);
+    for (int y = y0; y < y1; ++y)
+        std::memset(out + size_t(oh - 1 - y) * size_t(ow) + size_t(x0), 0, size_t(x1 - x0) * 4);
     PipeScratch& sc = pipe_scratch();
     sc.reserve(ow);
     sc.line.reserve(t.width);

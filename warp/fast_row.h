@@ -78,7 +78,8 @@ inline long long prepare_row(const ReliefTexture& t, const fast::FastTables& tab
         lookup_floats(tab.plane[2], qp, high, rc);
         for (int m = 0; m < 4 && x + 16 * m < w; ++m) {
             const int xm = x + 16 * m;
-            const __m512 us = _mm512_add_ps(_mm512_cvtepi32_ps(_mm512_add_epi32(_mm512_set1_epi32(xm), iota16())), half);
+            const __m512i xi = _mm512_add_epi32(_mm512_set1_epi32(xm), iota16());
+            const __m512 us = _mm512_add_ps(_mm512_cvtepi32_ps(xi), half);  // P(x) + P(0.5)
             // (us + K1[q]) * R[q] + ou and (vs + K2[q]) * R[q] + ov, operation by operation as row_samples; K1 is
             // NaN where the level cannot be pre-warped, which makes the position non-finite: not valid.
             const __m512 pos = _mm512_add_ps(_mm512_mul_ps(_mm512_add_ps(us, k1[m]), rc[m]), ou);

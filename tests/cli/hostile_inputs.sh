@@ -222,6 +222,7 @@ write("text_2gb.png", b"\x89PNG\r\n\x1a\n" + ihdr + struct.pack(">I", 2016634473
 write("attr_2gb.exr", b"\x76\x2f\x31\x01\x02\0\0\0" + b"comments\0string\0" + struct.pack("<i", 1929379935) + b"x" * 40)
 write("huge.ppm", b"P6\n100000 100000\n255\n")
 write("wide.ppm", b"P6\n4294967297 1\n255\n")                 # wider than an int
+write("dense.ppm", b"P6\n10000 10000\n255\n")                  # within the limit, but not from 19 bytes
 write("zero.ppm", b"P6\n0 0\n255\n")
 write("truncated.ppm", b"P6\n64 64\n255\n" + b"\x10" * 100)
 write("huge.pfm", b"Pf\n100000 100000\n-1.0\n")
@@ -242,7 +243,7 @@ new_out
 expect_ok prewarp --relief "$(with_disp disp_pfm ok.pfm)" --eye 0.5,0.5,3 --out "$O/p.png"
 
 for img in empty.png text.png text.pgm truncated.png header_only.png corrupt.png bad_zlib.png huge.png huge.ppm \
-  wide.ppm zero.ppm truncated.ppm huge.pfm text_2gb.png attr_2gb.exr; do
+  wide.ppm dense.ppm zero.ppm truncated.ppm huge.pfm text_2gb.png attr_2gb.exr; do
   case $img in
     empty.png) msg="file is empty" ;;
     text.png) msg="cannot read as an image: Not a PNG file" ;;
@@ -251,6 +252,7 @@ for img in empty.png text.png text.pgm truncated.png header_only.png corrupt.png
     header_only.png) msg="cannot read as an image" ;;
     huge.png | huge.ppm | huge.pfm) msg="image claims 100000x100000 pixels, more than the limit of 16384x16384" ;;
     wide.ppm) msg="image claims " ;; # the width overflows an int: OpenImageIO clamps it
+    dense.ppm) msg="image claims 10000x10000 pixels, more than 16384 per byte of a 19-byte file" ;;
     zero.ppm) msg="image header claims 0x0 pixels, expected a width and height of at least 1" ;;
     text_2gb.png) msg="cannot read as an image: PNG chunk \"tEXt\" at byte 33 claims 2016634473 bytes, more than" ;;
     attr_2gb.exr) msg="cannot read as an image: OpenEXR attribute \"comments\" at byte 8 claims 1929379935 bytes" ;;

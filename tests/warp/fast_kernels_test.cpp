@@ -263,7 +263,8 @@ TEST_P(FastKernels, SteadyStateAllocatesNothing) {
     g.a = {0.01, 0, 0};
     g.b = {0, 0.01, 0};
     const ReliefTexture t =
-        test::make_test_relief(300, 200, 0.0, 0.2, [](int x, int r) { return 0.1 + 0.1 * std::sin(x * 0.1 + r * 0.07); }, g);
+        test::make_test_relief(300, 200, 0.0, 0.2, [](int x, int r) { return 0.1 + 0.1 * std::sin(x * 0.1 + r * 0.07); },
+                               g);
     PrewarpOptions o;
     o.method = GetParam();
     o.threads = 1;
@@ -278,7 +279,9 @@ TEST_P(FastKernels, SteadyStateAllocatesNothing) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, FastKernels, ::testing::Values(Reconstruction::two_pass, Reconstruction::pipelined),
-                         [](const auto& info) { return info.param == Reconstruction::two_pass ? "TwoPass" : "Pipelined"; });
+                         [](const auto& info) {
+                             return info.param == Reconstruction::two_pass ? "TwoPass" : "Pipelined";
+                         });
 
 }  // namespace
 }  // namespace rtm
