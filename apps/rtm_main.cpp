@@ -1,8 +1,22 @@
 // rtm: relief texture mapping. Thin command line over the warp, texmap and objects libraries.
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include "cli_common.h"
+
+namespace {
+
+// One line on stderr per failure (shared/CONVENTIONS.md), even when the message quotes a file name or a flag value
+// holding a newline: control characters are shown as '?'.
+std::string one_line(const char* what) {
+    std::string s = what;
+    for (char& c : s)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    return s;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"rtm: relief texture mapping (Oliveira, Bishop, McAllister 2000)", "rtm"};
@@ -21,13 +35,13 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForAllHelp& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "rtm: %s (try --help)\n", e.what());
+        std::fprintf(stderr, "rtm: %s (try --help)\n", one_line(e.what()).c_str());
         return 2;
     } catch (const rtm::cli::UsageError& e) {
-        std::fprintf(stderr, "rtm: %s\n", e.what());
+        std::fprintf(stderr, "rtm: %s\n", one_line(e.what()).c_str());
         return 2;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "rtm: %s\n", e.what());
+        std::fprintf(stderr, "rtm: %s\n", one_line(e.what()).c_str());
         return 1;
     }
     return 0;

@@ -34,7 +34,14 @@ using nlohmann::json;
 // A manifest is a few hundred bytes; refuse to slurp anything absurd.
 constexpr std::uintmax_t kMaxManifestBytes = 1u << 20;
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) { throw IoError(path + ": " + what); }
+// The message is one line whatever the path holds: control characters (a newline in a file name, which a manifest
+// can ask for: found by fuzz/fuzz_relief_manifest) are shown as '?'.
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+    std::string msg = path + ": " + what;
+    for (char& c : msg)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    throw IoError(msg);
+}
 
 std::string fmt_double(double v) {
     if (std::isnan(v)) return "nan";

@@ -35,7 +35,14 @@ namespace fs = std::filesystem;
 
 static_assert(sizeof(Rgba8) == 4, "Rgba8 must be 4 tightly packed bytes");
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) { throw IoError(path + ": " + what); }
+// The message is one line whatever the path holds: control characters (a newline in a file name, which a manifest
+// can ask for: found by fuzz/fuzz_relief_manifest) are shown as '?'.
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+    std::string msg = path + ": " + what;
+    for (char& c : msg)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    throw IoError(msg);
+}
 
 // OpenImageIO accumulates one error per line; join them into one line.
 std::string one_line(const std::string& s) {

@@ -183,6 +183,9 @@ reject_relief "$(with_color color_missing nope.png)" \
   "$D/color_missing.relief.json: $D/nope.png: cannot open: No such file or directory"
 reject_relief "$(with_disp disp_missing sub/gone.pgm)" \
   "$D/disp_missing.relief.json: $D/sub/gone.pgm: cannot open: No such file or directory"
+# A newline in a file name (legal in JSON and on Linux) must not break the message's one line: shown as '?'.
+reject_relief "$(with_color color_newline 'a\\nb.png')" \
+  "$D/color_newline.relief.json: $D/a?b.png: cannot open: No such file or directory"
 mkdir -p "$D/dir.png"
 reject_relief "$(with_color color_folder dir.png)" "$D/color_folder.relief.json: $D/dir.png: is a directory"
 reject_relief "$(with_disp disp_folder .)" "$D/disp_folder.relief.json: $D/: is a directory"
@@ -275,6 +278,9 @@ check 1 "$D/nope.png: cannot open: No such file or directory" -- diff "$D/noise6
   "$D/nope.png" --heatmap "$O/h.png"
 new_out
 check 1 "$D/dir.png: is a directory" -- diff "$D/dir.png" "$D/noise64.png" --heatmap "$O/h.png"
+new_out
+check 1 "$D/line?break.png: cannot open: No such file or directory" -- \
+  diff "$D/noise64.png" "$D/line"$'\n'"break.png" --heatmap "$O/h.png"
 
 # --- Displacement values and sizes.
 
@@ -324,6 +330,7 @@ camera "rtm: --orbit: distance D must be > 0, found \"30,20,0\"" --orbit 30,20,0
 camera "rtm: --orbit: distance D must be > 0, found \"30,20,-2\"" --orbit 30,20,-2
 camera "rtm: --orbit: expected X,Y,Z (three finite numbers separated by commas), found \"30,20,nan\"" --orbit 30,20,nan
 camera "rtm: --eye: the eye 1e+300,0,0 has a coordinate beyond +-1e30" --eye 1e300,0,0
+camera "rtm: --eye: expected X,Y,Z (three finite numbers separated by commas), found \"1?2,3\"" --eye 1$'\n'2,3
 camera "rtm: --orbit: the eye" --orbit 30,20,1e300
 camera "rtm: --look-at: 0,-1e+40,0 has a coordinate beyond +-1e30" --eye 0.5,0.5,3 --look-at 0,-1e40,0
 
