@@ -22,6 +22,7 @@
 #include <filesystem>
 #include <memory>
 #include <mutex>
+#include <new>
 #include <system_error>
 #include <vector>
 
@@ -105,6 +106,20 @@ std::uintmax_t check_readable_file(const std::string& path) {
     if (ec) fail(path, "cannot open: " + ec.message());
     if (size == 0) fail(path, "file is empty");
     return size;
+}
+
+// For a catch (...) around OpenImageIO: some of its readers throw on corrupt files instead of reporting an error
+// (the SGI reader's std::length_error, "vector::_M_default_append", found by fuzz/fuzz_relief_loader).
+std::string reader_exception() {
+    try {
+        throw;
+    } catch (const std::bad_alloc&) {
+        return "the reader ran out of memory (corrupt file?)";
+    } catch (const std::exception& e) {
+        return "the reader failed (" + one_line(e.what()) + "; corrupt file?)";
+    } catch (...) {
+        return "the reader failed (corrupt file?)";
+    }
 }
 
 // Some decoders allocate, and clear, whatever a length field in the file claims before reading that many bytes:
@@ -206,9 +221,11 @@ OpenedImage open_checked(const std::string& path) {
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
     std::unique_ptr<OIIO::ImageInput> in;
-    {
+    try {
         QuietStderr quiet;
         in = OIIO::ImageInput::open(path, &config);
+    } catch (...) {
+        fail(path, "cannot read as an image: " + reader_exception());
     }
     if (!in) {
         std::string msg = one_line(OIIO::geterror());
@@ -239,7 +256,7 @@ void read_channels(const std::string& path, OpenedImage& im, int nch, int out_nc
     const OIIO::stride_t out_pixel = OIIO::stride_t(out_nch) * OIIO::stride_t(type.size());
     const OIIO::stride_t out_row = out_pixel * OIIO::stride_t(s.width);
     bool ok = true;
-    {
+    try {
         QuietStderr quiet;
         if (s.tile_width == 0 && s.channelformats.empty() && s.format.size() > 0) {
             // A scanline file: read in its own format a band of rows at a time, and converted here into place.
@@ -264,6 +281,8 @@ void read_channels(const std::string& path, OpenedImage& im, int nch, int out_nc
         } else {
             ok = im.in->read_image(0, 0, 0, nch, type, data, out_pixel, out_row);
         }
+    } catch (...) {
+        fail(path, "cannot read pixels: " + reader_exception());
     }
     if (!ok) {
         std::string msg = one_line(im.in->geterror());

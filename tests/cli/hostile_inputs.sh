@@ -223,6 +223,10 @@ ihdr = chunk(b"IHDR", struct.pack(">IIBBBBB", 4, 4, 8, 2, 0, 0, 0))
 write("text_2gb.png", b"\x89PNG\r\n\x1a\n" + ihdr + struct.pack(">I", 2016634473) + b"tEXtComment\0" + b"x" * 40)
 # The same in OpenEXR: a string attribute claiming 1.9 GB, which OpenEXR 3.1 would allocate and clear.
 write("attr_2gb.exr", b"\x76\x2f\x31\x01\x02\0\0\0" + b"comments\0string\0" + struct.pack("<i", 1929379935) + b"x" * 40)
+# OpenImageIO's SGI reader throws std::length_error on this one instead of reporting an error (a fuzzing find).
+write("throws.sgi", bytes.fromhex("01da00da00010002ff2850320005785249006146ca7700000000008ef60000000000000000000000000000"
+                                  "00000000000000004d4d4d4d328e8ef6000000000000000000000000004d4d4d4d328e8ef60000000000"
+                                  "000000000000000000000000004d4d4d4d328e8ef60000"))
 write("huge.ppm", b"P6\n100000 100000\n255\n")
 write("wide.ppm", b"P6\n4294967297 1\n255\n")                 # wider than an int
 write("dense.ppm", b"P6\n10000 10000\n255\n")                  # within the limit, but not from 19 bytes
@@ -246,7 +250,7 @@ new_out
 expect_ok prewarp --relief "$(with_disp disp_pfm ok.pfm)" --eye 0.5,0.5,3 --out "$O/p.png"
 
 for img in empty.png text.png text.pgm truncated.png header_only.png corrupt.png bad_zlib.png huge.png huge.ppm \
-  wide.ppm dense.ppm zero.ppm truncated.ppm huge.pfm text_2gb.png attr_2gb.exr; do
+  wide.ppm dense.ppm zero.ppm truncated.ppm huge.pfm text_2gb.png attr_2gb.exr throws.sgi; do
   case $img in
     empty.png) msg="file is empty" ;;
     text.png) msg="cannot read as an image: Not a PNG file" ;;
@@ -255,6 +259,7 @@ for img in empty.png text.png text.pgm truncated.png header_only.png corrupt.png
     header_only.png) msg="cannot read as an image" ;;
     huge.png | huge.ppm | huge.pfm) msg="image claims 100000x100000 pixels, more than the limit of 16384x16384" ;;
     wide.ppm) msg="image claims " ;; # the width overflows an int: OpenImageIO clamps it
+    throws.sgi) msg="cannot read pixels: the reader failed (" ;;
     dense.ppm) msg="image claims 10000x10000 pixels, more than 16384 per byte of a 19-byte file" ;;
     zero.ppm) msg="image header claims 0x0 pixels, expected a width and height of at least 1" ;;
     text_2gb.png) msg="cannot read as an image: PNG chunk \"tEXt\" at byte 33 claims 2016634473 bytes, more than" ;;
