@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "objects/procedural_media.h"
 #include "texmap/image_io.h"
 
 namespace rtm::cli {
@@ -42,6 +43,32 @@ int parse_level(const std::string& text) {
     if (std::sscanf(text.c_str(), "%d%c", &n, &extra) != 1 || n < 0 || n > 30)
         throw UsageError("--level: expected N (0..30) or auto, found \"" + text + "\"");
     return n;
+}
+
+Filter parse_filter(const std::string& text, Reconstruction method) {
+    Filter f;
+    if (text == "point")
+        f = Filter::point;
+    else if (text == "coverage")
+        f = Filter::coverage;
+    else
+        throw UsageError("--filter: unknown filter \"" + text + "\"; known: point, coverage");
+    if (f == Filter::coverage && method != Reconstruction::two_pass)
+        throw UsageError("--filter coverage works with the two-pass reconstruction only, not " + to_string(method));
+    return f;
+}
+
+std::vector<std::string> parse_relief_names(const std::string& text, const std::string& flag) {
+    const std::vector<std::string> known = procedural_names();
+    std::vector<std::string> out;
+    std::stringstream ss(text);
+    for (std::string item; std::getline(ss, item, ',');) {
+        if (std::find(known.begin(), known.end(), item) == known.end())
+            throw UsageError(flag + ": unknown relief \"" + item + "\"; known: bricks, facade, bumps, ridges");
+        out.push_back(item);
+    }
+    if (out.empty()) throw UsageError(flag + ": expected at least one relief name");
+    return out;
 }
 
 void parse_size(const std::string& text, const std::string& flag, int& w, int& h) {

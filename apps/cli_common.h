@@ -13,6 +13,7 @@
 
 #include "objects/bounds.h"
 #include "texmap/camera.h"
+#include "warp/prewarp.h"
 
 namespace rtm::cli {
 
@@ -24,6 +25,11 @@ struct UsageError : std::runtime_error {
 glm::dvec3 parse_vec3(const std::string& text, const std::string& flag);
 // --level N|auto: N >= 0, or -1 for auto.
 int parse_level(const std::string& text);
+// --filter point|coverage; coverage needs the two-pass reconstruction. Throws UsageError naming the value.
+Filter parse_filter(const std::string& text, Reconstruction method);
+// A comma-separated list of procedural relief names (objects/procedural_media.h); throws UsageError naming the
+// unknown one.
+std::vector<std::string> parse_relief_names(const std::string& text, const std::string& flag);
 void parse_size(const std::string& text, const std::string& flag, int& w, int& h);
 
 struct CameraArgs {
@@ -49,5 +55,6 @@ void add_bench_skips_command(CLI::App& app);
 void add_view_command(CLI::App& app);
 void add_diff_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
+void add_bench_filter_command(CLI::App& app);
 
 }  // namespace rtm::cli

@@ -13,7 +13,7 @@ namespace rtm::cli {
 namespace {
 
 struct BenchArgs {
-    std::string json, sizes, reliefs, threads;
+    std::string json, sizes, reliefs, threads, methods;
     bool full = false, no_exact = false, no_reference = false, no_table1 = false;
     double min_time = -1;
 };
@@ -47,6 +47,18 @@ void run_bench_command(const BenchArgs& a) {
             c.reliefs.push_back(item);
         }
     }
+    if (!a.methods.empty()) {
+        c.methods.clear();
+        std::stringstream ss(a.methods);
+        for (std::string item; std::getline(ss, item, ',');) {
+            if (item == "two-pass")
+                c.methods.push_back(Reconstruction::two_pass);
+            else if (item == "pipelined")
+                c.methods.push_back(Reconstruction::pipelined);
+            else
+                throw UsageError("--methods: unknown reconstruction \"" + item + "\"; known: two-pass, pipelined");
+        }
+    }
     if (a.min_time >= 0) c.min_seconds = a.min_time;
     c.exact = !a.no_exact;
     c.reference = !a.no_reference;
@@ -66,6 +78,7 @@ void add_bench_command(CLI::App& app) {
     sub->add_flag("--full", a->full, "All sizes up to 4096^2 (default: 128^2 to 1024^2, about a minute)");
     sub->add_option("--sizes", a->sizes, "Texture sizes, e.g. 256,1024 (overrides the default set)");
     sub->add_option("--reliefs", a->reliefs, "Procedural reliefs, e.g. bumps,bricks,ridges");
+    sub->add_option("--methods", a->methods, "Reconstructions, e.g. two-pass,pipelined (default both)");
     sub->add_option("--threads", a->threads, "Thread counts of the fast kernels, e.g. 1,2");
     sub->add_option("--min-time", a->min_time, "Seconds of repeats per measurement (default 0.25)");
     sub->add_flag("--no-exact", a->no_exact, "Skip the --exact (double precision) path");

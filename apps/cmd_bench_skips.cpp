@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <stdexcept>
 
 #include "cli_common.h"
 #include "objects/skip_measure.h"
@@ -25,11 +26,16 @@ void run(const Args& a) {
             j.push_back({{"skip", m.skip}, {"scenario", m.scenario}, {"fired", m.fired},
                          {"ms_without", m.ms_without}, {"ms_with", m.ms_with},
                          {"prewarp_upload_ms_without", m.work_without}, {"prewarp_upload_ms_with", m.work_with}, {"iou_without", m.iou_without},
-                         {"iou_with", m.iou_with},
+                         {"iou_with", m.iou_with}, {"same_picture", m.same_picture},
                          {"psnr_without", std::isfinite(m.psnr_without) ? nlohmann::json(m.psnr_without) : nullptr},
                          {"psnr_with", std::isfinite(m.psnr_with) ? nlohmann::json(m.psnr_with) : nullptr}});
         write_json(a.json, {{"command", "bench-skips"}, {"rows", j}});
     }
+    // The copy of zero-displacement runs adds no error by construction (warp/prewarp.cpp): check it here too.
+    for (const SkipMeasurement& m : rows)
+        if (m.skip == "zero-displacement-runs" && !m.same_picture)
+            throw std::runtime_error("bench-skips: zero-displacement-runs changed the picture (" + m.scenario +
+                                     "); the copy must give the same pixels as the warp");
 }
 
 }  // namespace

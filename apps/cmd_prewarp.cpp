@@ -16,7 +16,7 @@ namespace rtm::cli {
 namespace {
 
 struct PrewarpArgs {
-    std::string relief, eye, out, method = "two-pass", level = "0", json;
+    std::string relief, eye, out, method = "two-pass", level = "0", json, filter = "point";
     bool exact = false;
     int repeat = 1, threads = 0;
 };
@@ -35,6 +35,7 @@ void run_prewarp(const PrewarpArgs& a) {
     if (a.threads < 0) throw UsageError("--threads: expected N >= 0, found " + std::to_string(a.threads));
     opt.exact = a.exact;
     opt.threads = a.threads;
+    opt.filter = parse_filter(a.filter, opt.method);
 
     ReliefQuad quad(load_relief(a.relief));
     int level = level_arg;
@@ -59,19 +60,28 @@ void run_prewarp(const PrewarpArgs& a) {
     }
     write_rgba8(a.out, out);
     if (!a.json.empty()) {
+        // Texels at zero displacement do not move and are copied without the warp arithmetic (skip
+        // "zero-displacement-runs"); the generic kernels count them, the fast kernels copy without counting.
+        const bool copies = opt.copy_still_runs && opt.filter == Filter::point;
+        const long long still = copies ? count_still_texels(relief, opt.exact) : 0;
+        nlohmann::json skips = nlohmann::json::array();
+        if (still > 0) skips.push_back("zero-displacement-runs");
         static const char* sides[] = {"front", "on_plane", "behind"};
         nlohmann::json j = {
             {"command", "prewarp"},
             {"relief", a.relief},
             {"method", a.method},
             {"exact", a.exact},
+            {"filter", a.filter},
             {"prewarp_ms", timing_json(times)},
             {"texels", stats.texels},
             {"dropped_texels", stats.dropped},
             {"width", relief.width},
             {"height", relief.height},
             {"level", level},
-            {"skips", nlohmann::json::array()},
+            {"skips", skips},
+            {"still_texels", still},
+            {"still_copied", stats.still_copied},
             {"eye", {eye.x, eye.y, eye.z}},
             {"k", {k.k1, k.k2, k.k3}},
             {"epipole", {k.epipole_u, k.epipole_v}},
@@ -91,6 +101,7 @@ void add_prewarp_command(CLI::App& app) {
     sub->add_option("--out", a->out, "Output image (the pre-warped texture)")->required();
     sub->add_option("--method", a->method, "two-pass or pipelined")->capture_default_str();
     sub->add_flag("--exact", a->exact, "Unquantized displacement, double-precision coordinates");
+    sub->add_option("--filter", a->filter, "point or coverage (Fant-style, two-pass only)")->capture_default_str();
     sub->add_option("--level", a->level, "Relief texture pyramid level N or auto")->capture_default_str();
     sub->add_option("--repeat", a->repeat, "Run N times after one warm-up, for timing")->capture_default_str();
     sub->add_option("--threads", a->threads, "Threads (0 = all)")->capture_default_str();

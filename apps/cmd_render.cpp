@@ -22,7 +22,7 @@ namespace {
 
 
 struct RenderArgs {
-    std::string relief, out, json, method = "two-pass", level = "0";
+    std::string relief, out, json, method = "two-pass", level = "0", filter = "point";
     CameraArgs camera;
     bool exact = false, progress = false, no_sidewalls = false, depth_correction = false, no_skips = false;
     double discontinuity = -1;
@@ -36,6 +36,8 @@ void run_render(const RenderArgs& a) {
     } catch (const std::invalid_argument& e) {
         throw UsageError(std::string("--method: ") + e.what());
     }
+    const Filter filter = parse_filter(a.filter, method == RenderMethod::pipelined ? Reconstruction::pipelined
+                                                                                   : Reconstruction::two_pass);
     const int level = parse_level(a.level);
     if (!(a.discontinuity >= 0 || a.discontinuity == -1) || !std::isfinite(a.discontinuity))
         throw UsageError("--discontinuity: expected a threshold >= 0, found " + std::to_string(a.discontinuity));
@@ -51,12 +53,14 @@ void run_render(const RenderArgs& a) {
     const Camera cam = a.camera.resolve(relief_bounds(quad.relief()));
     PrewarpOptions opt;
     opt.exact = a.exact;
+    opt.filter = filter;
     opt.keep_outliers = !a.no_sidewalls;
     opt.threads = a.threads;
 
     std::vector<double> t_pre, t_up, t_map, t_total;
     std::vector<std::string> skips;
     int used_level = 0;
+    long long still_texels = 0, still_copied = 0;  // zero-displacement-runs
     ImageRGBA8 image;
     RenderSettings rs;
     rs.method = method;
@@ -79,6 +83,10 @@ void run_render(const RenderArgs& a) {
         DrawReport rep;
         image = render_relief_frame(quad, renderer.get(), cam, rs, st, &rep);
         used_level = rep.level;
+        if (rep.still_texels > 0) {  // the frame that pre-warped (later frames may reuse it)
+            still_texels = rep.still_texels;
+            still_copied = rep.still_copied;
+        }
         for (const std::string& sk : rep.skips)
             if (std::find(skips.begin(), skips.end(), sk) == skips.end()) skips.push_back(sk);
         if (i < warm) continue;
@@ -95,6 +103,7 @@ void run_render(const RenderArgs& a) {
             {"relief", a.relief},
             {"method", a.method},
             {"exact", a.exact},
+            {"filter", a.filter},
             {"prewarp_ms", timing_json(t_pre)},
             {"upload_ms", timing_json(t_up)},
             {"texture_map_ms", timing_json(t_map)},
@@ -102,6 +111,10 @@ void run_render(const RenderArgs& a) {
             {"texels", (long long)quad.relief().width * quad.relief().height},
             {"level", used_level},
             {"skips", skips},
+            // zero-displacement-runs: texels of the level at zero displacement, and how many of them the reference
+            // kernels copied (0 when the fast kernels ran: they copy without counting).
+            {"still_texels", still_texels},
+            {"still_copied", still_copied},
             {"eye", {cam.eye.x, cam.eye.y, cam.eye.z}},
             {"size", {cam.width, cam.height}},
         };
@@ -118,6 +131,8 @@ void add_render_command(CLI::App& app) {
     a->camera.add_to(*sub);
     sub->add_option("--method", a->method, "flat, two-pass, pipelined, micromesh or raycast")->capture_default_str();
     sub->add_flag("--exact", a->exact, "Pre-warp with unquantized displacement and double-precision coordinates");
+    sub->add_option("--filter", a->filter, "Pre-warp resampling: point or coverage (Fant-style, two-pass only)")
+        ->capture_default_str();
     sub->add_option("--level", a->level, "Relief texture pyramid level N or auto")->capture_default_str();
     sub->add_option("--out", a->out, "Output image");
     sub->add_option("--json", a->json, "Write stage times as JSON");

@@ -1,6 +1,6 @@
 // rtm view: the interactive viewer (GLFW window). Drag with the left button to orbit, scroll to zoom; keys:
 // 1 flat, 2 two-pass, 3 pipelined, 4 micromesh; W side polygons on/off; D depth correction on/off; K skips
-// on/off; L pyramid level auto/0; Esc or Q quits. With --frames N --screenshot IMG it renders N frames, writes
+// on/off; L pyramid level auto/0; F coverage filter on/off (two-pass); Esc or Q quits. With --frames N --screenshot IMG it renders N frames, writes
 // the last one and exits (for tests under Xvfb). Timing of the last second goes to the window title.
 #include <GLFW/glfw3.h>
 
@@ -79,6 +79,7 @@ void run_view(const ViewArgs& a) {
     rs.method = RenderMethod::two_pass;
     rs.prewarp.keep_outliers = true;
     bool prev_keys[512] = {};
+    bool coverage = false;
     auto pressed = [&](int key) {
         const bool down = glfwGetKey(win, key) == GLFW_PRESS;
         const bool edge = down && !prev_keys[key];
@@ -100,6 +101,9 @@ void run_view(const ViewArgs& a) {
         if (pressed(GLFW_KEY_D)) rs.draw.depth_correction = !rs.draw.depth_correction;
         if (pressed(GLFW_KEY_K)) rs.draw.skips = !rs.draw.skips;
         if (pressed(GLFW_KEY_L)) rs.draw.level = rs.draw.level < 0 ? 0 : -1;
+        if (pressed(GLFW_KEY_F)) coverage = !coverage;
+        // The coverage filter exists for the two-pass reconstruction only.
+        rs.prewarp.filter = coverage && rs.method == RenderMethod::two_pass ? Filter::coverage : Filter::point;
         if (use_orbit) {
             const double az = glm::radians(orbit.az), el = glm::radians(orbit.el);
             cam.eye = bounds.centre() + std::max(bounds.radius(), 1e-12) * orbit.dist *
@@ -118,9 +122,10 @@ void run_view(const ViewArgs& a) {
         const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_title).count();
         if (since > 1.0) {
             char title[256];
-            std::snprintf(title, sizeof title, "rtm view: %s | %s%s%s | level %d | %.1f fps, %.2f ms/frame",
+            std::snprintf(title, sizeof title, "rtm view: %s | %s%s%s%s | level %d | %.1f fps, %.2f ms/frame",
                           a.relief.c_str(), to_string(rs.method).c_str(), rs.prewarp.keep_outliers ? " +walls" : "",
-                          rs.draw.depth_correction ? " +depth" : "", rep.level, frames_since / since,
+                          rs.draw.depth_correction ? " +depth" : "",
+                          rs.prewarp.filter == Filter::coverage ? " +coverage" : "", rep.level, frames_since / since,
                           work_ms / frames_since);
             glfwSetWindowTitle(win, title);
             t_title = std::chrono::steady_clock::now();

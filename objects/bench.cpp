@@ -107,14 +107,16 @@ void prewarp_traffic(Reconstruction method, bool exact, bool fast, int w, int h,
     const double src = double(w) * h, mid = double(ow) * h, out = double(ow) * oh;
     // Texels are 4 bytes; --exact also reads the 4-byte exact displacement.
     const double in = src * (exact ? 8.0 : 4.0);
-    if (method == Reconstruction::pipelined) {
+    // The pipelined reconstruction has no intermediate image; nor have the fast two-pass kernels, which hand each
+    // band of rows to the vertical pass while it is in the cache (warp/fast_two_pass.h).
+    if (method == Reconstruction::pipelined || (fast && !exact)) {
         read = in;
         written = out * 4.0;
         return;
     }
-    // The intermediate image per pixel: colour and final row coordinate (fast: 4 + 4 bytes), and the generic
-    // kernels' carried displacement (float: + 4; exact: v and d in double, 4 + 8 + 8).
-    const double per = exact ? 20.0 : (fast ? 8.0 : 12.0);
+    // The generic kernels' intermediate image per pixel: colour, final row coordinate and carried displacement
+    // (float: 4 + 4 + 4 bytes; exact: v and d in double, 4 + 8 + 8).
+    const double per = exact ? 20.0 : 12.0;
     read = in + mid * per;
     written = mid * per + out * 4.0;
 }

@@ -10,6 +10,7 @@
 #include "objects/bounds.h"
 #include "objects/micromesh.h"
 #include "objects/view_analysis.h"
+#include "warp/fast_prewarp.h"
 #include "warp/pyramid.h"
 
 namespace rtm {
@@ -51,6 +52,14 @@ ImageRGBA8 flat_texture(const ReliefTexture& t) {
     return img;
 }
 
+void premultiply_alpha(ImageRGBA8& img) {
+    for (Rgba8& p : img.pixels) {
+        if (p.a == 255) continue;
+        auto m = [&](uint8_t c) { return uint8_t((unsigned(c) * p.a + 127) / 255); };
+        p = {m(p.r), m(p.g), m(p.b), p.a};
+    }
+}
+
 ReliefQuad::ReliefQuad(ReliefTexture relief) : relief_(std::move(relief)) {}
 ReliefQuad::~ReliefQuad() = default;
 ReliefQuad::ReliefQuad(ReliefQuad&&) noexcept = default;
@@ -82,6 +91,20 @@ const ReliefTexture& ReliefQuad::level_texture(int i) {
 
 const ReliefTexture& ReliefQuad::level(int i) { return level_texture(i); }
 
+long long ReliefQuad::still_texels(int i, bool exact) {
+    if (int(still_texels_.size()) <= i) still_texels_.resize(size_t(i) + 1, {-1, -1});
+    long long& n = still_texels_[size_t(i)][exact];
+    if (n < 0) n = count_still_texels(level_texture(i), exact);
+    return n;
+}
+
+const MovingTexels& ReliefQuad::moving(int i) {
+    if (int(moving_.size()) <= i) moving_.resize(size_t(i) + 1);
+    std::optional<MovingTexels>& m = moving_[size_t(i)];
+    if (!m) m = moving_texels(level_texture(i));
+    return *m;
+}
+
 int ReliefQuad::levels() {
     int n = 1, w = relief_.width, h = relief_.height;
     while (w > 1 || h > 1) {
@@ -102,36 +125,10 @@ double ReliefQuad::prewarp(const glm::dvec3& eye, const PrewarpOptions& options,
     const auto t0 = Clock::now();
     stats_ = rtm::prewarp(relief_, compute_coefficients(relief_.geometry, eye), options, workspace_, prewarped_,
                           with_displ ? &displ_ : nullptr);
+    ++prewarp_version_;
     cached_.valid = false;
     return ms_since(t0);
 }
-
-namespace {
-
-// The smallest rectangle holding every pixel where a and b differ (same size); w = 0 when they are equal.
-struct Rect {
-    int x = 0, row = 0, w = 0, h = 0;
-};
-Rect dirty_rect(const ImageRGBA8& a, const ImageRGBA8& b) {
-    Rect r;
-    int x0 = a.width, x1 = -1, r0 = a.height, r1 = -1;
-    for (int row = 0; row < a.height; ++row) {
-        const Rgba8* pa = a.row(row);
-        const Rgba8* pb = b.row(row);
-        if (std::equal(pa, pa + a.width, pb)) continue;
-        r0 = std::min(r0, row);
-        r1 = row;
-        int lo = 0, hi = a.width - 1;
-        while (pa[lo] == pb[lo]) ++lo;
-        while (pa[hi] == pb[hi]) --hi;
-        x0 = std::min(x0, lo);
-        x1 = std::max(x1, hi);
-    }
-    if (r1 < 0) return r;
-    return {x0, r0, x1 - x0 + 1, r1 - r0 + 1};
-}
-
-}  // namespace
 
 void ReliefQuad::draw(Renderer& renderer, const Camera& cam, RenderMethod method, const PrewarpOptions& options,
                       StageTimes& times, const DrawOptions& d, DrawReport* report) {
@@ -196,17 +193,33 @@ void ReliefQuad::draw(Renderer& renderer, const Camera& cam, RenderMethod method
         } else {
             PrewarpOptions o = options;
             o.method = method == RenderMethod::two_pass ? Reconstruction::two_pass : Reconstruction::pipelined;
+            o.copy_still_runs = options.copy_still_runs && d.skips;  // --no-skips: warp every texel
             const bool same_setup = cached_.valid && cached_.level == lvl && cached_.method == method &&
                                     cached_.exact == o.exact && cached_.keep_outliers == o.keep_outliers &&
-                                    cached_.displ == d.depth_correction;
+                                    cached_.displ == d.depth_correction && cached_.filter == o.filter;
             // Skip: the eye moved so little that no texel would move by more than the tolerance.
             if (d.skips && same_setup && max_texel_motion(t, cached_.k, k) < d.reuse_tolerance) {
                 rep.skips.push_back(kSkipReuse);
             } else {
                 const auto t0 = Clock::now();
                 stats_ = rtm::prewarp(t, k, o, workspace_, prewarped_, d.depth_correction ? &displ_ : nullptr);
+                ++prewarp_version_;
+                // Coverage alpha: the texture-mapping stage expects premultiplied colour (it divides the
+                // filtered colour by the filtered alpha); point-sampled output has alpha 0 or 255 only.
+                if (o.filter == Filter::coverage) premultiply_alpha(prewarped_);
                 times.prewarp_ms += ms_since(t0);
-                cached_ = {true, lvl, method, o.exact, o.keep_outliers, d.depth_correction, k};
+                cached_ = {true, lvl, method, o.exact, o.keep_outliers, d.depth_correction, o.filter, k};
+                // Skip: texels at zero displacement were copied, not warped (paper section 5, the brick wall).
+                // The reference kernels count their copies; the fast kernels copy one-pixel spans on pixel
+                // centres without counting, and the still texels are a property of the level, counted once.
+                const long long still = o.copy_still_runs ? still_texels(lvl, o.exact) : 0;
+                if (still > 0 &&
+                    (stats_.still_copied > 0 ||
+                     fast_prewarp_covers(t, k, o, stats_.extent, d.depth_correction ? &displ_ : nullptr))) {
+                    rep.skips.push_back(kSkipZeroRuns);
+                    rep.still_texels = still;
+                    rep.still_copied = stats_.still_copied;
+                }
             }
             img = &prewarped_;
             warped = true;
@@ -233,26 +246,45 @@ void ReliefQuad::draw(Renderer& renderer, const Camera& cam, RenderMethod method
     if (!facing) return done();  // skips disabled: the work was done to be measured, nothing is drawn
 
     auto t0 = Clock::now();
-    // Skip: upload only the rectangle that changed since the last upload.
-    if (d.skips && uploaded_kind_ == kind && uploaded_.width == img->width && uploaded_.height == img->height) {
-        const Rect r = dirty_rect(*img, uploaded_);
-        if (r.w * r.h < img->width * img->height) rep.skips.push_back(kSkipPartialUpload);
-        if (r.w > 0) {
-            texture_->upload_rect(*img, r.x, r.row, r.w, r.h);
-            for (int row = r.row; row < r.row + r.h; ++row)
-                std::copy(img->row(row) + r.x, img->row(row) + r.x + r.w, uploaded_.row(row) + r.x);
-        }
-        rep.uploaded_texels = (long long)r.w * r.h;
-    } else {
-        texture_->upload(*img);
-        rep.uploaded_texels = (long long)img->width * img->height;
-        if (d.skips) {
-            uploaded_ = *img;
-            uploaded_kind_ = kind;
+    // Skip: upload only the pixels that can differ from the texture already on the GPU. Pixels that moving texels
+    // cannot reach are written by still texels only and are the same in every pre-warp of this level and setup
+    // (moving_footprint, objects/view_analysis.h), so the changed pixels lie in the union of the moving footprints
+    // of the uploaded pre-warp and of this one: eight corner warps per frame, nothing read or kept.
+    // Comparing the new image with a copy of the last upload, as this skip first did, cannot pay with llvmpipe
+    // (OSMesa), where an upload is a memcpy: measured on the 2-core development machine, median ms, n^2 texels,
+    //       n   full upload   find the changed rectangle (memcmp)   keep a copy   upload a 1.6% / 25% / 50% rectangle
+    //     256     0.009              0.006                             0.007        0.0004 / 0.002 / 0.003
+    //    1024     0.135              0.094 (0.33 in a frame, cold)     0.103        0.003  / 0.030 / 0.066
+    //    2048     1.098              0.810                             0.914        0.009  / 0.178 / 0.429
+    // (comparing pixel by pixel with Rgba8's operator== instead of memcmp: 0.056 ms at 256^2; that and the copy on
+    // every frame whose margins changed the texture's size made bench-skips measure 1.0 -> 1.9 ms at 256^2). A
+    // rectangle's upload costs in proportion to its area, so any rectangle smaller than the texture pays.
+    const PixelRect whole{0, 0, img->width, img->height};
+    const PixelRect moving_now =
+        kind == 1 ? moving_footprint(t, moving(lvl), cached_.k, stats_.extent) : PixelRect{};
+    PixelRect r = whole;
+    if (d.skips && uploaded_.kind == kind && uploaded_.width == img->width && uploaded_.height == img->height) {
+        if (kind != 1 || uploaded_.version == prewarp_version_) {
+            r = {};  // the same image (a flat level, or a reused pre-warp)
         } else {
-            uploaded_kind_ = -1;
+            const Cached& a = uploaded_.setup;
+            const bool same_setup = a.level == cached_.level && a.method == cached_.method &&
+                                    a.exact == cached_.exact && a.keep_outliers == cached_.keep_outliers &&
+                                    a.filter == cached_.filter && uploaded_.extent == stats_.extent;
+            if (same_setup) r = united(uploaded_.moving, moving_now);
         }
     }
+    if (r.area() < whole.area()) {
+        rep.skips.push_back(kSkipPartialUpload);
+        if (!r.empty()) texture_->upload_rect(*img, r.x, r.row, r.w, r.h);
+    } else {
+        texture_->upload(*img);
+    }
+    rep.uploaded_texels = r.area();
+    if (d.skips)
+        uploaded_ = {kind, prewarp_version_, img->width, img->height, cached_, stats_.extent, moving_now};
+    else
+        uploaded_.kind = -1;
     if (warped && d.depth_correction) {
         if (!displ_texture_) displ_texture_ = std::make_unique<GlTexture>();
         displ_texture_->upload_gray(displ_);

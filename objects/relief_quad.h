@@ -5,9 +5,11 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "objects/view_analysis.h"
 #include "texmap/camera.h"
 #include "texmap/renderer.h"
 #include "warp/prewarp.h"
@@ -52,6 +54,10 @@ struct DrawReport {
     int level = 0;
     std::vector<std::string> skips;
     long long uploaded_texels = 0;
+    // zero-displacement-runs: the level's texels at zero displacement (view-independent, count_still_texels), and
+    // how many of them the reference kernels copied this frame (0 from the fast kernels: they copy without counting).
+    long long still_texels = 0;
+    long long still_copied = 0;
 };
 
 class ReliefQuad {
@@ -87,7 +93,8 @@ private:
     ReliefTexture relief_;
     std::vector<ReliefTexture> pyramid_;  // levels 1.. (level 0 is relief_)
     PrewarpWorkspace workspace_;
-    ImageRGBA8 prewarped_, uploaded_;
+    ImageRGBA8 prewarped_;
+    long long prewarp_version_ = 0;  // counts the pre-warps into prewarped_
     Image2D<uint8_t> displ_;  // quantized displacement seen at each pre-warped pixel (depth correction)
     PrewarpStats stats_;
     std::unique_ptr<GlTexture> texture_, displ_texture_;
@@ -100,14 +107,32 @@ private:
         int level = -1;
         RenderMethod method = RenderMethod::flat;
         bool exact = false, keep_outliers = false, displ = false;
+        Filter filter = Filter::point;
         PrewarpCoefficients k;
     } cached_;
-    int uploaded_kind_ = -1;  // what texture_ holds: -1 nothing, 0 flat, 1 pre-warp
+    // What texture_ holds (partial upload): which image, made for what, and where its moving texels wrote.
+    struct Uploaded {
+        int kind = -1;  // -1 nothing, 1 pre-warp, 2 + level the flat texture of a level
+        long long version = -1;
+        int width = 0, height = 0;
+        Cached setup;
+        PrewarpExtent extent;
+        PixelRect moving;
+    } uploaded_;
+    // count_still_texels per pyramid level, [level][exact]; -1 = not counted yet (they do not depend on the view).
+    std::vector<std::array<long long, 2>> still_texels_;
+    std::vector<std::optional<MovingTexels>> moving_;  // moving_texels per pyramid level, computed on first use
 
     const ReliefTexture& level_texture(int i);
+    long long still_texels(int level, bool exact);
+    const MovingTexels& moving(int level);
 };
 
 // The relief's colours as an ordinary texture (the conventional texture mapping of Figure 1).
 ImageRGBA8 flat_texture(const ReliefTexture& t);
+
+// Straight colour to premultiplied (colour * alpha / 255, rounded), in place: what the texture-mapping stage
+// expects of a texture whose alpha is fractional coverage (the coverage filter's output).
+void premultiply_alpha(ImageRGBA8& img);
 
 }  // namespace rtm

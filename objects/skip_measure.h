@@ -16,6 +16,7 @@ struct SkipMeasurement {
     double psnr_with = 0, psnr_without = 0;   // against micromesh, last frame
     double iou_with = 0, iou_without = 0;
     bool fired = false;                       // the skip fired in the measured frames
+    bool same_picture = false;                // the last frame with skips is the one without, pixel for pixel
 };
 
 // Runs every scenario (a few seconds). `progress` gets one line per scenario; may be empty.

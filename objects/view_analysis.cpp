@@ -83,4 +83,71 @@ bool eye_inside_slab(const ReliefTexture& t, const glm::dvec3& eye) {
     return dist >= lo && dist <= hi;
 }
 
+MovingTexels moving_texels(const ReliefTexture& t) {
+    MovingTexels m;
+    m.x0 = t.width;
+    m.row0 = t.height;
+    m.dmin = std::numeric_limits<double>::infinity();
+    m.dmax = -m.dmin;
+    for (int r = 0; r < t.height; ++r)
+        for (int x = 0; x < t.width; ++x) {
+            const uint8_t q = t.texel(x, r).q;
+            if (q == kEmptyIndex) continue;
+            const double dq = t.quant.decode(q), de = t.displ(x, r);
+            if (dq == 0.0 && de == 0.0) continue;
+            m.any = true;
+            m.x0 = std::min(m.x0, x);
+            m.x1 = std::max(m.x1, x);
+            m.row0 = std::min(m.row0, r);
+            m.row1 = std::max(m.row1, r);
+            m.dmin = std::min({m.dmin, dq, de});
+            m.dmax = std::max({m.dmax, dq, de});
+        }
+    if (!m.any) m = {};
+    return m;
+}
+
+PixelRect united(const PixelRect& a, const PixelRect& b) {
+    if (a.empty()) return b;
+    if (b.empty()) return a;
+    const int x0 = std::min(a.x, b.x), r0 = std::min(a.row, b.row);
+    const int x1 = std::max(a.x + a.w, b.x + b.w), r1 = std::max(a.row + a.h, b.row + b.h);
+    return {x0, r0, x1 - x0, r1 - r0};
+}
+
+PixelRect moving_footprint(const ReliefTexture& t, const MovingTexels& m, const PrewarpCoefficients& k,
+                           const PrewarpExtent& e) {
+    const int ow = t.width + e.left + e.right, oh = t.height + e.bottom + e.top;
+    const PixelRect all{0, 0, ow, oh};
+    if (!m.any) return {};
+    if (k.side == ViewSide::on_plane) return all;
+    // Source box of the moving texels grown by one texel (the neighbours their spans reach), in (u, v).
+    const double us0 = m.x0, us1 = m.x1 + 1.0;
+    const double vs0 = t.height - 1.0 - m.row1, vs1 = double(t.height - m.row0);
+    double umin = us0 - 1, umax = us1 + 1, vmin = vs0 - 1, vmax = vs1 + 1;
+    // Where they go: u_i is linear in u_s and monotonic in d (likewise v_i), so the extremes are at the corners of
+    // the box times [dmin, dmax]; displacements that cannot be pre-warped are cut just below the eye's plane, as
+    // outlier_extent does (the texels beyond are dropped, and their neighbours then start new runs in place).
+    auto clampd = [&](double d) { return 1.0 + k.k3 * d > 1e-6 ? d : (1e-6 - 1.0) / k.k3; };
+    for (double d : {clampd(m.dmin), clampd(m.dmax)})
+        for (double us : {us0, us1})
+            for (double vs : {vs0, vs1}) {
+                double ui, vi;
+                if (!k.warp(us, vs, d, ui, vi)) continue;
+                umin = std::min(umin, ui);
+                umax = std::max(umax, ui);
+                vmin = std::min(vmin, vi);
+                vmax = std::max(vmax, vi);
+            }
+    if (!std::isfinite(umin) || !std::isfinite(umax) || !std::isfinite(vmin) || !std::isfinite(vmax)) return all;
+    // To output pixels, one more pixel each side: x covers u in [x - left, x + 1 - left); output line y (from the
+    // bottom) covers v in [y - bottom, y + 1 - bottom), image row oh - 1 - y.
+    auto clampi = [](double v, int lo, int hi) { return int(std::clamp(v, double(lo), double(hi))); };
+    const int x0 = clampi(std::floor(umin) + e.left - 1, 0, ow - 1);
+    const int x1 = clampi(std::ceil(umax) + e.left + 1, 0, ow - 1);
+    const int y0 = clampi(std::floor(vmin) + e.bottom - 1, 0, oh - 1);
+    const int y1 = clampi(std::ceil(vmax) + e.bottom + 1, 0, oh - 1);
+    return {x0, oh - 1 - y1, x1 - x0 + 1, y1 - y0 + 1};
+}
+
 }  // namespace rtm

@@ -7,6 +7,7 @@
 
 #include "objects/bounds.h"
 #include "texmap/camera.h"
+#include "warp/prewarp.h"
 #include "warp/prewarp_coefficients.h"
 #include "warp/relief_texture.h"
 
@@ -32,5 +33,31 @@ double max_texel_motion(const ReliefTexture& t, const PrewarpCoefficients& k0, c
 // The eye is inside the relief's bounding slab: its distance from the plane along f lies in [dmin, dmax] (and
 // dmax > 0 or dmin < 0), so some texels are at or above the eye's plane and cannot be pre-warped.
 bool eye_inside_slab(const ReliefTexture& t, const glm::dvec3& eye);
+
+// The texels that can move in a pre-warp: non-empty texels not at zero displacement, in the lookup tables' sense
+// (a level that decodes to 0) or in the exact sense (0.0), either of them. Their bounding box in storage
+// coordinates and their displacement range (both senses). Does not depend on the view.
+struct MovingTexels {
+    bool any = false;
+    int x0 = 0, x1 = -1, row0 = 0, row1 = -1;  // inclusive
+    double dmin = 0.0, dmax = 0.0;
+};
+MovingTexels moving_texels(const ReliefTexture& t);
+
+// A rectangle of image pixels, rows counted from the top; empty when w or h is 0.
+struct PixelRect {
+    int x = 0, row = 0, w = 0, h = 0;
+    bool empty() const { return w <= 0 || h <= 0; }
+    long long area() const { return empty() ? 0 : (long long)w * h; }
+};
+PixelRect united(const PixelRect& a, const PixelRect& b);
+
+// The pixels of the pre-warp for view k (margins e around the quad) that moving texels can write: their own
+// samples, and the spans that join them to their neighbours in either pass (which end on the neighbours' centres
+// when those are still). A conservative box: every pixel outside it is written by still texels only, each on the
+// centre of its own pixel, whatever the view, method, path or order (warp/prewarp.cpp, warp_line_still_to), so it
+// is the same in every pre-warp of this relief with the same margins. Empty when nothing moves.
+PixelRect moving_footprint(const ReliefTexture& t, const MovingTexels& m, const PrewarpCoefficients& k,
+                           const PrewarpExtent& e);
 
 }  // namespace rtm

@@ -5,7 +5,7 @@
 // A part (the rows below the epipole, bottom up, or the rows above it, top down) is processed row by row: each row
 // is prepared and warped by the line kernel of warp/fast_line.h into a row buffer, and every group of pixels the
 // line kernel reports is rasterized at once into its columns, 16 columns at a time, each connected to the last
-// sample its column received from the previous row (vertical spans shaded in SIMD and scattered into the output).
+// sample its column received from the previous row (warp/fast_columns.h: 16 columns in the lanes of a register).
 // A part can be split into column ranges that run on different threads: each range warps every row (the
 // horizontal work is repeated) and rasterizes only its own columns.
 #pragma once
@@ -31,6 +31,7 @@ struct PipelinedJob {
     // final row coordinate and colour, alpha 0 where the column received nothing. Out width entries each.
     float* seam_v[2] = {nullptr, nullptr};
     uint32_t* seam_c[2] = {nullptr, nullptr};
+    bool copy_still = true;  // PrewarpOptions::copy_still_runs
     std::atomic<long long>* dropped = nullptr;
 };
 

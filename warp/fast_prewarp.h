@@ -2,9 +2,15 @@
 // output is bit-identical to the generic implementation's (tests/warp/fast_kernels_test.cpp compares them pixel by
 // pixel over random reliefs, views, sizes and thread counts).
 //
-// Covered: two-pass and pipelined reconstruction on the lookup-table path (not --exact), without depth output
-// (displ_out), without surface-discontinuity marks or threshold, margins (keep_outliers) or not, on a CPU with
-// AVX-512 (F, BW, DQ, VL). Everything else stays with the generic implementation, which remains the reference.
+// Covered: two-pass and pipelined reconstruction on the lookup-table path (not --exact) with the point filter,
+// without depth output (displ_out), without surface-discontinuity marks or threshold, margins (keep_outliers) or
+// not, on a CPU with AVX-512 (F, BW, DQ, VL, VBMI, VNNI) and BMI2. Everything else stays with the generic
+// implementation, which remains the reference.
+//
+// Still texels (PrewarpOptions::copy_still_runs): the row warps copy runs of 16 spans one pixel wide on pixel
+// centres (what zero displacement gives) instead of interpolating them; with the option off they interpolate them
+// too, so that the copy can be measured. The output is the same either way. The copies are not counted
+// (PrewarpStats::still_copied stays 0 here; tests/apps/skips_test.cpp relies on that).
 //
 // Scheduling lives here, kernels in warp/fast_two_pass.cpp and warp/fast_pipelined.cpp: a kernel takes a range of
 // rows or columns and every output pixel is computed by exactly one call, so the output does not depend on the

@@ -66,26 +66,26 @@ inline long long prepare_row(const ReliefTexture& t, const fast::FastTables& tab
     if (tab.any_dropped)
         for (int x = 0; x < w; ++x) dropped += tab.dropped[src[x] >> 24];
     LineWriter lw(s, w, n_out);
+    __m512 us = _mm512_add_ps(_mm512_cvtepi32_ps(iota16()), half);  // P(x) + P(0.5), x = 0 .. 15
     for (int x = 0; x < w; x += 64) {
         __m512i d[4];
         for (int m = 0; m < 4; ++m) d[m] = _mm512_maskz_loadu_epi32(first_lanes(w - x - 16 * m), src + x + 16 * m);
         const __m512i qp = _mm512_mask_blend_epi8(kLookup.use23, _mm512_permutex2var_epi8(d[0], from01, d[1]),
                                                   _mm512_permutex2var_epi8(d[2], from23, d[3]));
         const __mmask64 high = _mm512_movepi8_mask(qp);
-        __m512 k1[4], k2[4], rc[4];
-        lookup_floats(tab.plane[0], qp, high, k1);
-        lookup_floats(tab.plane[1], qp, high, k2);
+        // Table by table, so that fewer registers are live at once (16 of the 32: no spills).
+        __m512 rc[4], pos[4], v[4], tmp[4];
         lookup_floats(tab.plane[2], qp, high, rc);
-        for (int m = 0; m < 4 && x + 16 * m < w; ++m) {
-            const int xm = x + 16 * m;
-            const __m512i xi = _mm512_add_epi32(_mm512_set1_epi32(xm), iota16());
-            const __m512 us = _mm512_add_ps(_mm512_cvtepi32_ps(xi), half);  // P(x) + P(0.5)
-            // (us + K1[q]) * R[q] + ou and (vs + K2[q]) * R[q] + ov, operation by operation as row_samples; K1 is
-            // NaN where the level cannot be pre-warped, which makes the position non-finite: not valid.
-            const __m512 pos = _mm512_add_ps(_mm512_mul_ps(_mm512_add_ps(us, k1[m]), rc[m]), ou);
-            const __m512 v = _mm512_add_ps(_mm512_mul_ps(_mm512_add_ps(vs, k2[m]), rc[m]), ov);
-            lw.put<true>(pos, d[m], v, 0xFFFF);
+        lookup_floats(tab.plane[0], qp, high, tmp);
+        for (int m = 0; m < 4; ++m) {
+            // (us + K1[q]) * R[q] + ou, operation by operation as row_samples; K1 is NaN where the level cannot be
+            // pre-warped, which makes the position non-finite: not valid.
+            pos[m] = _mm512_add_ps(_mm512_mul_ps(_mm512_add_ps(us, tmp[m]), rc[m]), ou);
+            us = _mm512_add_ps(us, _mm512_set1_ps(16.0f));  // x + 0.5 stays exact (x < 2^22)
         }
+        lookup_floats(tab.plane[1], qp, high, tmp);
+        for (int m = 0; m < 4; ++m) v[m] = _mm512_add_ps(_mm512_mul_ps(_mm512_add_ps(vs, tmp[m]), rc[m]), ov);
+        for (int m = 0; m < 4 && x + 16 * m < w; ++m) lw.put<true>(pos[m], d[m], v[m], 0xFFFF);
     }
     lw.finish();
     return dropped;

@@ -19,7 +19,7 @@ struct alignas(64) FastTables {
 
 FastTables make_fast_tables(const PrewarpTables& tab);
 
-// True when this CPU runs the fast kernels (AVX-512 F, BW, DQ, VL, VBMI, and BMI2).
+// True when this CPU runs the fast kernels (AVX-512 F, BW, DQ, VL, VBMI, VNNI, and BMI2).
 bool cpu_supported();
 
 }  // namespace rtm::fast

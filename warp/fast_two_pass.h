@@ -1,17 +1,25 @@
 // The fast two-pass pre-warp kernels (AVX-512): the same output as prewarp()'s two-pass lookup-table path
 // (warp/prewarp.cpp) bit for bit, for reliefs without discontinuity marks and without depth output. Scheduling
-// (threads, ranges) lives in warp/fast_prewarp.cpp; these functions only work on the ranges they are given.
+// (threads, bands of rows) lives in warp/fast_prewarp.cpp; these functions only work on the ranges they are given.
 //
-// Horizontal pass, rows [r0, r1): per texel, u_i = (u_s + K1[q]) * R[q] + left margin and the final row coordinate
-// v_i = (v_s + K2[q]) * R[q] + bottom margin in float exactly as the reference computes them; each row is warped
-// by the line kernel of warp/fast_line.h into the intermediate image (colour and v_i, row-major).
+// The two passes are interleaved row by row instead of going through a whole intermediate image. The reference's
+// vertical pass warps each column of the intermediate image in occlusion-compatible order: the bottom part from
+// the bottom row up to the epipole's row, then the top part from the top row down to it, then the span across the
+// epipole. Columns are independent, so all of them can advance together, one intermediate row at a time, if the
+// rows are produced in that order: "step" s = 0, 1, ... h - 1 is intermediate row j = s (v order, 0 = bottom) for
+// s < split_v, then j = h - 1 - (s - split_v). A band of steps is warped horizontally (rows independent: any order,
+// any thread), then handed to the vertical kernel, which keeps per column the last sample it received and
+// rasterizes the span from it to the new one (warp/fast_columns.h), for 16 columns at a time. Bands must reach the
+// vertical kernel in step order; different column ranges may run concurrently.
 //
-// Vertical pass, columns [x0, x1): columns are taken 16 at a time; the 16 x h block of the intermediate image is
-// transposed in 16 x 16 tiles into 16 contiguous lines, each line is warped by the same row kernel, and the 16
-// output lines are transposed back into the output's rows (one 64-byte write per row).
+// Horizontal pass, per row: u_i = (u_s + K1[q]) * R[q] + left margin and the final row coordinate
+// v_i = (v_s + K2[q]) * R[q] + bottom margin in float exactly as the reference computes them; the row is warped by
+// the line kernel of warp/fast_line.h into one row of the band (colour with alpha 255 where written, 0 elsewhere;
+// v_i).
 #pragma once
 
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
 
 #include "warp/fast_tables.h"
@@ -21,24 +29,40 @@
 
 namespace rtm::fast {
 
-// Lookup tables in the form the kernels use: K1 is NaN at every level that cannot be pre-warped (and at 255),
-// so validity is "the position is finite", which the reference also requires.
 struct TwoPassJob {
     const ReliefTexture* relief = nullptr;
     const FastTables* tables = nullptr;
     PrewarpExtent extent;
-    int split_u = 0, split_v = 0;  // split_index of the epipole along rows and columns
-    // The intermediate image in column tiles: 16 columns x all rows per tile, tile after tile, so that the vertical
-    // pass reads each tile as one sequential stream. Pixel (x, row) is at ((x / 16) * height + row) * 16 + x % 16.
-    // Both start on a 64-byte boundary.
-    uint32_t* mid = nullptr;
-    float* mid_v = nullptr;
-    int mid_width = 0;  // out width (the tiles' width is rounded up)
+    int split_u = 0, split_v = 0;  // split_index of the epipole along rows and columns (source)
     ImageRGBA8* out = nullptr;     // out width x out height
+    // Per output column (out width entries, rounded up to 16; 64-byte aligned): the last sample the column
+    // received (final row coordinate, colour, floor and ceil) and, one bit per column, whether it has one; and the
+    // last sample of
+    // the bottom part (colour alpha 0 where none), for the span across the epipole.
+    float* col_v = nullptr;
+    uint32_t* col_c = nullptr;
+    int32_t* col_fl = nullptr;  // floor and ceil of its v - 0.5, clamped to [-1, out height]
+    int32_t* col_ce = nullptr;
+    uint16_t* col_ok = nullptr;
+    float* seam_v = nullptr;
+    uint32_t* seam_c = nullptr;
+    bool copy_still = true;  // PrewarpOptions::copy_still_runs
     std::atomic<long long>* dropped = nullptr;
 };
 
-void horizontal_rows(const TwoPassJob& job, int r0, int r1);
-void vertical_columns(const TwoPassJob& job, int x0, int x1);  // x0 a multiple of 16
+// Source storage row of step s.
+inline int step_row(const TwoPassJob& job, int s) {
+    const int h = job.relief->height;
+    return s < job.split_v ? h - 1 - s : s - job.split_v;
+}
+
+// Steps [s0, s1) warped horizontally into band rows 0 .. s1 - s0 - 1 (colour and v, `stride` elements apart).
+void horizontal_steps(const TwoPassJob& job, int s0, int s1, uint32_t* band_c, float* band_v, size_t stride);
+
+// The vertical pass over steps [s0, s1) (band rows as written by horizontal_steps) for output columns [x0, x1),
+// x0 a multiple of 16, in step order for each column range. The call with s0 = 0 first clears those columns of
+// the output; the call that reaches step h also draws the span across the epipole.
+void vertical_steps(const TwoPassJob& job, int s0, int s1, const uint32_t* band_c, const float* band_v,
+                    size_t stride, int x0, int x1);
 
 }  // namespace rtm::fast

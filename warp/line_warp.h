@@ -57,9 +57,20 @@ int split_index(double split_pos, int n);
 
 // ---- Building blocks, generic over where pixels go: put(int x, Rgba8 colour, A attr). ----
 
+// One channel at parameter t in [0, 1], in fixed point: b's weight is w / 2^14 with w = floor(t * 2^14) made odd
+// (the centre of t's 2^-13 bin) and at most 2^14 - 1 (NaN gives that too), and the channel is
+// (a * (2^14 - w) + b * w + 2^13) >> 14, i.e. a + (b - a) * w / 2^14 rounded. An odd w never makes a tie
+// ((b - a) * w is never an odd multiple of 2^13), so the result is the nearest integer to a + (b - a) * w / 2^14. The
+// vector kernels (warp/fast_line.h) do the same with integer dot products on packed colours, a third of the work of
+// the float formula uint8_t(a * (1 - t) + b * t + 0.5) it replaced (docs/BENCHMARKS.md).
+// Against that formula: |t - w / 2^14| <= 2^-14 moves the exact value a + (b - a) * t by at most 255 / 2^14 < 0.016,
+// and each result rounds its own value (the float one with an error far below that), so the two differ by at most 1
+// level, and only where the exact value lies within 0.016 of a rounding boundary (tests/warp/fast_kernels_test.cpp
+// checks both). t = 0 and t = 1 still give a and b exactly (the value moves by less than 1/2).
 template <class P>
 inline uint8_t lerp8(uint8_t a, uint8_t b, P t) {
-    return uint8_t(P(a) * (P(1) - t) + P(b) * t + P(0.5));
+    const int w = t >= P(0) ? std::min(int(t * P(16384)) | 1, 16383) : 16383;
+    return uint8_t((int(a) * (16384 - w) + int(b) * w + 8192) >> 14);
 }
 
 // A sample that starts a run goes to the pixel containing its position.

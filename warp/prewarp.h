@@ -32,6 +32,12 @@ namespace rtm {
 
 enum class Reconstruction { two_pass, pipelined };
 
+// How a span between two warped samples becomes pixels (section 3.2.1):
+//   point    - each pixel whose centre the span covers takes the colour interpolated at that centre;
+//   coverage - coverage-weighted, in the manner of Fant's resampling: each pixel takes the average colour of the
+//              parts of spans that cover it, weighted by the length covered, and alpha = the covered fraction.
+enum class Filter { point, coverage };
+
 struct PrewarpOptions {
     Reconstruction method = Reconstruction::two_pass;
     bool exact = false;          // unquantized displacement and double-precision coordinates (the reference path)
@@ -39,6 +45,12 @@ struct PrewarpOptions {
     bool keep_outliers = false;  // keep samples that leave the quad in a margin (for the side polygons)
     int max_margin = -1;         // largest margin per side in texels; -1 = 2 * max(w, h)
     bool fast = true;            // use the fast kernels where they apply (warp/fast_prewarp.h); same output
+    Filter filter = Filter::point;
+    // Texels whose displacement is exactly zero do not move (paper section 5, the brick wall): copy runs of them
+    // without the warp arithmetic. Same output either way; off only to measure what the copy saves. "Zero" is a
+    // level that decodes to exactly 0 (with `exact`: a displacement of exactly 0.0). It applies to the reference
+    // kernels with the point filter (the fast kernels always copy one-pixel spans that lie on pixel centres).
+    bool copy_still_runs = true;
 };
 
 // Texels of output beyond the quad on each side (all 0 unless keep_outliers).
@@ -59,7 +71,15 @@ struct PrewarpStats {
     long long texels = 0;        // source texels visited
     long long dropped = 0;       // texels that could not be pre-warped (1 + k3*d <= 0)
     PrewarpExtent extent;        // the output's margins around the quad
+    // Texels the row warp copied as zero-displacement runs, without the warp arithmetic: every still texel except
+    // those right after a connected moving texel in occlusion-compatible order, whose span is drawn. Counted by the
+    // reference kernels only (0 from the fast kernels, which copy without counting).
+    long long still_copied = 0;
 };
+
+// Non-empty texels at zero displacement (the texels copy_still_runs copies), whatever the view: a level that decodes
+// to exactly 0, or with `exact` a displacement of exactly 0.0.
+long long count_still_texels(const ReliefTexture& relief, bool exact);
 
 // Pre-warps `relief` for the eye in `k`. `out` is resized to the relief's size plus the margins. If `displ_out`
 // is not null it receives the quantized displacement seen at each output pixel (for depth correction).
@@ -73,5 +93,6 @@ PrewarpExtent outlier_extent(const ReliefTexture& relief, const PrewarpCoefficie
 ImageRGBA8 prewarp(const ReliefTexture& relief, const glm::dvec3& eye, const PrewarpOptions& options = {});
 
 std::string to_string(Reconstruction m);
+std::string to_string(Filter f);
 
 }  // namespace rtm

@@ -30,6 +30,13 @@ expect_fail 1 'par\.relief\.json.*parallel' -- prewarp --relief "$T/r/par.relief
 # Unknown method.
 expect_fail 2 'method.*bogus' -- render --relief "$R" --eye 0,0,1 --method bogus --out "$T/o7.png"
 expect_fail 2 'method.*bogus' -- prewarp --relief "$R" --eye 0,0,1 --method bogus --out "$T/o8.png"
+# Filters: unknown, and coverage with the pipelined reconstruction (two-pass only).
+expect_fail 2 'filter.*blur' -- prewarp --relief "$R" --eye 0,0,1 --filter blur --out "$T/o8b.png"
+expect_fail 2 'coverage.*pipelined' -- render --relief "$R" --eye 0,0,1 --method pipelined --filter coverage --out "$T/o8c.png"
+expect_ok prewarp --relief "$R" --eye 0.5,0.5,3 --filter coverage --out "$T/ok_cov.png"
+expect_ok render --relief "$R" --eye 0.5,0.5,3 --size 64x64 --filter coverage --out "$T/ok_render_cov.png"
+expect_fail 2 'samples.*0' -- bench-filter --samples 0
+expect_fail 2 'reliefs.*moon' -- bench-filter --reliefs moon
 # Malformed --eye.
 expect_fail 2 'eye.*1,2' -- prewarp --relief "$R" --eye 1,2 --out "$T/o9.png"
 expect_fail 2 'eye.*a,b,c' -- render --relief "$R" --eye a,b,c --out "$T/o10.png"
@@ -44,4 +51,13 @@ for i in $(seq 1 13); do
   if [ -e "$T/o$i.png" ]; then echo "FAIL: partial output $T/o$i.png left behind"; fails=$((fails + 1)); fi
 done
 ls "$T" | grep -q '\.tmp' && { echo "FAIL: temporary file left behind"; fails=$((fails + 1)); }
+# --json of prewarp: the zero-displacement copy is reported for the brick wall (its bricks sit at displacement 0).
+B="$2/media/bricks.relief.json"
+expect_ok prewarp --relief "$B" --eye 0.3,0.2,1.5 --out "$T/bricks_pre.png" --json "$T/bricks_pre.json"
+if grep -q '"zero-displacement-runs"' "$T/bricks_pre.json" && grep -Eq '"still_texels": *[1-9]' "$T/bricks_pre.json"; then
+  passes=$((passes + 1))
+else
+  echo "FAIL: prewarp --json on the brick wall does not report zero-displacement-runs: $(cat "$T/bricks_pre.json")"
+  fails=$((fails + 1))
+fi
 finish

@@ -13,9 +13,11 @@
 #include <new>
 #include <random>
 #include <sstream>
+#include <vector>
 
 #include "test_util.h"
 #include "warp/fast_prewarp.h"
+#include "warp/line_warp.h"
 #include "warp/prewarp.h"
 
 // Counts every allocation of the test program (for the steady-state test below; harmless elsewhere).
@@ -258,6 +260,81 @@ TEST_P(FastKernels, ExtremeConfigurationsMatch) {
     }
 }
 
+TEST_P(FastKernels, BandsAndThreadsMatch) {
+    // The two-pass kernels take the rows in bands of 32 through a pipeline when there are threads: heights around
+    // multiples of the band, the epipole's row (where the vertical pass turns from the bottom part to the top one)
+    // on band boundaries and inside bands, one to four threads.
+    const uint64_t seed = test::test_seed(80005);
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    PrewarpWorkspace ws_ref, ws_fast;
+    ImageRGBA8 ref, fast;
+    for (int h : {31, 32, 33, 64, 65, 96, 97, 130}) {
+        const int w = 20 + int(rng() % 120);
+        ReliefGeometry g;
+        g.a = {1.0 / w, 0, 0};
+        g.b = {0, 1.0 / w, 0};
+        g.origin = {-0.5, -0.5, 0};
+        const uint32_t salt = uint32_t(rng());
+        const ReliefTexture t = test::make_test_relief(
+            w, h, 0.0, 0.2,
+            [&](int x, int r) {
+                return hash01(x, r, salt) < 0.05 ? 0.2 * hash01(r, x, salt)
+                                                 : 0.1 + 0.08 * std::sin(x * 0.2) * std::sin(r * 0.15);
+            },
+            g);
+        for (double ev : {-10.0, 0.0, 16.0, 31.5, 32.0, 32.5, 40.0, h - 0.5, h + 20.0}) {
+            const double eu = U(rng) * w * 1.4 - w * 0.2;
+            const glm::dvec3 eye = g.origin + g.a * eu + g.b * ev + g.f() * (0.3 + U(rng));
+            const PrewarpCoefficients k = compute_coefficients(g, eye);
+            PrewarpOptions o;
+            o.method = GetParam();
+            o.keep_outliers = rng() % 2;
+            o.fast = false;
+            o.threads = 1;
+            SCOPED_TRACE("seed " + std::to_string(seed) + " " + std::to_string(w) + "x" + std::to_string(h) +
+                         " epipole row " + std::to_string(ev) + " " + k.to_string());
+            prewarp(t, k, o, ws_ref, ref);
+            for (int threads : {1, 2, 3, 4, 0}) {
+                o.fast = true;
+                o.threads = threads;
+                prewarp(t, k, o, ws_fast, fast);
+                ASSERT_EQ(first_difference(ref, fast), "") << "threads " << threads;
+            }
+        }
+    }
+}
+
+TEST_P(FastKernels, StillRunCopiesAreInvisible) {
+    // PrewarpOptions::copy_still_runs on the fast path: 16 consecutive spans one pixel wide on pixel centres (zero
+    // displacement) are copied or, with the option off, interpolated; the output is the same either way (and the
+    // copies are not counted). Bricks 40 texels wide.
+    const ReliefTexture t = test::make_test_relief(
+        150, 90, -0.05, 0.0, [](int x, int r) { return (x % 40 == 0 || r % 6 == 0) ? -0.05 : 0.0; });
+    PrewarpWorkspace ws;
+    ImageRGBA8 on, off, ref;
+    for (const glm::dvec3 eye : {glm::dvec3(0.7, 0.3, 0.8), glm::dvec3(-0.2, 0.9, 0.5), glm::dvec3(0.4, 0.4, 2.0)}) {
+        const PrewarpCoefficients k = compute_coefficients(t.geometry, eye);
+        SCOPED_TRACE(k.to_string());
+        PrewarpOptions o;
+        o.method = GetParam();
+        o.fast = false;
+        prewarp(t, k, o, ws, ref);
+        o.fast = true;
+        for (int threads : {1, 2}) {
+            o.threads = threads;
+            o.copy_still_runs = true;
+            const PrewarpStats s_on = prewarp(t, k, o, ws, on);
+            o.copy_still_runs = false;
+            const PrewarpStats s_off = prewarp(t, k, o, ws, off);
+            ASSERT_EQ(first_difference(ref, on), "") << "threads " << threads;
+            ASSERT_EQ(first_difference(ref, off), "") << "threads " << threads;
+            EXPECT_EQ(s_on.still_copied, 0);
+            EXPECT_EQ(s_off.still_copied, 0);
+        }
+    }
+}
+
 TEST_P(FastKernels, SteadyStateAllocatesNothing) {
     ReliefGeometry g;
     g.a = {0.01, 0, 0};
@@ -276,6 +353,42 @@ TEST_P(FastKernels, SteadyStateAllocatesNothing) {
     const long long before = g_allocations.load();
     for (int i = 0; i < 3; ++i) prewarp(t, compute_coefficients(g, {1.2 + 0.01 * i, 0.8, 1.5}), o, ws, out);
     EXPECT_EQ(g_allocations.load() - before, 0);
+}
+
+// lerp8 (warp/line_warp.h) moved from the float formula uint8_t(a * (1 - t) + b * t + 0.5) to fixed point (14-bit
+// weights, integer dot products in the fast kernels). The bound its comment derives: at most 1 level from the
+// float formula, only where the exact value a + (b - a) * t lies within 255 / 2^14 of a rounding boundary, and
+// t = 0, t = 1 exact. Every pair of levels, t on a grid of 1/512 (the quantization steps and the points between
+// them) and random t.
+TEST(Lerp8, FixedPointWithinOneLevelOfTheFloatFormula) {
+    const uint64_t seed = test::test_seed(80004);
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<float> U(0.0f, 1.0f);
+    std::vector<float> ts;
+    for (int k = 0; k <= 512; ++k) ts.push_back(float(k) / 512.0f);
+    for (int k = 0; k < 100; ++k) ts.push_back(U(rng));
+    long long differ = 0, total = 0;
+    for (int a = 0; a < 256; ++a)
+        for (int b = 0; b < 256; ++b) {
+            ASSERT_EQ(lerp8(uint8_t(a), uint8_t(b), 0.0f), a);
+            ASSERT_EQ(lerp8(uint8_t(a), uint8_t(b), 1.0f), b);
+            ASSERT_EQ(lerp8(uint8_t(a), uint8_t(b), 0.0), a);
+            ASSERT_EQ(lerp8(uint8_t(a), uint8_t(b), 1.0), b);
+            for (float t : ts) {
+                const int old_float = int(uint8_t(float(a) * (1.0f - t) + float(b) * t + 0.5f));
+                const int fixed = lerp8(uint8_t(a), uint8_t(b), t);
+                ASSERT_EQ(fixed, int(lerp8(uint8_t(a), uint8_t(b), double(t)))) << a << " " << b << " t " << t;
+                ++total;
+                if (fixed == old_float) continue;
+                ++differ;
+                ASSERT_LE(std::abs(fixed - old_float), 1) << "seed " << seed << ": " << a << " " << b << " t " << t;
+                const double exact = a + (b - a) * double(t);
+                const double to_boundary = std::abs(exact + 0.5 - std::round(exact + 0.5));
+                ASSERT_LE(to_boundary, 255.0 / 16384.0 + 1e-6) << a << " " << b << " t " << t;
+            }
+        }
+    // 0.65% of these cases differ (at most 2 * 255 / 2^14 = 3% could: the band around a boundary).
+    EXPECT_LT(differ, total / 50);
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, FastKernels, ::testing::Values(Reconstruction::two_pass, Reconstruction::pipelined),
