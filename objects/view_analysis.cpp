@@ -125,20 +125,8 @@ PixelRect moving_footprint(const ReliefTexture& t, const MovingTexels& m, const 
     const double us0 = m.x0, us1 = m.x1 + 1.0;
     const double vs0 = t.height - 1.0 - m.row1, vs1 = double(t.height - m.row0);
     double umin = us0 - 1, umax = us1 + 1, vmin = vs0 - 1, vmax = vs1 + 1;
-    // Where they go: u_i is linear in u_s and monotonic in d (likewise v_i), so the extremes are at the corners of
-    // the box times [dmin, dmax]; displacements that cannot be pre-warped are cut just below the eye's plane, as
-    // outlier_extent does (the texels beyond are dropped, and their neighbours then start new runs in place).
-    auto clampd = [&](double d) { return 1.0 + k.k3 * d > 1e-6 ? d : (1e-6 - 1.0) / k.k3; };
-    for (double d : {clampd(m.dmin), clampd(m.dmax)})
-        for (double us : {us0, us1})
-            for (double vs : {vs0, vs1}) {
-                double ui, vi;
-                if (!k.warp(us, vs, d, ui, vi)) continue;
-                umin = std::min(umin, ui);
-                umax = std::max(umax, ui);
-                vmin = std::min(vmin, vi);
-                vmax = std::max(vmax, vi);
-            }
+    // Where they go (texels beyond the eye's plane are dropped, and their neighbours then start new runs in place).
+    widen_by_warped_box(k, us0, us1, vs0, vs1, m.dmin, m.dmax, umin, umax, vmin, vmax);
     if (!std::isfinite(umin) || !std::isfinite(umax) || !std::isfinite(vmin) || !std::isfinite(vmax)) return all;
     // To output pixels, one more pixel each side: x covers u in [x - left, x + 1 - left); output line y (from the
     // bottom) covers v in [y - bottom, y + 1 - bottom), image row oh - 1 - y.

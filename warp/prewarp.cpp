@@ -520,22 +520,12 @@ long long count_still_texels(const ReliefTexture& t, bool exact) {
     return n;
 }
 
-PrewarpExtent outlier_extent(const ReliefTexture& t, const PrewarpCoefficients& k, int max_margin) {
-    PrewarpExtent e;
-    if (k.side == ViewSide::on_plane) return e;
-    // u_i is linear in u_s and monotonic in d, so its extremes are at the corners of [0, w] x [dmin, dmax];
-    // displacements that cannot be pre-warped (1 + k3*d <= 0) are cut just below the eye's plane.
-    double dlo = t.quant.min, dhi = t.quant.max;
-    auto clampd = [&](double d) {
-        if (1.0 + k.k3 * d > 1e-6) return d;
-        return (1e-6 - 1.0) / k.k3;
-    };
-    dlo = clampd(dlo);
-    dhi = clampd(dhi);
-    double umin = 0, umax = t.width, vmin = 0, vmax = t.height;
-    for (double d : {dlo, dhi})
-        for (double us : {0.0, double(t.width)})
-            for (double vs : {0.0, double(t.height)}) {
+void widen_by_warped_box(const PrewarpCoefficients& k, double us0, double us1, double vs0, double vs1, double dmin,
+                         double dmax, double& umin, double& umax, double& vmin, double& vmax) {
+    auto clampd = [&](double d) { return 1.0 + k.k3 * d > 1e-6 ? d : (1e-6 - 1.0) / k.k3; };
+    for (double d : {clampd(dmin), clampd(dmax)})
+        for (double us : {us0, us1})
+            for (double vs : {vs0, vs1}) {
                 double ui, vi;
                 if (!k.warp(us, vs, d, ui, vi)) continue;
                 umin = std::min(umin, ui);
@@ -543,6 +533,14 @@ PrewarpExtent outlier_extent(const ReliefTexture& t, const PrewarpCoefficients& 
                 vmin = std::min(vmin, vi);
                 vmax = std::max(vmax, vi);
             }
+}
+
+PrewarpExtent outlier_extent(const ReliefTexture& t, const PrewarpCoefficients& k, int max_margin) {
+    PrewarpExtent e;
+    if (k.side == ViewSide::on_plane) return e;
+    double umin = 0, umax = t.width, vmin = 0, vmax = t.height;
+    widen_by_warped_box(k, 0.0, double(t.width), 0.0, double(t.height), t.quant.min, t.quant.max, umin, umax, vmin,
+                        vmax);
     auto margin = [&](double over) {
         const double m = std::ceil(std::max(0.0, over));
         return int(std::min(m, double(max_margin)));

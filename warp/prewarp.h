@@ -89,6 +89,13 @@ PrewarpStats prewarp(const ReliefTexture& relief, const PrewarpCoefficients& k, 
 // The margins that hold every sample of this view (before clamping to max_margin).
 PrewarpExtent outlier_extent(const ReliefTexture& relief, const PrewarpCoefficients& k, int max_margin);
 
+// Widens [umin, umax] x [vmin, vmax] to hold where every point of the box [us0, us1] x [vs0, vs1] x [dmin, dmax]
+// (texel units, world displacement) is pre-warped to. u_i is linear in u_s and monotonic in d (likewise v_i), so
+// the extremes are at the box's eight corners; displacements that cannot be pre-warped (1 + k3*d <= 0) are cut
+// just below the eye's plane (those texels are dropped).
+void widen_by_warped_box(const PrewarpCoefficients& k, double us0, double us1, double vs0, double vs1, double dmin,
+                         double dmax, double& umin, double& umax, double& vmin, double& vmax);
+
 // Convenience: computes coefficients and tables itself.
 ImageRGBA8 prewarp(const ReliefTexture& relief, const glm::dvec3& eye, const PrewarpOptions& options = {});
 

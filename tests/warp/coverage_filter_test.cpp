@@ -174,7 +174,9 @@ TEST(CoverageFilter, ThreadIndependentAndPixelsAgreeWithPointInside) {
                 bool inside = true;
                 for (int dy = -1; dy <= 1; ++dy)
                     for (int dx = -1; dx <= 1; ++dx) inside = inside && point.at(x + dx, r + dy).a == 255;
-                if (inside) ASSERT_EQ(one.at(x, r).a, 255) << x << "," << r;
+                if (inside) {
+                    ASSERT_EQ(one.at(x, r).a, 255) << x << "," << r;
+                }
             }
     }
 }

@@ -173,7 +173,9 @@ TEST(StillRuns, CopyIsBitIdenticalToTheWarp) {
         o.copy_still_runs = true;
         const PrewarpStats s_on = prewarp(c.relief, k, o, ws_on, on, c.with_displ ? &d_on : nullptr);
         ASSERT_EQ(first_difference(off, on), "") << k.to_string();
-        if (c.with_displ) ASSERT_TRUE(d_on == d_off) << "depth-correction output differs";
+        if (c.with_displ) {
+            ASSERT_TRUE(d_on == d_off) << "depth-correction output differs";
+        }
         ASSERT_EQ(s_on.texels, s_off.texels);
         ASSERT_EQ(s_on.dropped, s_off.dropped);
         ASSERT_EQ(s_on.extent, s_off.extent);
