@@ -40,7 +40,7 @@ std::vector<FilterMeasurement> measure_filters(const FilterMeasureOptions& opt) 
             PrewarpOptions base;
             base.keep_outliers = true;
             base.threads = opt.threads;
-            const PrewarpExtent e = outlier_extent(t, k, 2 * std::max(t.width, t.height));
+            const PrewarpExtent e = prewarp_extent(t, k, base);
             PrewarpTruthOptions to;
             to.samples = opt.samples;
             const ImageRGBA8 truth = prewarp_truth(t, eye, e, to);

@@ -552,14 +552,17 @@ PrewarpExtent outlier_extent(const ReliefTexture& t, const PrewarpCoefficients& 
     return e;
 }
 
+PrewarpExtent prewarp_extent(const ReliefTexture& relief, const PrewarpCoefficients& k, const PrewarpOptions& options) {
+    if (!options.keep_outliers) return {};
+    const int mm = options.max_margin >= 0 ? options.max_margin : std::max(relief.width, relief.height) * 2;
+    return outlier_extent(relief, k, mm);
+}
+
 PrewarpStats prewarp(const ReliefTexture& relief, const PrewarpCoefficients& k, const PrewarpOptions& options,
                      PrewarpWorkspace& ws, ImageRGBA8& out, Image2D<uint8_t>* displ_out) {
     Frame fr{relief.width, relief.height, {}};
     fr.copy_still = options.copy_still_runs && options.filter == Filter::point;
-    if (options.keep_outliers) {
-        const int mm = options.max_margin >= 0 ? options.max_margin : std::max(relief.width, relief.height) * 2;
-        fr.e = outlier_extent(relief, k, mm);
-    }
+    fr.e = prewarp_extent(relief, k, options);
     if (options.filter == Filter::coverage && options.method != Reconstruction::two_pass)
         throw std::invalid_argument("the coverage filter works with the two-pass reconstruction only (method " +
                                     to_string(options.method) + ")");

@@ -89,6 +89,9 @@ PrewarpStats prewarp(const ReliefTexture& relief, const PrewarpCoefficients& k, 
 // The margins that hold every sample of this view (before clamping to max_margin).
 PrewarpExtent outlier_extent(const ReliefTexture& relief, const PrewarpCoefficients& k, int max_margin);
 
+// The margins prewarp() gives its output for these options (none unless keep_outliers; max_margin's default).
+PrewarpExtent prewarp_extent(const ReliefTexture& relief, const PrewarpCoefficients& k, const PrewarpOptions& options);
+
 // Widens [umin, umax] x [vmin, vmax] to hold where every point of the box [us0, us1] x [vs0, vs1] x [dmin, dmax]
 // (texel units, world displacement) is pre-warped to. u_i is linear in u_s and monotonic in d (likewise v_i), so
 // the extremes are at the box's eight corners; displacements that cannot be pre-warped (1 + k3*d <= 0) are cut
