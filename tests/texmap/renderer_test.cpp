@@ -159,6 +159,28 @@ TEST_F(RendererTest, EmptyFrameIsOpaqueBlack) {
     EXPECT_EQ(test::compare_images(ImageRGBA8(16, 16, kBlack), out, 0), "");
 }
 
+// begin_frame's clear is issued with the frame's first draw or read-back (texmap/renderer.cpp): a frame that draws
+// nothing after a drawn one must still read back cleared, finish() in between or not.
+TEST_F(RendererTest, ClearIsNotLostWhenTheFrameDrawsNothing) {
+    Camera cam = front_camera(64);
+    GlTexture tex;
+    tex.upload(four_colours());
+    renderer_->begin_frame(cam);
+    renderer_->draw_textured_quad(cam, kFullView, tex);
+    ASSERT_EQ(renderer_->read_pixels(64, 64).at(2, 2), kRed);
+    renderer_->begin_frame(cam);
+    renderer_->finish();
+    GlTexture empty;  // nothing uploaded: draw_textured_quad draws nothing
+    renderer_->draw_textured_quad(cam, kFullView, empty);
+    EXPECT_EQ(test::compare_images(ImageRGBA8(64, 64, kBlack), renderer_->read_pixels(64, 64), 0), "");
+    // A draw after the clear was issued keeps what the frame drew.
+    renderer_->begin_frame(cam);
+    renderer_->draw_textured_quad(cam, kFullView, tex);
+    renderer_->finish();
+    renderer_->draw_textured_quad(cam, kFullView, empty);
+    EXPECT_EQ(renderer_->read_pixels(64, 64).at(2, 2), kRed);
+}
+
 TEST_F(RendererTest, QuadWithTwoByTwoTexture) {
     Camera cam = front_camera(64);
     GlTexture tex;
