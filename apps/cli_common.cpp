@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "objects/procedural_media.h"
+#include "objects/timing.h"
 #include "texmap/image_io.h"
 
 namespace rtm::cli {
@@ -179,8 +180,7 @@ nlohmann::json timing_json(std::vector<double> ms) {
     double sum = 0;
     for (double x : ms) sum += x;
     const size_t n = ms.size();
-    const double median = n % 2 ? ms[n / 2] : 0.5 * (ms[n / 2 - 1] + ms[n / 2]);
-    return {{"min", ms.front()}, {"median", median}, {"mean", sum / double(n)}, {"max", ms.back()}, {"count", n}};
+    return {{"min", ms.front()}, {"median", rtm::median(ms)}, {"mean", sum / double(n)}, {"max", ms.back()}, {"count", n}};
 }
 
 }  // namespace rtm::cli

@@ -16,6 +16,7 @@
 
 #include "objects/procedural_media.h"
 #include "objects/relief_quad.h"
+#include "objects/timing.h"
 #include "objects/render_relief.h"
 #include "texmap/gl_context.h"
 #include "warp/fast_prewarp.h"
@@ -24,16 +25,6 @@ namespace rtm {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
-
-double median(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 std::string read_first_line(const char* path) {
     std::ifstream f(path);

@@ -7,6 +7,7 @@
 
 #include "objects/compare.h"
 #include "objects/procedural_media.h"
+#include "objects/timing.h"
 #include "objects/relief_quad.h"
 
 namespace rtm {
@@ -23,8 +24,7 @@ double median_ms(const ReliefTexture& t, const PrewarpCoefficients& k, const Pre
         prewarp(t, k, o, ws, out);
         ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     }
-    std::sort(ms.begin(), ms.end());
-    return ms[ms.size() / 2];
+    return median(ms);
 }
 
 }  // namespace

@@ -9,18 +9,12 @@
 
 #include "objects/bounds.h"
 #include "objects/micromesh.h"
+#include "objects/timing.h"
 #include "objects/view_analysis.h"
 #include "warp/fast_prewarp.h"
 #include "warp/pyramid.h"
 
 namespace rtm {
-
-namespace {
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-}  // namespace
 
 RenderMethod parse_render_method(const std::string& s) {
     if (s == "flat") return RenderMethod::flat;

@@ -5,15 +5,9 @@
 
 #include "objects/micromesh.h"
 #include "objects/raycast.h"
+#include "objects/timing.h"
 
 namespace rtm {
-
-namespace {
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-}  // namespace
 
 ImageRGBA8 render_relief_frame(ReliefQuad& quad, Renderer* renderer, const Camera& cam, const RenderSettings& s,
                                StageTimes& times, DrawReport* report) {

@@ -7,6 +7,7 @@
 
 #include "objects/bounds.h"
 #include "objects/compare.h"
+#include "objects/timing.h"
 #include "objects/image_diff.h"
 #include "objects/procedural_media.h"
 #include "objects/render_relief.h"
@@ -15,8 +16,6 @@
 namespace rtm {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 // An n x n wall at zero displacement with one raised block in a corner: only a small part of the pre-warped
 // texture changes when the eye moves (the partial-upload case).
@@ -125,10 +124,6 @@ std::vector<SkipMeasurement> measure_skips(int frames, const std::function<void(
                 }
             }
         }
-        auto median = [](std::vector<double>& v) {
-            std::sort(v.begin(), v.end());
-            return v.empty() ? 0.0 : v[v.size() / 2];
-        };
         RenderSettings mm;
         mm.method = RenderMethod::micromesh;
         StageTimes mt;
