@@ -39,6 +39,10 @@ struct PipelinedJob {
 // split, output v-rows [ysplit, out height)), output columns [x0, x1): clears that region, then fills it.
 void pipelined_part(const PipelinedJob& job, int part, int x0, int x1);
 
+// Test hook: 0 lets each part switch to reverse mode (fast_pipelined.cpp, reverse_rows) where rows overdraw much,
+// 1 runs whole parts in reverse mode, 2 never uses it. The output is the same.
+extern int pipelined_reverse;
+
 // The span between the last rows of the two parts, in every column where both have a sample.
 void pipelined_seam(const PipelinedJob& job);
 

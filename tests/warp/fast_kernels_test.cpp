@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "test_util.h"
+#include "warp/fast_pipelined.h"
 #include "warp/fast_prewarp.h"
 #include "warp/line_warp.h"
 #include "warp/prewarp.h"
@@ -389,6 +390,128 @@ TEST(Lerp8, FixedPointWithinOneLevelOfTheFloatFormula) {
         }
     // 0.65% of these cases differ (at most 2 * 255 / 2^14 = 3% could: the band around a boundary).
     EXPECT_LT(differ, total / 50);
+}
+
+// The pipelined kernel's reverse mode (warp/fast_pipelined.cpp, reverse_rows: each pixel written once, by the
+// last emission of the forward order) forced on for whole parts, and off, against the reference: the random cases
+// above, and foldover-heavy reliefs (noise and steep ridges seen at grazing angles: spans far longer than a pixel,
+// columns whose written rows are not one interval), still texels (samples on pixel centres, spans on both sides
+// of one), empty texels (columns whose runs restart with points), one to three threads (column ranges).
+class ReverseModeFixture : public ::testing::Test {
+protected:
+    void SetUp() override {
+        if (!fast_prewarp_available()) GTEST_SKIP() << "no AVX-512 on this CPU: the fast kernels are not used";
+    }
+    void TearDown() override { fast::pipelined_reverse = 0; }
+};
+
+TEST_F(ReverseModeFixture, PipelinedReverseModeMatchesTheReference) {
+    const uint64_t seed = test::test_seed(80011);
+    std::mt19937_64 rng(seed);
+    PrewarpWorkspace ws_ref, ws_fast;
+    ImageRGBA8 ref, fast;
+    for (int i = 0; i < 1500; ++i) {
+        Case c = random_case(rng);
+        c.options.method = Reconstruction::pipelined;
+        SCOPED_TRACE("seed " + std::to_string(seed) + " case " + std::to_string(i) + ": " + c.describe);
+        const PrewarpCoefficients k = compute_coefficients(c.relief.geometry, c.eye);
+        PrewarpOptions o = c.options;
+        o.fast = false;
+        o.threads = 1;
+        const PrewarpStats sr = prewarp(c.relief, k, o, ws_ref, ref);
+        o.fast = true;
+        for (int policy : {1, 2, 0}) {
+            fast::pipelined_reverse = policy;
+            for (int threads : {1, 2}) {
+                o.threads = threads;
+                o.copy_still_runs = (i + threads) % 2 == 0;
+                const PrewarpStats sf = prewarp(c.relief, k, o, ws_fast, fast);
+                ASSERT_EQ(first_difference(ref, fast), "") << "policy " << policy << " threads " << threads;
+                ASSERT_EQ(sf.dropped, sr.dropped);
+            }
+        }
+    }
+}
+
+TEST_F(ReverseModeFixture, PipelinedReverseModeFoldoversStillTexelsAndGaps) {
+    const uint64_t seed = test::test_seed(80012);
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    PrewarpWorkspace ws_ref, ws_fast;
+    ImageRGBA8 ref, fast;
+    for (int i = 0; i < 60; ++i) {
+        const int w = 40 + int(rng() % 200), h = 40 + int(rng() % 200);
+        ReliefGeometry g;
+        g.a = {1.0 / w, 0, 0};
+        g.b = {0, 1.0 / w, 0};
+        g.origin = {-0.5, -0.5, 0};
+        const uint32_t salt = uint32_t(rng());
+        const int kind = i % 5;
+        const double f = 0.2 + U(rng);
+        ReliefTexture t = test::make_test_relief(
+            w, h, -0.1, 0.3,
+            [&](int x, int r) -> double {
+                switch (kind) {
+                    case 0: return 0.3 * hash01(x, r, salt);                                 // noise
+                    case 1: return 0.3 * std::abs(std::sin(x * f)) * std::abs(std::sin(r * f));  // steep ridges
+                    case 2: return (x % 7 == 0 || r % 5 == 0) ? -0.1 : 0.0;                  // still texels, mortar
+                    case 3: return hash01(x / 4, r / 4, salt) < 0.5 ? 0.0 : 0.3;             // steps onto still
+                    default: return 0.3 * std::abs(std::sin(r * f));                         // ridges along rows
+                }
+            },
+            g);
+        if (i % 3 == 1)
+            for (size_t q = 0; q < t.texels.size(); ++q)
+                if (hash01(int(q), 3, salt) < 0.15) t.texels[q].q = kEmptyIndex;
+        // Grazing, near, and from above; epipole inside and outside.
+        const double az = (U(rng) - 0.5) * 6.0, el = i % 2 ? 0.03 + U(rng) * 0.3 : 0.3 + U(rng) * 1.2;
+        const double d = 0.4 + U(rng) * 2;
+        const glm::dvec3 eye{d * std::cos(el) * std::sin(az), d * std::cos(el) * std::cos(az), d * std::sin(el)};
+        const PrewarpCoefficients k = compute_coefficients(g, eye);
+        PrewarpOptions o;
+        o.method = Reconstruction::pipelined;
+        o.keep_outliers = i % 4 != 0;
+        o.fast = false;
+        o.threads = 1;
+        SCOPED_TRACE("seed " + std::to_string(seed) + " case " + std::to_string(i) + " kind " + std::to_string(kind) +
+                     " " + std::to_string(w) + "x" + std::to_string(h) + " " + k.to_string());
+        prewarp(t, k, o, ws_ref, ref);
+        o.fast = true;
+        for (int policy : {1, 0}) {
+            fast::pipelined_reverse = policy;
+            for (int threads : {1, 3}) {
+                o.threads = threads;
+                for (bool copy : {true, false}) {
+                    o.copy_still_runs = copy;
+                    prewarp(t, k, o, ws_fast, fast);
+                    ASSERT_EQ(first_difference(ref, fast), "")
+                        << "policy " << policy << " threads " << threads << " copy " << copy;
+                }
+            }
+        }
+    }
+}
+
+TEST_F(ReverseModeFixture, PipelinedReverseModeAllocatesNothingInSteadyState) {
+    ReliefGeometry g;
+    g.a = {0.01, 0, 0};
+    g.b = {0, 0.01, 0};
+    const ReliefTexture t = test::make_test_relief(
+        300, 200, 0.0, 0.5, [](int x, int) { return 0.5 * std::abs(std::sin(x * 0.3)); }, g);
+    PrewarpOptions o;
+    o.method = Reconstruction::pipelined;
+    o.threads = 1;
+    o.keep_outliers = true;
+    PrewarpWorkspace ws;
+    ImageRGBA8 out;
+    for (int policy : {1, 0}) {
+        fast::pipelined_reverse = policy;
+        const PrewarpCoefficients k = compute_coefficients(g, {1.2, 0.3, 0.4});
+        prewarp(t, k, o, ws, out);  // warm-up: buffers grow to size
+        const long long before = g_allocations.load();
+        for (int i = 0; i < 3; ++i) prewarp(t, compute_coefficients(g, {1.2 + 0.01 * i, 0.3, 0.4}), o, ws, out);
+        EXPECT_EQ(g_allocations.load() - before, 0) << "policy " << policy;
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, FastKernels, ::testing::Values(Reconstruction::two_pass, Reconstruction::pipelined),
