@@ -20,12 +20,12 @@ using Polygon3 = std::vector<glm::dvec3>;
 // by Sutherland-Hodgman; empty when nothing (or a degenerate sliver of fewer than 3 vertices) remains.
 Polygon3 clip_to_half_space(const Polygon3& poly, const glm::dvec3& n, double offset, bool keep_above);
 
-// Positions are relative to the eye (the cone's apex is the origin). `quad`: the relief quad's corners in order, a
-// convex quad. Returns convex pieces whose union
-// is `poly` less the cone through `quad` shrunk by `margin` (a length: each of the cone's four planes moved that
-// far inwards), so that the pieces overlap the cone by a sliver and float rounding of their edges cannot open a gap
-// along the quad's outline; the shader's own test still discards what falls on the quad. When the eye lies in the
-// quad's plane (no cone: every ray misses the quad or grazes it), `poly` is returned whole.
+// Positions are relative to the eye (the cone's apex is the origin); `quad` is the relief quad's corners in order
+// (convex). Returns up to four convex pieces whose union is `poly` less the cone through `quad` shrunk by `margin`
+// (a length: each of the cone's four planes moved that far inwards), so that the pieces overlap the cone by a
+// sliver and float rounding of their edges cannot open a gap along the quad's outline; the shader's own test still
+// discards what falls on the quad. Neighbouring pieces overlap by a band too (see the .cpp). When the eye lies in
+// the quad's plane (no cone: every ray misses the quad or grazes it), `poly` is returned whole.
 std::vector<Polygon3> outside_view_cone(const Polygon3& poly, const std::array<glm::dvec3, 4>& quad, double margin);
 
 }  // namespace rtm
