@@ -403,6 +403,30 @@ inline void span_pixels(const LineSoA& s, int k0, __m512i X, __m512i& c1, __m512
     }
 }
 
+// span_pixels for pixels X, X + 1, X + 2 and X + 3 (centres exact: pixel indices stay below 2^22).
+template <int A, bool kAttr>
+inline void span_pixels4(const LineSoA& s, int k0, __m512i X, __m512i c[4], __m512 v[4]) {
+    const __m512i sign = _mm512_set1_epi32(int(0x80000000));
+    const __m512 pa = _mm512_loadu_ps(s.pos + k0 + A);
+    const __m512 inv = A < 0 ? _mm512_loadu_ps(s.inv + k0)
+                             : _mm512_castsi512_ps(_mm512_xor_si512(
+                                   _mm512_castps_si512(_mm512_loadu_ps(s.inv + k0 + 1)), sign));
+    const Lerp8 lerp(_mm512_loadu_si512(s.col + k0 + A), _mm512_loadu_si512(s.col + k0));
+    const __m512 one = _mm512_set1_ps(1.0f);
+    __m512 va = _mm512_setzero_ps(), vb = _mm512_setzero_ps();
+    if constexpr (kAttr) {
+        va = _mm512_loadu_ps(s.attr + k0 + A);
+        vb = _mm512_loadu_ps(s.attr + k0);
+    }
+    const __m512 xc = _mm512_add_ps(_mm512_cvtepi32_ps(X), _mm512_set1_ps(0.5f));
+    for (int j = 0; j < 4; ++j) {
+        const __m512 t = span_parameter(j ? _mm512_add_ps(xc, _mm512_set1_ps(float(j))) : xc, pa, inv);
+        c[j] = lerp.at(t);
+        v[j] = kAttr ? _mm512_add_ps(_mm512_mul_ps(va, _mm512_sub_ps(one, t)), _mm512_mul_ps(vb, t))
+                     : _mm512_setzero_ps();
+    }
+}
+
 // Pixels [p_lo, p_hi] of the spans i_beg .. i_end - 1 of a sub-run (shade_subrun's numbering), per pixel: each
 // finds its span (the last one with st(i) <= x) by a branch-free binary search over a window of 32 starts with
 // two-register permutes. Kept out of line: it serves long spans and foldovers, and inlined into the loop of
@@ -497,7 +521,9 @@ __attribute__((noinline)) void shade_per_pixel(const LineSoA& s, int kL, int i_b
 // 16 with the vector units as the limit; per span where possible 2.1. Bumps 1024^2, both passes: 8.5 ->
 // 6.5 ms. Earlier variants: a scatter of span keys to their first pixels and a running maximum, 1 ms of 9 at
 // 1024^2 in the scatter alone; an unaligned 64-byte store of the key per span, 2.5x slower still.)
-template <int A, bool INC, bool kAttr>
+//
+// kStrict (warp_line_reverse): exactly the pixels of [out.clip_lo, out.clip_hi] are written, none outside.
+template <int A, bool INC, bool kAttr, bool kStrict = false>
 inline void shade_subrun(const LineSoA& s, int k_first, int k_last, const LineOut& out, int& x_lo, int& x_hi) {
     const int n_out = out.n;
     // Spans from left to right: processing order when positions increase, the reverse otherwise.
@@ -517,9 +543,35 @@ inline void shade_subrun(const LineSoA& s, int k_first, int k_last, const LineOu
         shade_per_pixel<A, INC, kAttr>(s, kL, i_beg, i_end, p_lo, p_hi, out);
     };
 
+    // Lanes of 16 pixels from `base` inside the clip range (all of them when not strict).
+    auto clip16 = [&](int base) -> __mmask16 {
+        if constexpr (!kStrict) {
+            return __mmask16(0xFFFF);
+        } else {
+            const int a = imax(out.clip_lo - base, 0), b = imin(out.clip_hi - base, 15);
+            return a > b ? __mmask16(0) : __mmask16(((2u << b) - 1u) & ~((1u << a) - 1u));
+        }
+    };
+
     if constexpr (step < 0) {  // keys decreasing from left to right: foldovers only
-        if (imax(x_lo, out.clip_lo) <= imin(x_hi, out.clip_hi))
-            per_pixel(0, S, imax(x_lo, out.clip_lo), imin(x_hi, out.clip_hi));
+        const int p_lo = imax(x_lo, out.clip_lo), p_hi = imin(x_hi, out.clip_hi);
+        if (p_lo <= p_hi) {
+            int i_beg = 0;
+            if constexpr (kStrict) {
+                // The last span starting at or before p_lo (binary search over the non-decreasing starts), so that
+                // the per-pixel search does not walk the spans left of the clip range.
+                int lo = 0, hi = S - 1;
+                while (lo < hi) {
+                    const int mid = (lo + hi + 1) >> 1;
+                    if (st(mid) <= p_lo)
+                        lo = mid;
+                    else
+                        hi = mid - 1;
+                }
+                i_beg = lo;
+            }
+            per_pixel(i_beg, S, p_lo, p_hi);
+        }
     } else {
         // Interleaving of two vectors (first pixel, second pixel of each span), low and high halves.
         const __m512i il_lo = _mm512_setr_epi32(0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5, 21, 6, 22, 7, 23);
@@ -535,10 +587,11 @@ inline void shade_subrun(const LineSoA& s, int k_first, int k_last, const LineOu
                 const int x0 = s.fl[k0];  // the pixel of span k0 (pos[k0] is its centre)
                 const int nl = int(_mm_popcnt_u32(m));
                 if (x0 >= 0 && x0 + nl <= n_out) {
-                    _mm512_mask_storeu_epi32(out.color + x0, m,
+                    const __mmask16 mc = m & clip16(x0);
+                    _mm512_mask_storeu_epi32(out.color + x0, mc,
                                              _mm512_or_si512(_mm512_loadu_si512(s.col + k0),
                                                              _mm512_set1_epi32(int(0xFF000000))));
-                    if constexpr (kAttr) _mm512_mask_storeu_ps(out.attr + x0, m, _mm512_loadu_ps(s.attr + k0));
+                    if constexpr (kAttr) _mm512_mask_storeu_ps(out.attr + x0, mc, _mm512_loadu_ps(s.attr + k0));
                     continue;
                 }
             }
@@ -557,7 +610,60 @@ inline void shade_subrun(const LineSoA& s, int k_first, int k_last, const LineOu
             if (!has1) continue;
             if (has3) {  // a span of 3 pixels or more: per pixel
                 const int c1 = imin(c0 + 16, S);
-                per_pixel(c0, c1, p0, imin(st(c1) - 1, n_out - 1));
+                if constexpr (kStrict) {
+                    // Spans of 3 and 4 pixels (stretched faces of foldover rows): span by span, four pixels each,
+                    // the pixels put in order with two rounds of permutes and compressed into place. Ridges, fast
+                    // two-pass, one thread, medians of 6 interleaved runs: 256^2 0.290 -> 0.266 ms, 1024^2 5.31 ->
+                    // 4.91 ms (shade_per_pixel 19% -> 12.5% of the time). Only on backward rows (kStrict), where
+                    // it was measured; bumps never gets here.
+                    if (!_mm512_mask_cmpge_epi32_mask(m, cnt, _mm512_set1_epi32(4))) {
+                        const __mmask16 has4 = _mm512_mask_cmpge_epi32_mask(m, cnt, _mm512_set1_epi32(3));
+                        __m512i c[4];
+                        __m512 v[4];
+                        span_pixels4<A, kAttr>(s, k0, lo, c, v);
+                        const __m512i qa = _mm512_setr_epi64(0, 8, 1, 9, 2, 10, 3, 11);
+                        const __m512i qb = _mm512_setr_epi64(4, 12, 5, 13, 6, 14, 7, 15);
+                        const __m512i p12l = _mm512_permutex2var_epi32(c[0], il_lo, c[1]);
+                        const __m512i p12h = _mm512_permutex2var_epi32(c[0], il_hi, c[1]);
+                        const __m512i p34l = _mm512_permutex2var_epi32(c[2], il_lo, c[3]);
+                        const __m512i p34h = _mm512_permutex2var_epi32(c[2], il_hi, c[3]);
+                        const __m512i qc[4] = {_mm512_permutex2var_epi64(p12l, qa, p34l),
+                                               _mm512_permutex2var_epi64(p12l, qb, p34l),
+                                               _mm512_permutex2var_epi64(p12h, qa, p34h),
+                                               _mm512_permutex2var_epi64(p12h, qb, p34h)};
+                        __m512 qv[4];
+                        if constexpr (kAttr) {
+                            const __m512d a12l = _mm512_castps_pd(_mm512_permutex2var_ps(v[0], il_lo, v[1]));
+                            const __m512d a12h = _mm512_castps_pd(_mm512_permutex2var_ps(v[0], il_hi, v[1]));
+                            const __m512d a34l = _mm512_castps_pd(_mm512_permutex2var_ps(v[2], il_lo, v[3]));
+                            const __m512d a34h = _mm512_castps_pd(_mm512_permutex2var_ps(v[2], il_hi, v[3]));
+                            qv[0] = _mm512_castpd_ps(_mm512_permutex2var_pd(a12l, qa, a34l));
+                            qv[1] = _mm512_castpd_ps(_mm512_permutex2var_pd(a12l, qb, a34l));
+                            qv[2] = _mm512_castpd_ps(_mm512_permutex2var_pd(a12h, qa, a34h));
+                            qv[3] = _mm512_castpd_ps(_mm512_permutex2var_pd(a12h, qb, a34h));
+                        }
+                        const uint32_t h1 = has1, h2 = has2, h3 = has3, h4 = has4;
+                        int p = p0;
+                        for (int g = 0; g < 4; ++g) {
+                            const int sh = 4 * g;
+                            const __mmask16 mg =
+                                __mmask16(_pdep_u32((h1 >> sh) & 0xF, 0x1111) | _pdep_u32((h2 >> sh) & 0xF, 0x2222) |
+                                          _pdep_u32((h3 >> sh) & 0xF, 0x4444) | _pdep_u32((h4 >> sh) & 0xF, 0x8888));
+                            if (!mg) continue;
+                            const int np = int(_mm_popcnt_u32(mg));
+                            const __mmask16 ms = first_lanes(np) & clip16(p);
+                            _mm512_mask_storeu_epi32(out.color + p, ms, _mm512_maskz_compress_epi32(mg, qc[g]));
+                            if constexpr (kAttr)
+                                _mm512_mask_storeu_ps(out.attr + p, ms, _mm512_maskz_compress_ps(mg, qv[g]));
+                            p += np;
+                        }
+                        continue;
+                    }
+                }
+                const int q_lo = kStrict ? imax(p0, out.clip_lo) : p0;
+                const int q_end = imin(st(c1) - 1, n_out - 1);
+                const int q_hi = kStrict ? imin(q_end, out.clip_hi) : q_end;
+                if (q_lo <= q_hi) per_pixel(c0, c1, q_lo, q_hi);
                 continue;
             }
             __m512i c1, c2;
@@ -565,9 +671,9 @@ inline void shade_subrun(const LineSoA& s, int k_first, int k_last, const LineOu
             if (!has2) {
                 span_pixels<A, kAttr, false>(s, k0, lo, c1, v1, c2, v2);
                 const int np = int(_mm_popcnt_u32(has1));
-                _mm512_mask_storeu_epi32(out.color + p0, first_lanes(np), _mm512_maskz_compress_epi32(has1, c1));
-                if constexpr (kAttr)
-                    _mm512_mask_storeu_ps(out.attr + p0, first_lanes(np), _mm512_maskz_compress_ps(has1, v1));
+                const __mmask16 ms = first_lanes(np) & clip16(p0);
+                _mm512_mask_storeu_epi32(out.color + p0, ms, _mm512_maskz_compress_epi32(has1, c1));
+                if constexpr (kAttr) _mm512_mask_storeu_ps(out.attr + p0, ms, _mm512_maskz_compress_ps(has1, v1));
                 continue;
             }
             span_pixels<A, kAttr, true>(s, k0, lo, c1, v1, c2, v2);
@@ -576,14 +682,15 @@ inline void shade_subrun(const LineSoA& s, int k_first, int k_last, const LineOu
             const __mmask16 mlo = __mmask16(_pdep_u32(m1 & 0xFF, 0x5555) | _pdep_u32(m2 & 0xFF, 0xAAAA));
             const __mmask16 mhi = __mmask16(_pdep_u32(m1 >> 8, 0x5555) | _pdep_u32(m2 >> 8, 0xAAAA));
             const int nlo = int(_mm_popcnt_u32(mlo)), nhi = int(_mm_popcnt_u32(mhi));
-            _mm512_mask_storeu_epi32(out.color + p0, first_lanes(nlo),
+            const __mmask16 slo = first_lanes(nlo) & clip16(p0), shi = first_lanes(nhi) & clip16(p0 + nlo);
+            _mm512_mask_storeu_epi32(out.color + p0, slo,
                                      _mm512_maskz_compress_epi32(mlo, _mm512_permutex2var_epi32(c1, il_lo, c2)));
-            _mm512_mask_storeu_epi32(out.color + p0 + nlo, first_lanes(nhi),
+            _mm512_mask_storeu_epi32(out.color + p0 + nlo, shi,
                                      _mm512_maskz_compress_epi32(mhi, _mm512_permutex2var_epi32(c1, il_hi, c2)));
             if constexpr (kAttr) {
-                _mm512_mask_storeu_ps(out.attr + p0, first_lanes(nlo),
+                _mm512_mask_storeu_ps(out.attr + p0, slo,
                                       _mm512_maskz_compress_ps(mlo, _mm512_permutex2var_ps(v1, il_lo, v2)));
-                _mm512_mask_storeu_ps(out.attr + p0 + nlo, first_lanes(nhi),
+                _mm512_mask_storeu_ps(out.attr + p0 + nlo, shi,
                                       _mm512_maskz_compress_ps(mhi, _mm512_permutex2var_ps(v1, il_hi, v2)));
             }
         }
@@ -666,6 +773,155 @@ inline void warp_line_fast(const LineSoA& s, int split, const LineOut& out, OnRa
         scalar_span<kAttr>(s, split - 1, split, out, x_lo, x_hi);
         if (x_lo <= x_hi) on_range(x_lo, x_hi);
     }
+}
+
+// Bits of m set in [lo, hi] (0 when lo > hi).
+inline int count_bits(const uint64_t* m, int lo, int hi) {
+    if (lo > hi) return 0;
+    const int w0 = lo >> 6, w1 = hi >> 6;
+    const uint64_t first = ~uint64_t(0) << (lo & 63), last = ~uint64_t(0) >> (63 - (hi & 63));
+    if (w0 == w1) return int(_mm_popcnt_u64(m[w0] & first & last));
+    int c = int(_mm_popcnt_u64(m[w0] & first)) + int(_mm_popcnt_u64(m[w1] & last));
+    for (int w = w0 + 1; w < w1; ++w) c += int(_mm_popcnt_u64(m[w]));
+    return c;
+}
+
+// Whether warp_line_reverse should take the line: every sample takes part and at least one span in kFoldShare
+// folds over (keys decreasing from left to right: spans of the part before the split with positions decreasing, of
+// the part after it with positions increasing), i.e. later spans overwrite earlier ones. any_row: the first
+// condition only (tests). Foldover spans per row: ridges a quarter to a half of the samples; bricks 8 to 15 of 256,
+// 16 to 31 of 1024, where the backward order measured no faster or slower within noise (2.69 against 2.80 ms at
+// 1024^2, 0.198 against 0.203 at 256^2, then the other way round), so bricks keeps the forward order.
+constexpr int kFoldShare = 16;
+inline bool line_folds_over(const LineSoA& s, int split, bool any_row = false) {
+    const int n = s.n;
+    if (n < 1) return false;
+    for (int w = 0; w < (n >> 6); ++w)
+        if (~s.valid[w]) return false;
+    if ((n & 63) && (~s.valid[n >> 6] & ((uint64_t(1) << (n & 63)) - 1))) return false;
+    if (any_row) return true;
+    const int folds = count_bits(s.up_dec, 1, split - 1) + count_bits(s.dn_inc, split, n - 2);
+    return folds > 0 && folds * kFoldShare >= n;
+}
+
+// The whole line as warp_line_fast (with no range callback), with the painter's algorithm run backwards: the items
+// (points, sub-runs, single spans, the seam) in the reverse of warp_line_fast's order, each shading only the pixels
+// that no later item (in the forward order) writes. A pixel's value does not depend on which other pixels are
+// shaded, and the forward order leaves every pixel with the value of the last item that writes it, which is the
+// first one here to reach it: the output is the same. The pixels written so far are kept as one interval
+// [w_lo, w_hi]; every sample taking part (line_folds_over), the spans form one connected path from the seam
+// outwards and an item's pixels always touch that interval. If one ever did not (returns false, some pixels
+// written), the caller clears the line and warps it forwards.
+//
+// Why: on foldover-heavy reliefs most horizontal pixel shading is overwritten later in the same row (ridges 1024^2:
+// 2.44 writes per pixel that survives its row, bumps 1.00, bricks 1.16), and shade_per_pixel took 40% of the
+// two-pass kernel's time on ridges. Fast two-pass, ridges, one thread, `rtm bench` medians of 5 runs interleaved
+// with the forward-only build: 1024^2 6.15 -> 4.04 ms, 256^2 0.376 -> 0.250 ms (two threads 3.12 -> 2.07, 0.209 ->
+// 0.149); of that, the backward order alone 6.9 -> 4.9 and 0.40 -> 0.28, the four-pixel spans in shade_subrun the
+// rest. Bumps and bricks (forward rows) unchanged within noise. Only the two-pass kernel uses it: the pipelined
+// kernel's emitter receives the ranges of the forward order.
+template <bool kAttr>
+inline bool warp_line_reverse(const LineSoA& s, int split, const LineOut& out) {
+    const int n = s.n, n_out = out.n;
+    int w_lo = 0, w_hi = -1;
+    // An item writing pixels [lo, hi] (clamped to the line; empty when lo > hi) through shade(clip_lo, clip_hi),
+    // which writes exactly its pixels inside the clip range.
+    auto item = [&](int lo, int hi, auto&& shade) -> bool {
+        lo = imax(lo, 0);
+        hi = imin(hi, n_out - 1);
+        if (lo > hi) return true;
+        if (w_lo > w_hi) {
+            shade(lo, hi);
+            w_lo = lo;
+            w_hi = hi;
+            return true;
+        }
+        if (hi < w_lo - 1 || lo > w_hi + 1) return false;
+        if (lo < w_lo) shade(lo, w_lo - 1);
+        if (hi > w_hi) shade(w_hi + 1, hi);
+        w_lo = imin(w_lo, lo);
+        w_hi = imax(w_hi, hi);
+        return true;
+    };
+    auto rgba = [](uint32_t c) { return Rgba8{uint8_t(c), uint8_t(c >> 8), uint8_t(c >> 16), uint8_t(c >> 24)}; };
+    // The span from sample a (earlier) to b: raster_span's pixels, those in [cl, ch] only.
+    auto span = [&](int a, int b) -> bool {
+        const float pa = s.pos[a], pb = s.pos[b];
+        int lo = 0, hi = -1;
+        if (pb > pa) {
+            lo = s.fl[a] + 1;
+            hi = s.fl[b];
+        } else if (pb < pa) {
+            lo = s.ce[b];
+            hi = s.ce[a] - 1;
+        }
+        return item(lo, hi, [&](int cl, int ch) {
+            // raster_span's loop body, over [cl, ch] only.
+            const float inv = 1.0f / (pb - pa);
+            const Rgba8 ca = rgba(s.col[a]), cb = rgba(s.col[b]);
+            for (int x = cl; x <= ch; ++x) {
+                const float t = std::clamp((float(x) + 0.5f - pa) * inv, 0.0f, 1.0f);
+                out.color[x] = uint32_t(lerp8(ca.r, cb.r, t)) | uint32_t(lerp8(ca.g, cb.g, t)) << 8 |
+                               uint32_t(lerp8(ca.b, cb.b, t)) << 16 | 0xFF000000u;
+                if constexpr (kAttr) out.attr[x] = attr_lerp(s.attr[a], s.attr[b], t);
+            }
+        });
+    };
+    auto point = [&](int k) -> bool {
+        const float p = s.pos[k];
+        if (!(p >= 0.0f && p < float(n_out))) return true;
+        const int x = int(p);
+        return item(x, x, [&](int, int) {
+            out.color[x] = s.col[k] | 0xFF000000u;
+            if constexpr (kAttr) out.attr[x] = s.attr[k];
+        });
+    };
+    // A sub-run keyed k_first .. k_last in processing order (as warp_part cuts it).
+    auto subrun = [&]<int A, bool INC>(int k_first, int k_last) -> bool {
+        constexpr int step = A < 0 ? 1 : -1;
+        const int spans = (k_last - k_first) * step + 1;
+        if (spans <= kScalarSpans) {
+            for (int q = k_last;; q -= step) {
+                if (!span(q + A, q)) return false;
+                if (q == k_first) return true;
+            }
+        }
+        // shade_subrun's pixel range st(0) .. st(S) - 1: from the first sample (k_first + A) to the last (k_last).
+        const int lo = INC ? s.fl[k_first + A] + 1 : s.ce[k_last];
+        const int hi = INC ? s.fl[k_last] : s.ce[k_first + A] - 1;
+        return item(lo, hi, [&](int cl, int ch) {
+            LineOut o = out;
+            o.clip_lo = cl;
+            o.clip_hi = ch;
+            int xl, xh;
+            shade_subrun<A, INC, kAttr, true>(s, k_first, k_last, o, xl, xh);
+        });
+    };
+    if (split >= 1 && split < n && !span(split - 1, split)) return false;
+    // The part after the split, from its last span (keyed split: samples split + 1 and split) outwards, then its
+    // first sample.
+    if (split < n) {
+        for (int j = split; j <= n - 2;) {
+            const bool inc = bit(s.dn_inc, j);
+            const int e = scan_up<false>(inc ? s.dn_inc : s.dn_dec, j, n - 2) - 1;  // the sub-run's first key
+            if (!(inc ? subrun.template operator()<+1, true>(e, j) : subrun.template operator()<+1, false>(e, j)))
+                return false;
+            j = e + 1;
+        }
+        if (!point(n - 1)) return false;
+    }
+    // The part before the split, from its last span (keyed split - 1) outwards, then its first sample.
+    if (split > 0) {
+        for (int j = split - 1; j >= 1;) {
+            const bool inc = bit(s.up_inc, j);
+            const int e = scan_down<false>(inc ? s.up_inc : s.up_dec, j, 1) + 1;
+            if (!(inc ? subrun.template operator()<-1, true>(e, j) : subrun.template operator()<-1, false>(e, j)))
+                return false;
+            j = e - 1;
+        }
+        if (!point(0)) return false;
+    }
+    return true;
 }
 
 }  // namespace

@@ -56,6 +56,12 @@ inline int step_row(const TwoPassJob& job, int s) {
     return s < job.split_v ? h - 1 - s : s - job.split_v;
 }
 
+// Test hook for the horizontal pass: 0 warps rows that fold over backwards (warp/fast_line.h, warp_line_reverse)
+// and the others forwards, 1 warps every row whose samples all take part backwards, 2 never does, 3 does as 1 and
+// then clears the row and warps it forwards again (the fallback when warp_line_reverse fails). The output is the
+// same.
+extern int two_pass_reverse;
+
 // Steps [s0, s1) warped horizontally into band rows 0 .. s1 - s0 - 1 (colour and v, `stride` elements apart).
 void horizontal_steps(const TwoPassJob& job, int s0, int s1, uint32_t* band_c, float* band_v, size_t stride);
 

@@ -18,6 +18,7 @@
 #include "test_util.h"
 #include "warp/fast_pipelined.h"
 #include "warp/fast_prewarp.h"
+#include "warp/fast_two_pass.h"
 #include "warp/line_warp.h"
 #include "warp/prewarp.h"
 
@@ -506,6 +507,162 @@ TEST_F(ReverseModeFixture, PipelinedReverseModeAllocatesNothingInSteadyState) {
     ImageRGBA8 out;
     for (int policy : {1, 0}) {
         fast::pipelined_reverse = policy;
+        const PrewarpCoefficients k = compute_coefficients(g, {1.2, 0.3, 0.4});
+        prewarp(t, k, o, ws, out);  // warm-up: buffers grow to size
+        const long long before = g_allocations.load();
+        for (int i = 0; i < 3; ++i) prewarp(t, compute_coefficients(g, {1.2 + 0.01 * i, 0.3, 0.4}), o, ws, out);
+        EXPECT_EQ(g_allocations.load() - before, 0) << "policy " << policy;
+    }
+}
+
+// The two-pass kernel's backward rows (warp/fast_line.h, warp_line_reverse: a row's items in the reverse of the
+// forward order, each pixel shaded once) against the reference, with the hook fast::two_pass_reverse: 1 takes
+// every row whose samples all take part backwards (also rows without foldovers: copies, spans of one, two and more
+// pixels, clipped on either side of the pixels already written), 3 does so and then redoes the row forwards (the
+// fallback), 0 only rows that fold over, 2 none. Rows with empty texels or texels that cannot be pre-warped always go
+// forwards.
+class TwoPassReverseRows : public ::testing::Test {
+protected:
+    void SetUp() override {
+        if (!fast_prewarp_available()) GTEST_SKIP() << "no AVX-512 on this CPU: the fast kernels are not used";
+    }
+    void TearDown() override { fast::two_pass_reverse = 0; }
+};
+
+TEST_F(TwoPassReverseRows, RandomCasesMatchTheReference) {
+    const uint64_t seed = test::test_seed(80021);
+    std::mt19937_64 rng(seed);
+    PrewarpWorkspace ws_ref, ws_fast;
+    ImageRGBA8 ref, fast;
+    for (int i = 0; i < 1200; ++i) {
+        Case c = random_case(rng);
+        c.options.method = Reconstruction::two_pass;
+        SCOPED_TRACE("seed " + std::to_string(seed) + " case " + std::to_string(i) + ": " + c.describe);
+        const PrewarpCoefficients k = compute_coefficients(c.relief.geometry, c.eye);
+        PrewarpOptions o = c.options;
+        o.fast = false;
+        o.threads = 1;
+        const PrewarpStats sr = prewarp(c.relief, k, o, ws_ref, ref);
+        o.fast = true;
+        for (int policy : {1, 3, 0, 2}) {
+            fast::two_pass_reverse = policy;
+            for (int threads : {1, 2}) {
+                o.threads = threads;
+                o.copy_still_runs = (i + threads) % 2 == 0;
+                const PrewarpStats sf = prewarp(c.relief, k, o, ws_fast, fast);
+                ASSERT_EQ(first_difference(ref, fast), "") << "policy " << policy << " threads " << threads;
+                ASSERT_EQ(sf.dropped, sr.dropped);
+            }
+        }
+    }
+}
+
+TEST_F(TwoPassReverseRows, FoldoversEmptyRowsAndMarksMatchTheReference) {
+    // Foldover-heavy reliefs (steep ridges across and along the rows, noise, steps onto still texels) seen from
+    // grazing angles, near, from above and from below the highest texels (texels that cannot be pre-warped), the
+    // epipole inside the rows, on a texel boundary, on a texel centre and outside; empty texels in some rows only,
+    // so that backward and forward rows meet in one band; and the same reliefs with discontinuity marks, which
+    // the fast kernels leave to the generic ones.
+    const uint64_t seed = test::test_seed(80022);
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    PrewarpWorkspace ws_ref, ws_fast;
+    ImageRGBA8 ref, fast;
+    for (int i = 0; i < 80; ++i) {
+        const int w = i % 8 == 0 ? 16 * (1 + int(rng() % 12)) : 20 + int(rng() % 220), h = 30 + int(rng() % 120);
+        ReliefGeometry g;
+        g.a = {1.0 / w, 0, 0};
+        g.b = {0, 1.0 / w, 0};
+        g.origin = {-0.5, -0.5, 0};
+        const uint32_t salt = uint32_t(rng());
+        const int kind = i % 4;
+        const double f = 0.2 + U(rng);
+        ReliefTexture t = test::make_test_relief(
+            w, h, 0.0, 0.3,
+            [&](int x, int r) -> double {
+                switch (kind) {
+                    case 0: return 0.3 * std::abs(2.0 * ((x * f / 4) - std::floor(x * f / 4)) - 1.0);  // ridges
+                    case 1: return 0.3 * hash01(x, r, salt);                                     // noise
+                    case 2: return hash01(x / 5, r / 7, salt) < 0.5 ? 0.0 : 0.3;                 // steps
+                    default: return 0.3 * std::abs(std::sin(x * f)) * std::abs(std::sin(r * f * 0.3));
+                }
+            },
+            g);
+        const int empty_rows = int(rng() % 3);  // none, every fourth row, a few random rows
+        for (int r = 0; r < h; ++r) {
+            const bool holes = empty_rows == 1 ? r % 4 == 1 : empty_rows == 2 && hash01(r, 5, salt) < 0.2;
+            if (!holes) continue;
+            const int x0 = int(hash01(r, 9, salt) * w), n = 1 + int(hash01(r, 11, salt) * 4);
+            for (int x = x0; x < std::min(w, x0 + n); ++x) t.texels[size_t(r) * size_t(w) + size_t(x)].q = kEmptyIndex;
+        }
+        double eu = U(rng) * w;
+        switch (i % 5) {
+            case 0: eu = std::floor(eu); break;          // on a texel boundary
+            case 1: eu = std::floor(eu) + 0.5; break;    // over a texel centre
+            case 2: eu = -w * (0.5 + U(rng) * 3); break;  // outside, left
+            case 3: eu = w * (1.5 + U(rng) * 3); break;   // outside, right
+            default: break;
+        }
+        const double ev = U(rng) * 1.6 * h - 0.3 * h;
+        double dist;
+        switch (i % 3) {
+            case 0: dist = 0.02 + U(rng) * 0.1; break;  // grazing
+            case 1: dist = 0.5 + U(rng) * 2; break;     // from above
+            default: dist = 0.3 * (0.3 + U(rng) * 0.6); break;  // below the highest texels
+        }
+        const glm::dvec3 eye = g.origin + g.a * eu + g.b * ev + g.f() * dist;
+        const PrewarpCoefficients k = compute_coefficients(g, eye);
+        PrewarpOptions o;
+        o.method = Reconstruction::two_pass;
+        o.keep_outliers = i % 4 != 0;
+        o.fast = false;
+        o.threads = 1;
+        SCOPED_TRACE("seed " + std::to_string(seed) + " case " + std::to_string(i) + " kind " + std::to_string(kind) +
+                     " empty rows " + std::to_string(empty_rows) + " " + std::to_string(w) + "x" +
+                     std::to_string(h) + " " + k.to_string());
+        const PrewarpStats sr = prewarp(t, k, o, ws_ref, ref);
+        o.fast = true;
+        for (int policy : {0, 1, 3, 2}) {
+            fast::two_pass_reverse = policy;
+            for (int threads : {1, 3}) {
+                o.threads = threads;
+                for (bool copy : {true, false}) {
+                    o.copy_still_runs = copy;
+                    const PrewarpStats sf = prewarp(t, k, o, ws_fast, fast);
+                    ASSERT_EQ(first_difference(ref, fast), "")
+                        << "policy " << policy << " threads " << threads << " copy " << copy;
+                    ASSERT_EQ(sf.dropped, sr.dropped);
+                }
+            }
+        }
+        // Discontinuity marks: the generic kernels, whatever the hook says.
+        mark_discontinuities(t, 0.05);
+        o.fast = false;
+        prewarp(t, k, o, ws_ref, ref);
+        o.fast = true;
+        EXPECT_FALSE(fast_prewarp_covers(t, k, o, sr.extent, nullptr));
+        for (int policy : {0, 1}) {
+            fast::two_pass_reverse = policy;
+            prewarp(t, k, o, ws_fast, fast);
+            ASSERT_EQ(first_difference(ref, fast), "") << "marks, policy " << policy;
+        }
+    }
+}
+
+TEST_F(TwoPassReverseRows, AllocatesNothingInSteadyState) {
+    ReliefGeometry g;
+    g.a = {0.01, 0, 0};
+    g.b = {0, 0.01, 0};
+    const ReliefTexture t = test::make_test_relief(
+        300, 200, 0.0, 0.5, [](int x, int) { return 0.5 * std::abs(std::sin(x * 0.3)); }, g);
+    PrewarpOptions o;
+    o.method = Reconstruction::two_pass;
+    o.threads = 1;
+    o.keep_outliers = true;
+    PrewarpWorkspace ws;
+    ImageRGBA8 out;
+    for (int policy : {0, 1, 3}) {
+        fast::two_pass_reverse = policy;
         const PrewarpCoefficients k = compute_coefficients(g, {1.2, 0.3, 0.4});
         prewarp(t, k, o, ws, out);  // warm-up: buffers grow to size
         const long long before = g_allocations.load();
