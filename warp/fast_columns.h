@@ -169,8 +169,15 @@ __attribute__((always_inline)) inline void column_pixels(const ColumnOut& o, int
 // (a subset) the column's previous sample (pv, pc) is connected to it: raster_span(pv, pc, v, c) along the column;
 // in the other lanes of `fin` the new sample starts a run: raster_point(v, c). Pixels outside [y0, y1) are dropped.
 // The span's rows are computed in float as raster_span does.
-inline void column_spans(const ColumnOut& o, int x, __mmask16 fin, __mmask16 pok, __m512 pv, __m512i pc, __m512 v,
-                         __m512i c) {
+// The output rows column_spans writes: lanes `span` (connected to the previous sample) and `point` (starting a
+// run), each lane's rows ylo .. yhi clipped to [y0, y1) (none where ylo > yhi).
+struct ColumnRows {
+    __mmask16 span, point;
+    __m512i ylo, yhi;
+};
+
+__attribute__((always_inline)) inline ColumnRows column_rows(const ColumnOut& o, __mmask16 fin, __mmask16 pok,
+                                                             __m512 pv, __m512 v) {
     const __m512 half = _mm512_set1_ps(0.5f), one = _mm512_set1_ps(1.0f), zero = _mm512_setzero_ps();
     const __m512 last = _mm512_set1_ps(float(o.oh - 1)), ohf = _mm512_set1_ps(float(o.oh));
     const __mmask16 inc = _mm512_mask_cmp_ps_mask(pok, v, pv, _CMP_GT_OQ);
@@ -190,8 +197,14 @@ inline void column_spans(const ColumnOut& o, int x, __mmask16 fin, __mmask16 pok
     __m512i yhi = _mm512_mask_mov_epi32(_mm512_cvttps_epi32(hi), point, ylo);
     ylo = _mm512_max_epi32(ylo, _mm512_set1_epi32(o.y0));
     yhi = _mm512_min_epi32(yhi, _mm512_set1_epi32(o.y1 - 1));
-    const __mmask16 in = _mm512_cmple_epi32_mask(ylo, yhi);
-    if ((span | point) & in) column_pixels(o, x, span & in, point & in, ylo, yhi, pv, pc, v, c);
+    return {span, point, ylo, yhi};
+}
+
+inline void column_spans(const ColumnOut& o, int x, __mmask16 fin, __mmask16 pok, __m512 pv, __m512i pc, __m512 v,
+                         __m512i c) {
+    const ColumnRows r = column_rows(o, fin, pok, pv, v);
+    const __mmask16 in = _mm512_cmple_epi32_mask(r.ylo, r.yhi);
+    if ((r.span | r.point) & in) column_pixels(o, x, r.span & in, r.point & in, r.ylo, r.yhi, pv, pc, v, c);
 }
 
 }  // namespace

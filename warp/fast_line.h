@@ -856,15 +856,11 @@ inline bool warp_line_reverse(const LineSoA& s, int split, const LineOut& out) {
             hi = s.ce[a] - 1;
         }
         return item(lo, hi, [&](int cl, int ch) {
-            // raster_span's loop body, over [cl, ch] only.
-            const float inv = 1.0f / (pb - pa);
-            const Rgba8 ca = rgba(s.col[a]), cb = rgba(s.col[b]);
-            for (int x = cl; x <= ch; ++x) {
-                const float t = std::clamp((float(x) + 0.5f - pa) * inv, 0.0f, 1.0f);
-                out.color[x] = uint32_t(lerp8(ca.r, cb.r, t)) | uint32_t(lerp8(ca.g, cb.g, t)) << 8 |
-                               uint32_t(lerp8(ca.b, cb.b, t)) << 16 | 0xFF000000u;
-                if constexpr (kAttr) out.attr[x] = attr_lerp(s.attr[a], s.attr[b], t);
-            }
+            const float aa = kAttr ? s.attr[a] : 0.0f, ab = kAttr ? s.attr[b] : 0.0f;
+            raster_span_pixels(pa, rgba(s.col[a]), aa, pb, rgba(s.col[b]), ab, cl, ch, [&](int x, Rgba8 c, float d) {
+                out.color[x] = uint32_t(c.r) | uint32_t(c.g) << 8 | uint32_t(c.b) << 16 | 0xFF000000u;
+                if constexpr (kAttr) out.attr[x] = d;
+            });
         });
     };
     auto point = [&](int k) -> bool {

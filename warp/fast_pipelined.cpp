@@ -256,24 +256,7 @@ __attribute__((noinline)) void column_bits(const ColumnOut& o, PipeScratch& sc, 
 // column_spans in reverse mode: writes only the pixels no emission replayed before has written, and records them.
 inline void column_spans_rev(const ColumnOut& o, PipeScratch& sc, int x, __mmask16 fin, __mmask16 pok, __m512 pv,
                              __m512i pc, __m512 v, __m512i c) {
-    const __m512 half = _mm512_set1_ps(0.5f), one = _mm512_set1_ps(1.0f), zero = _mm512_setzero_ps();
-    const __m512 last = _mm512_set1_ps(float(o.oh - 1)), ohf = _mm512_set1_ps(float(o.oh));
-    const __mmask16 inc = _mm512_mask_cmp_ps_mask(pok, v, pv, _CMP_GT_OQ);
-    const __mmask16 dec = _mm512_mask_cmp_ps_mask(pok, v, pv, _CMP_LT_OQ);
-    const __m512 pvh = _mm512_sub_ps(pv, half), vh = _mm512_sub_ps(v, half);
-    __m512 lo = _mm512_mask_mov_ps(_mm512_roundscale_ps(vh, _MM_FROUND_TO_POS_INF), inc,
-                                   _mm512_add_ps(_mm512_roundscale_ps(pvh, _MM_FROUND_TO_NEG_INF), one));
-    __m512 hi = _mm512_mask_mov_ps(_mm512_sub_ps(_mm512_roundscale_ps(pvh, _MM_FROUND_TO_POS_INF), one), inc,
-                                   _mm512_roundscale_ps(vh, _MM_FROUND_TO_NEG_INF));
-    lo = _mm512_max_ps(lo, zero);
-    hi = _mm512_min_ps(hi, last);
-    const __mmask16 span = (inc | dec) & _mm512_cmp_ps_mask(lo, hi, _CMP_LE_OQ);
-    const __mmask16 point =
-        fin & ~pok & _mm512_cmp_ps_mask(v, zero, _CMP_GE_OQ) & _mm512_cmp_ps_mask(v, ohf, _CMP_LT_OQ);
-    __m512i ylo = _mm512_cvttps_epi32(_mm512_mask_mov_ps(lo, point, v));
-    __m512i yhi = _mm512_mask_mov_epi32(_mm512_cvttps_epi32(hi), point, ylo);
-    ylo = _mm512_max_epi32(ylo, _mm512_set1_epi32(o.y0));
-    yhi = _mm512_min_epi32(yhi, _mm512_set1_epi32(o.y1 - 1));
+    const auto [span, point, ylo, yhi] = column_rows(o, fin, pok, pv, v);
     const __mmask16 todo = (span | point) & _mm512_cmple_epi32_mask(ylo, yhi);
     if (!todo) return;
     const __m512i clo = _mm512_loadu_si512(sc.clo + x), chi = _mm512_loadu_si512(sc.chi + x);

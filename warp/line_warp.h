@@ -81,6 +81,20 @@ inline void raster_point(P p, Rgba8 c, const A& attr, int n, Put&& put) {
     put(int(p), c, attr);
 }
 
+// Pixels x0 .. x1 of the span from pa to pb (pa != pb), colour and attribute interpolated at each centre. A pixel's
+// value depends on x alone, so any part of a span gives the same pixels as the whole (the fast kernels' backward
+// rows, warp/fast_line.h, draw only the parts no later span covers).
+template <class P, class A, class Put>
+inline void raster_span_pixels(P pa, Rgba8 ca, const A& aa, P pb, Rgba8 cb, const A& ab, int x0, int x1, Put&& put) {
+    const P inv = P(1) / (pb - pa);
+    for (int x = x0; x <= x1; ++x) {
+        P t = (P(x) + P(0.5) - pa) * inv;
+        t = std::clamp(t, P(0), P(1));
+        const Rgba8 c{lerp8(ca.r, cb.r, t), lerp8(ca.g, cb.g, t), lerp8(ca.b, cb.b, t), 255};
+        put(x, c, attr_lerp(aa, ab, t));
+    }
+}
+
 // Pixels with centres between pa (excluded) and pb (included), colour and attribute interpolated at the centre.
 template <class P, class A, class Put>
 inline void raster_span(P pa, Rgba8 ca, const A& aa, P pb, Rgba8 cb, const A& ab, int n, Put&& put) {
@@ -96,14 +110,7 @@ inline void raster_span(P pa, Rgba8 ca, const A& aa, P pb, Rgba8 cb, const A& ab
     lo = std::max(lo, P(0));
     hi = std::min(hi, P(n - 1));
     if (!(lo <= hi)) return;
-    const P inv = P(1) / (pb - pa);
-    const int x0 = int(lo), x1 = int(hi);
-    for (int x = x0; x <= x1; ++x) {
-        P t = (P(x) + P(0.5) - pa) * inv;
-        t = std::clamp(t, P(0), P(1));
-        const Rgba8 c{lerp8(ca.r, cb.r, t), lerp8(ca.g, cb.g, t), lerp8(ca.b, cb.b, t), 255};
-        put(x, c, attr_lerp(aa, ab, t));
-    }
+    raster_span_pixels(pa, ca, aa, pb, cb, ab, int(lo), int(hi), put);
 }
 
 struct AlwaysConnected {
