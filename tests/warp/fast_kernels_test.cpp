@@ -13,6 +13,7 @@
 #include <new>
 #include <random>
 #include <sstream>
+#include <initializer_list>
 #include <vector>
 
 #include "test_util.h"
@@ -406,14 +407,17 @@ protected:
     void TearDown() override { fast::pipelined_reverse = 0; }
 };
 
-TEST_F(ReverseModeFixture, PipelinedReverseModeMatchesTheReference) {
-    const uint64_t seed = test::test_seed(80011);
+// The random cases above against the reference, the fast kernel run with `hook` (a kernel's test switch) set to
+// each of `policies`, on one and two threads, copies of still runs alternating; the dropped counts must agree too.
+void random_cases_with_hook(Reconstruction method, int& hook, std::initializer_list<int> policies, int cases,
+                            uint64_t seed_fallback) {
+    const uint64_t seed = test::test_seed(seed_fallback);
     std::mt19937_64 rng(seed);
     PrewarpWorkspace ws_ref, ws_fast;
     ImageRGBA8 ref, fast;
-    for (int i = 0; i < 1500; ++i) {
+    for (int i = 0; i < cases; ++i) {
         Case c = random_case(rng);
-        c.options.method = Reconstruction::pipelined;
+        c.options.method = method;
         SCOPED_TRACE("seed " + std::to_string(seed) + " case " + std::to_string(i) + ": " + c.describe);
         const PrewarpCoefficients k = compute_coefficients(c.relief.geometry, c.eye);
         PrewarpOptions o = c.options;
@@ -421,8 +425,8 @@ TEST_F(ReverseModeFixture, PipelinedReverseModeMatchesTheReference) {
         o.threads = 1;
         const PrewarpStats sr = prewarp(c.relief, k, o, ws_ref, ref);
         o.fast = true;
-        for (int policy : {1, 2, 0}) {
-            fast::pipelined_reverse = policy;
+        for (int policy : policies) {
+            hook = policy;
             for (int threads : {1, 2}) {
                 o.threads = threads;
                 o.copy_still_runs = (i + threads) % 2 == 0;
@@ -432,6 +436,10 @@ TEST_F(ReverseModeFixture, PipelinedReverseModeMatchesTheReference) {
             }
         }
     }
+}
+
+TEST_F(ReverseModeFixture, PipelinedReverseModeMatchesTheReference) {
+    random_cases_with_hook(Reconstruction::pipelined, fast::pipelined_reverse, {1, 2, 0}, 1500, 80011);
 }
 
 TEST_F(ReverseModeFixture, PipelinedReverseModeFoldoversStillTexelsAndGaps) {
@@ -530,31 +538,7 @@ protected:
 };
 
 TEST_F(TwoPassReverseRows, RandomCasesMatchTheReference) {
-    const uint64_t seed = test::test_seed(80021);
-    std::mt19937_64 rng(seed);
-    PrewarpWorkspace ws_ref, ws_fast;
-    ImageRGBA8 ref, fast;
-    for (int i = 0; i < 1200; ++i) {
-        Case c = random_case(rng);
-        c.options.method = Reconstruction::two_pass;
-        SCOPED_TRACE("seed " + std::to_string(seed) + " case " + std::to_string(i) + ": " + c.describe);
-        const PrewarpCoefficients k = compute_coefficients(c.relief.geometry, c.eye);
-        PrewarpOptions o = c.options;
-        o.fast = false;
-        o.threads = 1;
-        const PrewarpStats sr = prewarp(c.relief, k, o, ws_ref, ref);
-        o.fast = true;
-        for (int policy : {1, 3, 0, 2}) {
-            fast::two_pass_reverse = policy;
-            for (int threads : {1, 2}) {
-                o.threads = threads;
-                o.copy_still_runs = (i + threads) % 2 == 0;
-                const PrewarpStats sf = prewarp(c.relief, k, o, ws_fast, fast);
-                ASSERT_EQ(first_difference(ref, fast), "") << "policy " << policy << " threads " << threads;
-                ASSERT_EQ(sf.dropped, sr.dropped);
-            }
-        }
-    }
+    random_cases_with_hook(Reconstruction::two_pass, fast::two_pass_reverse, {1, 3, 0, 2}, 1200, 80021);
 }
 
 TEST_F(TwoPassReverseRows, FoldoversEmptyRowsAndMarksMatchTheReference) {
