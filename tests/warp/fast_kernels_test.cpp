@@ -54,6 +54,16 @@ double hash01(int x, int y, uint32_t s) {
     return double(h >> 8) / 16777216.0;
 }
 
+// Square texels, the relief 1 unit wide, centred on the origin's x and y: the geometry of the large and
+// foldover-heavy test reliefs.
+ReliefGeometry unit_width_geometry(int w) {
+    ReliefGeometry g;
+    g.a = {1.0 / w, 0, 0};
+    g.b = {0, 1.0 / w, 0};
+    g.origin = {-0.5, -0.5, 0};
+    return g;
+}
+
 Case random_case(std::mt19937_64& rng) {
     std::uniform_real_distribution<double> U(0.0, 1.0);
     auto pick = [&](int n) { return int(rng() % uint64_t(n)); };
@@ -187,10 +197,7 @@ TEST_P(FastKernels, LargeReliefsAndManyThreadsMatch) {
     ImageRGBA8 ref, fast;
     for (int i = 0; i < 8; ++i) {
         const int w = 300 + int(rng() % 300), h = 250 + int(rng() % 300);
-        ReliefGeometry g;
-        g.a = {1.0 / w, 0, 0};
-        g.b = {0, 1.0 / w, 0};
-        g.origin = {-0.5, -0.5, 0};
+        const ReliefGeometry g = unit_width_geometry(w);
         const uint32_t salt = uint32_t(rng());
         const bool noisy = i % 3 == 2;
         const ReliefTexture t = test::make_test_relief(
@@ -274,10 +281,7 @@ TEST_P(FastKernels, BandsAndThreadsMatch) {
     ImageRGBA8 ref, fast;
     for (int h : {31, 32, 33, 64, 65, 96, 97, 130}) {
         const int w = 20 + int(rng() % 120);
-        ReliefGeometry g;
-        g.a = {1.0 / w, 0, 0};
-        g.b = {0, 1.0 / w, 0};
-        g.origin = {-0.5, -0.5, 0};
+        const ReliefGeometry g = unit_width_geometry(w);
         const uint32_t salt = uint32_t(rng());
         const ReliefTexture t = test::make_test_relief(
             w, h, 0.0, 0.2,
@@ -450,10 +454,7 @@ TEST_F(ReverseModeFixture, PipelinedReverseModeFoldoversStillTexelsAndGaps) {
     ImageRGBA8 ref, fast;
     for (int i = 0; i < 60; ++i) {
         const int w = 40 + int(rng() % 200), h = 40 + int(rng() % 200);
-        ReliefGeometry g;
-        g.a = {1.0 / w, 0, 0};
-        g.b = {0, 1.0 / w, 0};
-        g.origin = {-0.5, -0.5, 0};
+        const ReliefGeometry g = unit_width_geometry(w);
         const uint32_t salt = uint32_t(rng());
         const int kind = i % 5;
         const double f = 0.2 + U(rng);
@@ -554,10 +555,7 @@ TEST_F(TwoPassReverseRows, FoldoversEmptyRowsAndMarksMatchTheReference) {
     ImageRGBA8 ref, fast;
     for (int i = 0; i < 80; ++i) {
         const int w = i % 8 == 0 ? 16 * (1 + int(rng() % 12)) : 20 + int(rng() % 220), h = 30 + int(rng() % 120);
-        ReliefGeometry g;
-        g.a = {1.0 / w, 0, 0};
-        g.b = {0, 1.0 / w, 0};
-        g.origin = {-0.5, -0.5, 0};
+        const ReliefGeometry g = unit_width_geometry(w);
         const uint32_t salt = uint32_t(rng());
         const int kind = i % 4;
         const double f = 0.2 + U(rng);
