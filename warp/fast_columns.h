@@ -6,8 +6,8 @@
 // with it (raster_point). Columns are independent, so 16 of them advance together; each lane computes exactly what
 // raster_span / raster_point computes for its column, operation by operation (the weight of lerp8 straight from
 // the span's reciprocal, span_weight). The lanes' pixels land on different output rows where the span lengths
-// differ from column to column: store_rows writes them with a few masked row stores without branching on the data
-// in the usual cases, and long spans go row by row over the columns that share those rows.
+// differ from column to column: store_rows writes them with two masked row stores or one scatter, without
+// branching on the data in the usual cases, and long spans go row by row over the columns that share those rows.
 #pragma once
 
 #include "warp/fast_line.h"
@@ -47,10 +47,14 @@ inline void column_long_span(const ColumnOut& o, int x, int ylo, int yhi, float 
 // writing every lane to its row with one masked store per distinct row (a loop) made bumps 1024^2 5.3 ms where a
 // version writing the lanes only to rows y_0 and y_0 + 1 took 4.1 (wrong pixels, but the cost of the rest). So:
 // two masked row stores, unconditionally, when every lane is on the first active lane's row y_f or the next; else
-// five, on rows y_8 - 2 .. y_8 + 2 around lane 8's, when every lane is there (bumps 1024^2: 5.2 -> 4.9 ms); else one
-// scalar store per lane, a loop of fixed length where the lanes scatter (ridges 1024^2: 11.4 -> 9.0 ms, bumps 4.9 ->
-// 4.7; scalar stores for all, or after the first window only, measured slower; so did a window based on the lanes'
-// minimum row, and skipping empty stores; a 16-lane scatter instruction costs about 35 TSC cycles here).
+// one scatter instruction.
+// History (Zen 4 guest): five masked stores on the rows around lane 8's, then a loop of scalar stores, measured
+// best there (bumps 1024^2 5.2 -> 4.7 ms, ridges 11.4 -> 9.0), a 16-lane scatter costing about 35 TSC cycles. On
+// the Zen 5 guest a scatter of 16 lanes to 16 rows takes 4.7 ns against 10.4 for the scalar loop (a loop of
+// stores alone), and the scatter in place of both measured, one thread, median of 7 interleaved runs: ridges
+// two-pass 256^2 0.258 -> 0.216 ms, 1024^2 4.33 -> 3.47; pipelined 0.496 -> 0.475, 7.93 -> 7.39; bumps and
+// bricks 0 to 5% faster. Scatter only (no two-row stores) and the two-row test narrowed to one row were within the
+// noise of it but for bricks pipelined (3 to 4% slower for the first) and bumps 1024^2 (9% faster for the first).
 inline void store_rows(const ColumnOut& o, int x, __mmask16 act, __m512i y, __m512i col) {
     {
         const int yf = _mm512_cvtsi512_si32(_mm512_permutexvar_epi32(_mm512_set1_epi32(int(_tzcnt_u32(act))), y));
@@ -63,25 +67,10 @@ inline void store_rows(const ColumnOut& o, int x, __mmask16 act, __m512i y, __m5
             return;
         }
     }
-    {
-        constexpr int K = 5;
-        const int base = _mm_cvtsi128_si32(_mm512_extracti32x4_epi32(y, 2)) - K / 2;  // lane 8's row - 2
-        const __m512i d = _mm512_sub_epi32(y, _mm512_set1_epi32(base));
-        if (_mm512_mask_cmpge_epu32_mask(act, d, _mm512_set1_epi32(K)) == 0) {
-            for (int i = 0; i < K; ++i)  // rows outside the image get an empty mask at a clamped address
-                _mm512_mask_storeu_epi32(o.vline(imin(imax(base + i, 0), o.oh - 1)) + x,
-                                         act & _mm512_cmpeq_epi32_mask(d, _mm512_set1_epi32(i)), col);
-            return;
-        }
-    }
-    alignas(64) uint32_t cc[16];
-    alignas(64) int32_t yy[16];
-    _mm512_store_si512(cc, col);
-    _mm512_store_si512(yy, y);
-    for (unsigned l = act; l; l &= l - 1) {
-        const int i = int(_tzcnt_u32(l));
-        o.vline(yy[i])[x + i] = cc[i];
-    }
+    // Scatter: 32-bit offsets from v-line 0 of column x (fast_prewarp_covers keeps the image under 2^31 - 16
+    // pixels).
+    const __m512i off = _mm512_add_epi32(_mm512_mullo_epi32(y, _mm512_set1_epi32(-o.ow)), iota16());
+    _mm512_mask_i32scatter_epi32(o.vline(0) + x, act, off, col, 4);
 }
 
 // Long spans (a column connected to a sample far away, common where rows fold over: ridges 1024^2 write 93

@@ -26,6 +26,9 @@ namespace {
 
 // Largest output side the kernels accept: pixel indices and span ends stay exact in float far below 2^24.
 constexpr int kMaxSide = 1 << 22;
+// Largest output the kernels accept: the column kernels' scatter (store_rows, warp/fast_columns.h) addresses pixels
+// by 32-bit offsets of up to the whole image from its last storage row. 2^31 - 16 pixels is 8 GiB of RGBA8.
+constexpr long long kMaxPixels = (1ll << 31) - 16;
 
 // One task arena per explicit thread count, created on first use: an arena created, used for one parallel_for and
 // destroyed costs 8 to 150 us here, a cached one 1 us (a 256^2 pre-warp takes about 300 us).
@@ -115,7 +118,7 @@ bool fast_prewarp_covers(const ReliefTexture& relief, const PrewarpCoefficients&
     if (!relief.breaks.empty() || relief.discontinuity_threshold > 0.0) return false;
     if (k.side == ViewSide::on_plane || relief.width <= 0 || relief.height <= 0) return false;
     const long long ow = (long long)relief.width + e.left + e.right, oh = (long long)relief.height + e.bottom + e.top;
-    if (ow > kMaxSide || oh > kMaxSide) return false;
+    if (ow > kMaxSide || oh > kMaxSide || ow * oh > kMaxPixels) return false;
     return fast_prewarp_available();
 }
 

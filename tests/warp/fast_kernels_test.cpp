@@ -653,6 +653,29 @@ TEST_F(TwoPassReverseRows, AllocatesNothingInSteadyState) {
     }
 }
 
+TEST(FastPrewarpCovers, OnlyOutputsItsKernelsCanAddress) {
+    // The column kernels scatter by 32-bit pixel offsets (store_rows, warp/fast_columns.h): outputs of 2^31 - 16
+    // pixels or more, and sides over 2^22, go to the generic kernels. Only the decision is tested: no image that
+    // size is allocated.
+    if (!fast_prewarp_available()) GTEST_SKIP() << "no AVX-512 on this CPU";
+    const ReliefTexture t = test::make_test_relief(16, 16, 0.0, 0.1, [](int, int) { return 0.05; },
+                                                   unit_width_geometry(16));
+    const PrewarpCoefficients k = compute_coefficients(t.geometry, {0.1, 0.2, 2.0});
+    PrewarpOptions o;
+    auto covers = [&](int ow, int oh) {
+        PrewarpExtent e;
+        e.right = ow - 16;
+        e.top = oh - 16;
+        return fast_prewarp_covers(t, k, o, e, nullptr);
+    };
+    EXPECT_TRUE(covers(16, 16));
+    EXPECT_TRUE(covers(46340, 46340));        // 2,147,395,600 pixels: 88,032 under the limit
+    EXPECT_FALSE(covers(46341, 46341));       // 2,147,488,281 pixels: over 2^31 - 16
+    EXPECT_TRUE(covers(1 << 22, 511));        // the longest side, 2,143,289,344 pixels
+    EXPECT_FALSE(covers((1 << 22) + 1, 16));  // a side over 2^22
+    EXPECT_FALSE(covers(16, (1 << 22) + 1));
+}
+
 INSTANTIATE_TEST_SUITE_P(Methods, FastKernels, ::testing::Values(Reconstruction::two_pass, Reconstruction::pipelined),
                          [](const auto& info) {
                              return info.param == Reconstruction::two_pass ? "TwoPass" : "Pipelined";
