@@ -5,6 +5,8 @@
 // current before; with one context per process (the usual case) the loading happens once.
 #include "texmap/gl_context.h"
 
+#include "texmap/llvmpipe_threads.h"
+
 // glad must come first: it defines __gl_h_ so that osmesa.h's #include <GL/gl.h> is skipped. osmesa.h still needs
 // the two calling-convention macros that GL/gl.h would have defined.
 #include <glad/gl.h>
@@ -94,6 +96,7 @@ public:
             if (g_loaded_for == this) g_loaded_for = nullptr;
             throw;
         }
+        spread_llvmpipe_threads();
     }
     ~OsMesaContext() override {
         if (OSMesaGetCurrentContext() == ctx_) OSMesaMakeCurrent(nullptr, nullptr, GL_UNSIGNED_BYTE, 0, 0);
@@ -179,6 +182,7 @@ public:
             throw;
         }
         glfwSwapInterval(0);
+        spread_llvmpipe_threads();
     }
     ~GlfwContext() override {
         if (glfwGetCurrentContext() == window_) glfwMakeContextCurrent(nullptr);
