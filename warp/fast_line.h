@@ -24,9 +24,9 @@
 //    more than 32 samples) and interpolated as raster_span does. Sub-runs of at most kScalarSpans spans
 //    (foldover-heavy lines) go through raster_span itself.
 //
-// Include only after `#pragma GCC target(...)` and after every other header: everything here is internal to the
-// including file (anonymous namespace), so no inline function compiled for AVX-512 can leak into code that runs
-// without it.
+// Include only after warp/fast_target_begin.h (the AVX-512 target) and after every other header: everything here
+// is internal to the including file (anonymous namespace), so no inline function compiled for AVX-512 can leak
+// into code that runs without it.
 #pragma once
 
 #include <immintrin.h>

@@ -14,12 +14,7 @@
 
 #include "warp/line_warp.h"
 
-#pragma GCC push_options
-// GCC 12 reports _mm512_undefined_* inside its own intrinsics as possibly uninitialized.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#pragma GCC target("avx512f,avx512bw,avx512dq,avx512vl,avx512vbmi,avx512vnni,bmi,bmi2,lzcnt,popcnt,prfchw")
+#include "warp/fast_target_begin.h"
 #include "warp/fast_line.h"
 #include "warp/fast_row.h"
 #include "warp/fast_columns.h"
@@ -432,5 +427,4 @@ void pipelined_seam(const PipelinedJob& job) {
 }  // namespace fast
 }  // namespace rtm
 
-#pragma GCC diagnostic pop
-#pragma GCC pop_options
+#include "warp/fast_target_end.h"

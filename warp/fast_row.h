@@ -1,5 +1,5 @@
 // Preparing one row of a relief for the fast line kernel (AVX-512): for fast_two_pass.cpp and fast_pipelined.cpp
-// only, included after their `#pragma GCC target` like warp/fast_line.h.
+// only, included after warp/fast_target_begin.h like warp/fast_line.h.
 #pragma once
 
 #include "warp/fast_line.h"
