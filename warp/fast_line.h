@@ -374,12 +374,14 @@ inline void shade_block(const LineSoA& s, __m512i kb, int kmin, int kmax, int x0
                                             _mm512_mul_ps(vb, t)));
 }
 
-// The colour (packed, alpha 255) and attribute of the first pixel X of each of the 16 spans keyed k0 .. k0 + 15
-// (the later sample of span k is k, the earlier k + A), and with kSecond those of pixel X + 1: raster_span's
-// arithmetic, with the span's samples loaded directly (consecutive keys) instead of permuted, and set up once for
-// both pixels. The centre of X + 1 is that of X plus 1, exactly.
-template <int A, bool kAttr, bool kSecond>
-inline void span_pixels(const LineSoA& s, int k0, __m512i X, __m512i& c1, __m512& v1, __m512i& c2, __m512& v2) {
+// The colour (packed, alpha 255) and attribute of pixels X, X + 1, .. X + N - 1 (N = 1, 2 or 4) of each of the 16
+// spans keyed k0 .. k0 + 15 (the later sample of span k is k, the earlier k + A): raster_span's arithmetic, with the
+// span's samples loaded directly (consecutive keys) instead of permuted, and set up once for the N pixels. The
+// centre of X + j is that of X plus j, exactly (pixel indices stay below 2^22). Without kAttr, v is 0.
+template <int A, bool kAttr, int N>
+__attribute__((always_inline)) inline void span_pixels(const LineSoA& s, int k0, __m512i X, __m512i (&c)[N],
+                                                       __m512 (&v)[N]) {
+    static_assert(N == 1 || N == 2 || N == 4);
     const __m512i sign = _mm512_set1_epi32(int(0x80000000));
     const __m512 pa = _mm512_loadu_ps(s.pos + k0 + A);
     const __m512 inv = A < 0 ? _mm512_loadu_ps(s.inv + k0)
@@ -393,33 +395,7 @@ inline void span_pixels(const LineSoA& s, int k0, __m512i X, __m512i& c1, __m512
         vb = _mm512_loadu_ps(s.attr + k0);
     }
     const __m512 xc = _mm512_add_ps(_mm512_cvtepi32_ps(X), _mm512_set1_ps(0.5f));
-    const __m512 t1 = span_parameter(xc, pa, inv);
-    c1 = lerp.at(t1);
-    if constexpr (kAttr) v1 = _mm512_add_ps(_mm512_mul_ps(va, _mm512_sub_ps(one, t1)), _mm512_mul_ps(vb, t1));
-    if constexpr (kSecond) {
-        const __m512 t2 = span_parameter(_mm512_add_ps(xc, one), pa, inv);
-        c2 = lerp.at(t2);
-        if constexpr (kAttr) v2 = _mm512_add_ps(_mm512_mul_ps(va, _mm512_sub_ps(one, t2)), _mm512_mul_ps(vb, t2));
-    }
-}
-
-// span_pixels for pixels X, X + 1, X + 2 and X + 3 (centres exact: pixel indices stay below 2^22).
-template <int A, bool kAttr>
-inline void span_pixels4(const LineSoA& s, int k0, __m512i X, __m512i c[4], __m512 v[4]) {
-    const __m512i sign = _mm512_set1_epi32(int(0x80000000));
-    const __m512 pa = _mm512_loadu_ps(s.pos + k0 + A);
-    const __m512 inv = A < 0 ? _mm512_loadu_ps(s.inv + k0)
-                             : _mm512_castsi512_ps(_mm512_xor_si512(
-                                   _mm512_castps_si512(_mm512_loadu_ps(s.inv + k0 + 1)), sign));
-    const Lerp8 lerp(_mm512_loadu_si512(s.col + k0 + A), _mm512_loadu_si512(s.col + k0));
-    const __m512 one = _mm512_set1_ps(1.0f);
-    __m512 va = _mm512_setzero_ps(), vb = _mm512_setzero_ps();
-    if constexpr (kAttr) {
-        va = _mm512_loadu_ps(s.attr + k0 + A);
-        vb = _mm512_loadu_ps(s.attr + k0);
-    }
-    const __m512 xc = _mm512_add_ps(_mm512_cvtepi32_ps(X), _mm512_set1_ps(0.5f));
-    for (int j = 0; j < 4; ++j) {
+    for (int j = 0; j < N; ++j) {
         const __m512 t = span_parameter(j ? _mm512_add_ps(xc, _mm512_set1_ps(float(j))) : xc, pa, inv);
         c[j] = lerp.at(t);
         v[j] = kAttr ? _mm512_add_ps(_mm512_mul_ps(va, _mm512_sub_ps(one, t)), _mm512_mul_ps(vb, t))
@@ -620,7 +596,7 @@ inline void shade_subrun(const LineSoA& s, int k_first, int k_last, const LineOu
                         const __mmask16 has4 = _mm512_mask_cmpge_epi32_mask(m, cnt, _mm512_set1_epi32(3));
                         __m512i c[4];
                         __m512 v[4];
-                        span_pixels4<A, kAttr>(s, k0, lo, c, v);
+                        span_pixels<A, kAttr, 4>(s, k0, lo, c, v);
                         const __m512i qa = _mm512_setr_epi64(0, 8, 1, 9, 2, 10, 3, 11);
                         const __m512i qb = _mm512_setr_epi64(4, 12, 5, 13, 6, 14, 7, 15);
                         const __m512i p12l = _mm512_permutex2var_epi32(c[0], il_lo, c[1]);
@@ -666,17 +642,21 @@ inline void shade_subrun(const LineSoA& s, int k_first, int k_last, const LineOu
                 if (q_lo <= q_hi) per_pixel(c0, c1, q_lo, q_hi);
                 continue;
             }
-            __m512i c1, c2;
-            __m512 v1 = _mm512_setzero_ps(), v2 = _mm512_setzero_ps();
             if (!has2) {
-                span_pixels<A, kAttr, false>(s, k0, lo, c1, v1, c2, v2);
+                __m512i c[1];
+                __m512 v[1];
+                span_pixels<A, kAttr, 1>(s, k0, lo, c, v);
                 const int np = int(_mm_popcnt_u32(has1));
                 const __mmask16 ms = first_lanes(np) & clip16(p0);
-                _mm512_mask_storeu_epi32(out.color + p0, ms, _mm512_maskz_compress_epi32(has1, c1));
-                if constexpr (kAttr) _mm512_mask_storeu_ps(out.attr + p0, ms, _mm512_maskz_compress_ps(has1, v1));
+                _mm512_mask_storeu_epi32(out.color + p0, ms, _mm512_maskz_compress_epi32(has1, c[0]));
+                if constexpr (kAttr) _mm512_mask_storeu_ps(out.attr + p0, ms, _mm512_maskz_compress_ps(has1, v[0]));
                 continue;
             }
-            span_pixels<A, kAttr, true>(s, k0, lo, c1, v1, c2, v2);
+            __m512i c[2];
+            __m512 v[2];
+            span_pixels<A, kAttr, 2>(s, k0, lo, c, v);
+            const __m512i c1 = c[0], c2 = c[1];
+            const __m512 v1 = v[0], v2 = v[1];
             // Pixel order: span by span, first pixel then second.
             const uint32_t m1 = has1, m2 = has2;
             const __mmask16 mlo = __mmask16(_pdep_u32(m1 & 0xFF, 0x5555) | _pdep_u32(m2 & 0xFF, 0xAAAA));
