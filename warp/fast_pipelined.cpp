@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <utility>
 
 #include "warp/line_warp.h"
@@ -86,6 +87,10 @@ struct PipeScratch {
     bool measure = false;
     __m512 drawn = _mm512_setzero_ps();
     __m512 cap = _mm512_setzero_ps();
+    // Row chunks drawing into a scratch image: the range of the finite row coordinates emitted (ClipRange).
+    bool track = false;
+    __m512 vmin = _mm512_setzero_ps();
+    __m512 vmax = _mm512_setzero_ps();
 
     PipeScratch() = default;
     PipeScratch(const PipeScratch&) = delete;
@@ -281,16 +286,63 @@ inline void column_spans_rev(const ColumnOut& o, PipeScratch& sc, int x, __mmask
     if (fb) [[unlikely]] column_bits(o, sc, x, fb, span, ylo, yhi, pv, pc, v, c);
 }
 
+// Widens sc.vmin and sc.vmax by the finite row coordinates of columns a .. b of the row buffer: the rows a scratch
+// chunk may have written, so that the composite reads only those (1024^2: 505 to 659 of the 1024 rows for the
+// second of two chunks). Called by ClipRange, not in the Emitter, so that the code without chunks is unchanged.
+__attribute__((noinline)) void track_rows(PipeScratch& sc, int a, int b) {
+    for (int x = a; x <= b; x += 16) {
+        const __mmask16 m = first_lanes(b - x + 1);
+        const __m512 v = _mm512_maskz_loadu_ps(m, sc.row_v + x);
+        const __mmask16 fin = m & ~nonfinite(v);
+        sc.vmin = _mm512_mask_min_ps(sc.vmin, fin, sc.vmin, v);
+        sc.vmax = _mm512_mask_max_ps(sc.vmax, fin, sc.vmax, v);
+    }
+}
+
 template <class E>
 struct ClipRange {
     const E& emit;
     int x0, x1;  // columns [x0, x1)
+    PipeScratch* track = nullptr;  // records the emitted row coordinates (track_rows) when not null
     void operator()(int a, int b) const {
         a = imax(a, x0);
         b = imin(b, x1 - 1);
-        if (a <= b) emit(a, b);
+        if (a > b) return;
+        if (track) track_rows(*track, a, b);
+        emit(a, b);
     }
 };
+
+// The rows a task warps: first, first + step, .. up to end (exclusive) of part `part` (step 1 for part 0, -1 for
+// part 1), columns [x0, x1); `seam`: the task holds the part's last rows and records the seam.
+struct RowTask {
+    int part = 0;
+    int first = 0, end = 0, step = 1;
+    int x0 = 0, x1 = 0;
+    bool seam = true;
+};
+
+// Prepares row j and warps it into the row buffer, the emissions in columns [x0, x1) going to `emit`; returns the
+// texels prepare_row dropped.
+template <class E>
+long long warp_row(const fast::PipelinedJob& job, PipeScratch& sc, int j, int x0, int x1, const E& emit) {
+    const ReliefTexture& t = *job.relief;
+    const int ow = job.out->width;
+    const long long d = prepare_row(t, *job.tables, job.extent, ow, t.height - 1 - j, sc.line.soa);
+    LineOut lo{sc.row_c, sc.row_v, ow, x0, x1 - 1};
+    lo.copy = job.copy_still;
+    warp_line_fast<true>(sc.line.soa, job.split_u, lo, ClipRange<E>{emit, x0, x1, sc.track ? &sc : nullptr});
+    return d;
+}
+
+// The seam's samples of columns [x0, x1): each column's last sample of the part, alpha 0 where it has none.
+void record_seam(const fast::PipelinedJob& job, int part, int x0, int x1, const float* v, const uint32_t* c,
+                 const uint8_t* ok) {
+    for (int x = x0; x < x1; ++x) {
+        job.seam_v[part][x] = v[x];
+        job.seam_c[part][x] = ok[x] ? (c[x] | 0xFF000000u) : 0u;
+    }
+}
 
 // Reverse mode for rows `from` .. end - step (by `step`) of a part, the last ones: the painter's algorithm
 // backwards. Row j's emissions are replayed in reverse order after row j - step has been warped (its final samples
@@ -307,31 +359,21 @@ struct ClipRange {
 // noise about +-0.5; bumps never switches); bricks 256^2 0.299 -> 0.285, 1024^2 4.39 -> 3.43 (two-pass 2.6 to 2.8);
 // ridges 256^2 1.03 -> 0.51 (two-pass 0.40), 1024^2 56.9 -> 8.2 (two-pass 6.7 to 7.0).
 __attribute__((noinline)) void reverse_rows(const fast::PipelinedJob& job, PipeScratch& sc, const ColumnOut& o,
-                                            int part, int from, int end, int step, int x0, int x1,
-                                            long long& dropped) {
-    const ReliefTexture& t = *job.relief;
-    const int h = t.height, ow = o.ow;
-    LineSoA& s = sc.line.soa;
-    sc.reserve_reverse(ow, o.oh);
+                                            const RowTask& k, int from, long long& dropped) {
+    const int step = k.step, x0 = k.x0, x1 = k.x1;
+    sc.reserve_reverse(o.ow, o.oh);
     std::fill(sc.clo + x0, sc.clo + x1, 1 << 30);
     std::fill(sc.chi + x0, sc.chi + x1, -(1 << 30));
     std::memset(sc.cbits + x0, 0, size_t(x1 - x0));
     auto warp = [&](int j, EmitLog& log) {
-        const long long d = prepare_row(t, *job.tables, job.extent, ow, h - 1 - j, s);
-        if (x0 == 0) dropped += d;
         std::memset(sc.fin_ok + x0, 0, size_t(x1 - x0));
         log.n = 0;
-        LineOut lo{sc.row_c, sc.row_v, ow, x0, x1 - 1};
-        lo.copy = job.copy_still;
-        const Logger lg{sc, log};
-        warp_line_fast<true>(s, job.split_u, lo, ClipRange<Logger>{lg, x0, x1});
+        const long long d = warp_row(job, sc, j, x0, x1, Logger{sc, log});
+        if (x0 == 0) dropped += d;
     };
-    const int last = end - step;
+    const int last = k.end - step;
     warp(last, sc.log[0]);
-    for (int x = x0; x < x1; ++x) {
-        job.seam_v[part][x] = sc.fin_v[x];
-        job.seam_c[part][x] = sc.fin_ok[x] ? (sc.fin_c[x] | 0xFF000000u) : 0u;
-    }
+    if (k.seam) record_seam(job, k.part, x0, x1, sc.fin_v, sc.fin_c, sc.fin_ok);
     int cur = 0;
     for (int j = last;; j -= step) {
         const float* pv = sc.prev_v;
@@ -355,61 +397,142 @@ __attribute__((noinline)) void reverse_rows(const fast::PipelinedJob& job, PipeS
     }
 }
 
+void swap_rows(PipeScratch& sc) {
+    std::swap(sc.prev_v, sc.cur_v);
+    std::swap(sc.prev_c, sc.cur_c);
+    std::swap(sc.prev_ok, sc.cur_ok);
+}
+
+// The range of finite row coordinates a task emitted (lo > hi: none).
+struct RowRange {
+    float lo, hi;
+};
+
+// Runs task k, drawing into `pixels` (the output's size; output v-rows of the part only). A task that does not
+// start at its part's first row starts from the row before it, warped without drawing: the column state after it
+// (each column's last emission of that row) is exactly the one the forward order carries into the task's first
+// row, forwards or in reverse mode. With `track`, returns the range of row coordinates emitted, the row before
+// included.
+RowRange run_rows(const fast::PipelinedJob& job, const RowTask& k, uint32_t* pixels, bool track) {
+    const int h = job.relief->height, ow = job.out->width, oh = job.out->height;
+    const int y0 = k.part == 0 ? 0 : job.ysplit, y1 = k.part == 0 ? job.ysplit : oh;
+    PipeScratch& sc = pipe_scratch();
+    sc.reserve(ow);
+    sc.line.reserve(job.relief->width);
+    std::memset(sc.prev_ok, 0, size_t(ow));
+    sc.cap = _mm512_set1_ps(float(oh));
+    sc.track = track;
+    sc.vmin = _mm512_set1_ps(std::numeric_limits<float>::infinity());
+    sc.vmax = _mm512_set1_ps(-std::numeric_limits<float>::infinity());
+    const Emitter emit{sc, ColumnOut{pixels, ow, oh, y0, y1}};
+    if (k.first != (k.part == 0 ? 0 : h - 1)) {
+        // The row before, drawn into no output rows (y0 to y0).
+        std::memset(sc.cur_ok + k.x0, 0, size_t(k.x1 - k.x0));
+        warp_row(job, sc, k.first - k.step, k.x0, k.x1, Emitter{sc, ColumnOut{pixels, ow, oh, y0, y0}});
+        swap_rows(sc);
+    }
+    long long dropped = 0;
+    bool reversed = false;
+    if (fast::pipelined_reverse == 1) {
+        reverse_rows(job, sc, emit.o, k, k.first, dropped);
+        reversed = true;
+    }
+    for (int j = k.first; !reversed && j != k.end; j += k.step) {
+        std::memset(sc.cur_ok + k.x0, 0, size_t(k.x1 - k.x0));
+        // Every 4th row measures how many pixels its spans cover per column (at most oh each).
+        sc.measure = fast::pipelined_reverse != 2 && (j & 3) == 0 && j + k.step != k.end;
+        sc.drawn = _mm512_setzero_ps();
+        const long long d = warp_row(job, sc, j, k.x0, k.x1, emit);
+        if (k.x0 == 0) dropped += d;
+        const bool rev = sc.measure && _mm512_reduce_add_ps(sc.drawn) > kReverseDrawn * float(k.x1 - k.x0);
+        sc.measure = false;
+        swap_rows(sc);
+        if (rev) {
+            reverse_rows(job, sc, emit.o, k, j + k.step, dropped);
+            reversed = true;
+        }
+    }
+    if (!reversed && k.seam) record_seam(job, k.part, k.x0, k.x1, sc.prev_v, sc.prev_c, sc.prev_ok);
+    if (dropped) *job.dropped += dropped;
+    sc.track = false;
+    return {_mm512_reduce_min_ps(sc.vmin), _mm512_reduce_max_ps(sc.vmax)};
+}
+
+// Clears output v-rows of the part, columns [x0, x1).
+void clear_part(const fast::PipelinedJob& job, int part, int x0, int x1) {
+    const int ow = job.out->width, oh = job.out->height;
+    const int y0 = part == 0 ? 0 : job.ysplit, y1 = part == 0 ? job.ysplit : oh;
+    uint32_t* out = reinterpret_cast<uint32_t*>(job.out->pixels.data());
+    for (int y = y0; y < y1; ++y)
+        std::memset(out + size_t(oh - 1 - y) * size_t(ow) + size_t(x0), 0, size_t(x1 - x0) * 4);
+}
+
 }  // namespace
 
 namespace fast {
 
 int pipelined_reverse = 0;
+int pipelined_chunks = 0;
 
 void pipelined_part(const PipelinedJob& job, int part, int x0, int x1) {
-    const ReliefTexture& t = *job.relief;
-    const int h = t.height, ow = job.out->width, oh = job.out->height;
-    const int split = job.split_v;
-    const int first = part == 0 ? 0 : h - 1, end = part == 0 ? split : split - 1, step = part == 0 ? 1 : -1;
-    const int y0 = part == 0 ? 0 : job.ysplit, y1 = part == 0 ? job.ysplit : oh;
-    uint32_t* out = reinterpret_cast<uint32_t*>(job.out->pixels.data());
-    for (int y = y0; y < y1; ++y)
-        std::memset(out + size_t(oh - 1 - y) * size_t(ow) + size_t(x0), 0, size_t(x1 - x0) * 4);
-    PipeScratch& sc = pipe_scratch();
-    sc.reserve(ow);
-    sc.line.reserve(t.width);
-    LineSoA& s = sc.line.soa;
-    std::memset(sc.prev_ok, 0, size_t(ow));
-    sc.cap = _mm512_set1_ps(float(oh));
-    const Emitter emit{sc, ColumnOut{out, ow, oh, y0, y1}};
-    long long dropped = 0;
-    if (first != end && pipelined_reverse == 1) {
-        reverse_rows(job, sc, emit.o, part, first, end, step, x0, x1, dropped);
-        if (dropped) *job.dropped += dropped;
+    const int h = job.relief->height, split = job.split_v;
+    clear_part(job, part, x0, x1);
+    RowTask k;
+    k.part = part;
+    k.first = part == 0 ? 0 : h - 1;
+    k.end = part == 0 ? split : split - 1;
+    k.step = part == 0 ? 1 : -1;
+    k.x0 = x0;
+    k.x1 = x1;
+    run_rows(job, k, reinterpret_cast<uint32_t*>(job.out->pixels.data()), false);
+}
+
+void pipelined_chunk(const PipelinedJob& job, PipelinedChunk& c) {
+    const int h = job.relief->height, ow = job.out->width, oh = job.out->height, split = job.split_v;
+    RowTask k;
+    k.part = c.part;
+    k.step = c.part == 0 ? 1 : -1;
+    const int first = c.part == 0 ? 0 : h - 1;
+    k.first = first + k.step * c.r0;
+    k.end = first + k.step * c.r1;
+    k.x0 = 0;
+    k.x1 = ow;
+    k.seam = c.r1 == (c.part == 0 ? split : h - split);
+    if (c.r0 == 0) {
+        clear_part(job, c.part, 0, ow);
+        run_rows(job, k, reinterpret_cast<uint32_t*>(job.out->pixels.data()), false);
+        c.ylo = c.yhi = 0;
         return;
     }
-    for (int j = first; j != end; j += step) {
-        const int r = h - 1 - j;
-        const long long d = prepare_row(t, *job.tables, job.extent, ow, r, s);
-        if (x0 == 0) dropped += d;
-        std::memset(sc.cur_ok + x0, 0, size_t(x1 - x0));
-        LineOut lo{sc.row_c, sc.row_v, ow, x0, x1 - 1};
-        lo.copy = job.copy_still;
-        // Every 4th row measures how many pixels its spans cover per column (at most oh each).
-        sc.measure = pipelined_reverse != 2 && (j & 3) == 0 && j + step != end;
-        sc.drawn = _mm512_setzero_ps();
-        warp_line_fast<true>(s, job.split_u, lo, ClipRange<Emitter>{emit, x0, x1});
-        const bool rev = sc.measure && _mm512_reduce_add_ps(sc.drawn) > kReverseDrawn * float(x1 - x0);
-        sc.measure = false;
-        std::swap(sc.prev_v, sc.cur_v);
-        std::swap(sc.prev_c, sc.cur_c);
-        std::swap(sc.prev_ok, sc.cur_ok);
-        if (rev) {
-            reverse_rows(job, sc, emit.o, part, j + step, end, step, x0, x1, dropped);
-            if (dropped) *job.dropped += dropped;
-            return;
+    const RowRange r = run_rows(job, k, reinterpret_cast<uint32_t*>(c.scratch->pixels.data()), true);
+    // Every pixel written lies in v-rows floor(lo) .. floor(hi) (column_rows: a span's rows between its ends'
+    // centres, a point's int(v)); one row more on each side for safety.
+    const int y0 = c.part == 0 ? 0 : job.ysplit, y1 = c.part == 0 ? job.ysplit : oh;
+    auto clamp_row = [&](double y) { return int(std::clamp(y, double(y0), double(y1))); };
+    c.ylo = r.lo <= r.hi ? clamp_row(std::floor(double(r.lo)) - 1.0) : y0;
+    c.yhi = r.lo <= r.hi ? clamp_row(std::floor(double(r.hi)) + 2.0) : y0;
+}
+
+void pipelined_composite(const PipelinedJob& job, const PipelinedChunk* chunks, int n, int y0, int y1) {
+    const int ow = job.out->width, oh = job.out->height;
+    uint32_t* out = reinterpret_cast<uint32_t*>(job.out->pixels.data());
+    const __m512i alpha = _mm512_set1_epi32(int(0xFF000000u));
+    for (int i = 0; i < n; ++i) {
+        const PipelinedChunk& c = chunks[i];
+        if (c.r0 == 0) continue;
+        uint32_t* scratch = reinterpret_cast<uint32_t*>(c.scratch->pixels.data());
+        for (int y = imax(y0, c.ylo); y < imin(y1, c.yhi); ++y) {
+            uint32_t* o = out + size_t(oh - 1 - y) * size_t(ow);
+            uint32_t* q = scratch + size_t(oh - 1 - y) * size_t(ow);
+            for (int x = 0; x < ow; x += 16) {
+                const __m512i p = _mm512_maskz_loadu_epi32(first_lanes(ow - x), q + x);
+                // Only the pixels written are stored, and cleared in the scratch: the rest are 0 already.
+                const __mmask16 written = _mm512_test_epi32_mask(p, alpha);
+                _mm512_mask_storeu_epi32(o + x, written, p);
+                _mm512_mask_storeu_epi32(q + x, written, _mm512_setzero_si512());
+            }
         }
     }
-    for (int x = x0; x < x1; ++x) {
-        job.seam_v[part][x] = sc.prev_v[x];
-        job.seam_c[part][x] = sc.prev_ok[x] ? (sc.prev_c[x] | 0xFF000000u) : 0u;
-    }
-    if (dropped) *job.dropped += dropped;
 }
 
 void pipelined_seam(const PipelinedJob& job) {

@@ -7,7 +7,11 @@
 // line kernel reports is rasterized at once into its columns, 16 columns at a time, each connected to the last
 // sample its column received from the previous row (warp/fast_columns.h: 16 columns in the lanes of a register).
 // A part can be split into column ranges that run on different threads: each range warps every row (the
-// horizontal work is repeated) and rasterizes only its own columns.
+// horizontal work is repeated) and rasterizes only its own columns. Or into chunks of consecutive rows: the column
+// state carried from row to row is only the previous row's last emission per column, so a chunk starts exactly by
+// warping the row before it without drawing; the part's first chunk draws into the output, every other one into a
+// scratch image of its own, and the scratch images are composited over the output in row order (the painter's
+// order: a later row's pixels replace an earlier row's).
 #pragma once
 
 #include <atomic>
@@ -39,9 +43,30 @@ struct PipelinedJob {
 // split, output v-rows [ysplit, out height)), output columns [x0, x1): clears that region, then fills it.
 void pipelined_part(const PipelinedJob& job, int part, int x0, int x1);
 
+// Rows [r0, r1) of part `part` (0: the part's first row in its order), all columns. The chunk with r0 == 0 draws
+// into job.out (clearing the part's output rows first); any other draws into `scratch`, an image of the output's
+// size that is 0 everywhere, and records the output v-rows it may have written in [ylo, yhi) (pixels written there
+// have alpha 255: the kernels write only Lerp8 colours and points with alpha set). Only the chunk with r1 equal to
+// the part's row count records the seam.
+struct PipelinedChunk {
+    int part = 0, r0 = 0, r1 = 0;
+    ImageRGBA8* scratch = nullptr;
+    int ylo = 0, yhi = 0;
+};
+void pipelined_chunk(const PipelinedJob& job, PipelinedChunk& chunk);
+
+// Output v-rows [y0, y1): the pixels the scratch chunks wrote (alpha not 0) replace the output's, chunk after chunk
+// in the order given (the parts' row order), and the scratch rows are cleared to 0 again.
+void pipelined_composite(const PipelinedJob& job, const PipelinedChunk* chunks, int n, int y0, int y1);
+
 // Test hook: 0 lets each part switch to reverse mode (fast_pipelined.cpp, reverse_rows) where rows overdraw much,
 // 1 runs whole parts in reverse mode, 2 never uses it. The output is the same.
 extern int pipelined_reverse;
+
+// Test hook: 0 lets fast_prewarp choose between column ranges and row chunks (warp/fast_prewarp.cpp), 1 always
+// splits parts into row chunks (one per thread, fewer where a part has fewer rows), 2 never does. The output is the
+// same.
+extern int pipelined_chunks;
 
 // The span between the last rows of the two parts, in every column where both have a sample.
 void pipelined_seam(const PipelinedJob& job);

@@ -208,6 +208,93 @@ PrewarpStats fast_two_pass(const ReliefTexture& relief, const PrewarpCoefficient
     return {(long long)w * h, dropped.load(), e};
 }
 
+// Whether fast_pipelined splits its parts into row chunks rather than column ranges (see below): with threads and
+// one part (the epipole outside the relief's rows, the benchmark's view). Column ranges repeat every row's
+// horizontal warp in every range; row chunks repeat one row per chunk and add the composite (0.03 to 0.06 ms of
+// 1.7 to 3.9 at 1024^2). Measured (2 threads, median ms of 5 interleaved rounds of `rtm bench --no-exact
+// --no-reference`, column ranges -> row chunks): bumps 256^2 0.095 -> 0.081, 1024^2 2.05 -> 1.72; bricks 0.199 ->
+// 0.166, 2.36 -> 1.83; ridges 0.329 -> 0.273, 4.75 -> 3.94 (1 thread, unchanged: 3.21 / 3.54 / 8.19 -> within the
+// noise); 2 rounds, bumps 2048^2 18.3 -> 13.7, 4096^2 110 -> 80, ridges 23.5 -> 21.6, 96.9 -> 92.9. Small images
+// too (3 rounds, 32^2 to 128^2: equal or faster, ridges 64^2 0.054 -> 0.033), so no size limit. Chunks of equal
+// rows: the remaining loss is their imbalance (1024^2: bumps 1.6 ms for the first half of the rows against 1.35
+// for the second, ridges 3.4 against 3.8). Two parts keep the column ranges: not measured (the benchmark's view
+// has one part, and more threads than parts needs more than this machine's 2 cores).
+bool pipelined_row_chunks(int threads, int np) {
+    if (fast::pipelined_chunks != 0) return fast::pipelined_chunks == 1;
+    return threads > 1 && np == 1;
+}
+
+// Each part (bottom, top) that has rows split into column ranges, so that all threads have work even when the
+// epipole is outside the relief and one part holds every row. A range repeats the horizontal warp of every row of
+// its part but rasterizes only its columns.
+void pipelined_in_column_ranges(const fast::PipelinedJob& job, int threads_option, int threads) {
+    const int h = job.relief->height, ow = job.out->width;
+    const bool parts[2] = {job.split_v > 0, job.split_v < h};
+    const int np = int(parts[0]) + int(parts[1]);
+    const int cols = std::max(1, std::min(threads / std::max(np, 1), ow / 64));
+    struct Task {
+        int part, x0, x1;
+    };
+    Task tasks[2 * 64];
+    int nt = 0;
+    for (int p = 0; p < 2; ++p) {
+        if (!parts[p]) continue;
+        const int n = std::min(cols, 64);
+        for (int i = 0; i < n; ++i) {
+            const int x0 = int((long long)ow * i / n) / 16 * 16;
+            const int x1 = i + 1 == n ? ow : int((long long)ow * (i + 1) / n) / 16 * 16;
+            if (x0 < x1) tasks[nt++] = {p, x0, x1};
+        }
+    }
+    run_ranges(threads_option, nt, 1, [&](int t0, int t1) {
+        for (int t = t0; t < t1; ++t) fast::pipelined_part(job, tasks[t].part, tasks[t].x0, tasks[t].x1);
+    });
+}
+
+// Each part that has rows split into chunks of consecutive rows, one per thread (fewer where the part has fewer
+// rows): every chunk warps only its own rows (and the one before them, for its starting state), the first draws
+// into the output and the others into scratch images (the workspace's, shared by the parts, whose output rows are
+// disjoint), composited over the output afterwards in row order. The first chunk clears its part's output rows
+// itself: clearing the whole output in parallel first measured the same (bumps 1024^2, 2 threads, 5 interleaved
+// rounds: 1.726 ms against 1.718).
+void pipelined_in_row_chunks(const fast::PipelinedJob& job, int threads_option, int threads, PrewarpWorkspace& ws) {
+    const int h = job.relief->height, ow = job.out->width, oh = job.out->height;
+    const int rows[2] = {job.split_v, h - job.split_v};
+    int per_part[2], scratch = 0;
+    for (int p = 0; p < 2; ++p) {
+        per_part[p] = std::min({threads, rows[p], 64});
+        scratch = std::max(scratch, per_part[p] - 1);
+    }
+    if (int(ws.chunk_scratch.size()) < scratch) ws.chunk_scratch.resize(size_t(scratch));
+    for (int i = 0; i < scratch; ++i) ensure_size(ws.chunk_scratch[size_t(i)], ow, oh);
+    // The composite leaves the scratch images all 0; a pre-warp interrupted before it (an exception out of a
+    // chunk) may not have, and then they are cleared here.
+    if (ws.chunk_scratch_dirty)
+        for (ImageRGBA8& img : ws.chunk_scratch) std::fill(img.pixels.begin(), img.pixels.end(), Rgba8{});
+    ws.chunk_scratch_dirty = true;
+    fast::PipelinedChunk chunks[2 * 64];
+    int nc = 0;
+    for (int p = 0; p < 2; ++p)
+        for (int i = 0; i < per_part[p]; ++i) {
+            fast::PipelinedChunk& c = chunks[nc++];
+            c.part = p;
+            c.r0 = int((long long)rows[p] * i / per_part[p]);
+            c.r1 = int((long long)rows[p] * (i + 1) / per_part[p]);
+            c.scratch = i ? &ws.chunk_scratch[size_t(i - 1)] : nullptr;
+        }
+    run_ranges(threads_option, nc, 1, [&](int t0, int t1) {
+        for (int t = t0; t < t1; ++t) fast::pipelined_chunk(job, chunks[t]);
+    });
+    int y0 = oh, y1 = 0;
+    for (int i = 0; i < nc; ++i)
+        if (chunks[i].ylo < chunks[i].yhi) y0 = std::min(y0, chunks[i].ylo), y1 = std::max(y1, chunks[i].yhi);
+    if (y0 < y1)
+        run_ranges(threads_option, y1 - y0, 16, [&](int a, int b) {
+            fast::pipelined_composite(job, chunks, nc, y0 + a, y0 + b);
+        });
+    ws.chunk_scratch_dirty = false;
+}
+
 PrewarpStats fast_pipelined(const ReliefTexture& relief, const PrewarpCoefficients& k, const PrewarpOptions& options,
                             const PrewarpExtent& e, const fast::FastTables& tables, PrewarpWorkspace& ws,
                             ImageRGBA8& out) {
@@ -232,34 +319,15 @@ PrewarpStats fast_pipelined(const ReliefTexture& relief, const PrewarpCoefficien
         job.seam_c[p] = reinterpret_cast<uint32_t*>(ws.mid_color.row(p));
     }
     job.dropped = &dropped;
-    // Tasks: each part (bottom, top) that has rows, split into column ranges so that all threads have work even
-    // when the epipole is outside the relief and one part holds every row. A range repeats the horizontal warp
-    // of every row of its part but rasterizes only its columns.
     const bool parts[2] = {job.split_v > 0, job.split_v < h};
+    for (int p = 0; p < 2; ++p)
+        if (!parts[p]) std::fill(job.seam_c[p], job.seam_c[p] + ow, 0u);  // no rows: nothing received
     const int np = int(parts[0]) + int(parts[1]);
     const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
-    const int cols = std::max(1, std::min(threads / std::max(np, 1), ow / 64));
-    struct Task {
-        int part, x0, x1;
-    };
-    Task tasks[2 * 64];
-    int nt = 0;
-    for (int p = 0; p < 2; ++p) {
-        if (!parts[p]) {
-            // No rows: nothing received.
-            std::fill(job.seam_c[p], job.seam_c[p] + ow, 0u);
-            continue;
-        }
-        const int n = std::min(cols, 64);
-        for (int i = 0; i < n; ++i) {
-            const int x0 = int((long long)ow * i / n) / 16 * 16;
-            const int x1 = i + 1 == n ? ow : int((long long)ow * (i + 1) / n) / 16 * 16;
-            if (x0 < x1) tasks[nt++] = {p, x0, x1};
-        }
-    }
-    run_ranges(options.threads, nt, 1, [&](int t0, int t1) {
-        for (int t = t0; t < t1; ++t) fast::pipelined_part(job, tasks[t].part, tasks[t].x0, tasks[t].x1);
-    });
+    if (pipelined_row_chunks(threads, np))
+        pipelined_in_row_chunks(job, options.threads, threads, ws);
+    else
+        pipelined_in_column_ranges(job, options.threads, threads);
     fast::pipelined_seam(job);
     return {(long long)w * h, dropped.load(), e};
 }

@@ -13,10 +13,11 @@
 // (PrewarpStats::still_copied stays 0 here; tests/apps/skips_test.cpp relies on that).
 //
 // Scheduling lives here, kernels in warp/fast_two_pass.cpp and warp/fast_pipelined.cpp: a kernel takes a range of
-// rows or columns and every output pixel is computed by exactly one call, so the output does not depend on the
-// number of threads. Steady state allocates nothing: intermediate images live in the PrewarpWorkspace, per-thread
-// line buffers in thread-local storage that only grows, and the task arenas for explicit thread counts are created
-// once per count.
+// rows or columns and every output pixel is computed by exactly one call, or (the pipelined kernel's row chunks) by
+// the chunks whose rows reach it, the last of them in the painter's order winning in the composite, so the output
+// does not depend on the number of threads. Steady state allocates nothing: intermediate and scratch images live in
+// the PrewarpWorkspace, per-thread line buffers in thread-local storage that only grows, and the task arenas for
+// explicit thread counts are created once per count.
 #pragma once
 
 #include "warp/image.h"

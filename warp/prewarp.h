@@ -65,6 +65,10 @@ struct PrewarpWorkspace {
     ImageF mid_v, mid_d;          // final v and displacement carried by the horizontal pass (lookup-table path)
     Image2D<double> mid_v_exact;  // the same in double precision (--exact)
     Image2D<double> mid_d_exact;
+    // The fast pipelined kernel's row chunks after a part's first (warp/fast_prewarp.cpp): output-sized images, 0
+    // everywhere between pre-warps (the kernel clears what it wrote).
+    std::vector<ImageRGBA8> chunk_scratch;
+    bool chunk_scratch_dirty = false;  // set while chunks and composite run: an interrupted pre-warp left pixels
 };
 
 struct PrewarpStats {

@@ -355,11 +355,16 @@ TEST_P(FastKernels, SteadyStateAllocatesNothing) {
     o.keep_outliers = true;
     PrewarpWorkspace ws;
     ImageRGBA8 out;
-    const PrewarpCoefficients k = compute_coefficients(g, {1.2, 0.8, 1.5});
-    prewarp(t, k, o, ws, out);  // warm-up: buffers grow to size
-    const long long before = g_allocations.load();
-    for (int i = 0; i < 3; ++i) prewarp(t, compute_coefficients(g, {1.2 + 0.01 * i, 0.8, 1.5}), o, ws, out);
-    EXPECT_EQ(g_allocations.load() - before, 0);
+    // Two threads too, the epipole inside the rows and below them (the pipelined kernel's row chunks: one part).
+    for (int threads : {1, 2})
+        for (double ey : {0.8, -0.8}) {
+            o.threads = threads;
+            const PrewarpCoefficients k = compute_coefficients(g, {1.2, ey, 1.5});
+            prewarp(t, k, o, ws, out);  // warm-up: buffers grow to size
+            const long long before = g_allocations.load();
+            for (int i = 0; i < 3; ++i) prewarp(t, compute_coefficients(g, {1.2 + 0.01 * i, ey, 1.5}), o, ws, out);
+            EXPECT_EQ(g_allocations.load() - before, 0) << "threads " << threads << " eye y " << ey;
+        }
 }
 
 // lerp8 (warp/line_warp.h) moved from the float formula uint8_t(a * (1 - t) + b * t + 0.5) to fixed point (14-bit
@@ -408,7 +413,10 @@ protected:
     void SetUp() override {
         if (!fast_prewarp_available()) GTEST_SKIP() << "no AVX-512 on this CPU: the fast kernels are not used";
     }
-    void TearDown() override { fast::pipelined_reverse = 0; }
+    void TearDown() override {
+        fast::pipelined_reverse = 0;
+        fast::pipelined_chunks = 0;
+    }
 };
 
 // The random cases above against the reference, the fast kernel run with `hook` (a kernel's test switch) set to
@@ -502,6 +510,108 @@ TEST_F(ReverseModeFixture, PipelinedReverseModeFoldoversStillTexelsAndGaps) {
     }
 }
 
+// Row chunks (warp/fast_prewarp.cpp, fast::pipelined_chunks = 1: every part split into chunks of consecutive rows,
+// one per thread, each starting from the row before it warped without drawing, composited in row order) against
+// the reference, 2 to 4 threads, reverse mode off, forced and automatic: the random cases above (one part and two,
+// heights from 1 row), reliefs of 1 to 3 rows (fewer rows than threads) seen with the epipole inside and outside
+// the rows, and foldover-heavy reliefs whose chunks switch to reverse mode on their own; the dropped counts too.
+TEST_F(ReverseModeFixture, PipelinedRowChunksMatchTheReference) {
+    const uint64_t seed = test::test_seed(80013);
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    PrewarpWorkspace ws_ref, ws_fast;
+    ImageRGBA8 ref, fast;
+    auto compare = [&](const ReliefTexture& t, const glm::dvec3& eye, PrewarpOptions o) {
+        const PrewarpCoefficients k = compute_coefficients(t.geometry, eye);
+        SCOPED_TRACE(k.to_string());
+        o.method = Reconstruction::pipelined;
+        o.fast = false;
+        o.threads = 1;
+        const PrewarpStats sr = prewarp(t, k, o, ws_ref, ref);
+        o.fast = true;
+        fast::pipelined_chunks = 1;
+        for (int policy : {0, 1, 2}) {
+            fast::pipelined_reverse = policy;
+            for (int threads : {2, 3, 4}) {
+                o.threads = threads;
+                const PrewarpStats sf = prewarp(t, k, o, ws_fast, fast);
+                ASSERT_EQ(first_difference(ref, fast), "") << "policy " << policy << " threads " << threads;
+                ASSERT_EQ(sf.dropped, sr.dropped) << "policy " << policy << " threads " << threads;
+            }
+        }
+    };
+    for (int i = 0; i < 400; ++i) {
+        const Case c = random_case(rng);
+        SCOPED_TRACE("seed " + std::to_string(seed) + " case " + std::to_string(i) + ": " + c.describe);
+        compare(c.relief, c.eye, c.options);
+        if (HasFatalFailure()) return;
+    }
+    for (int h : {1, 2, 3}) {
+        for (int i = 0; i < 20; ++i) {
+            const int w = 1 + int(rng() % 100);
+            const ReliefGeometry g = unit_width_geometry(w);
+            const uint32_t salt = uint32_t(rng());
+            const ReliefTexture t = test::make_test_relief(
+                w, h, 0.0, 0.3, [&](int x, int r) { return 0.3 * hash01(x, r, salt); }, g);
+            // The epipole's row: inside the rows (two parts), on a row boundary, below and above them (one part).
+            const double ev = i % 4 == 0 ? U(rng) * h : i % 4 == 1 ? double(int(rng() % uint64_t(h + 1)))
+                                                      : i % 4 == 2 ? -1.0 - U(rng) * 5 * h : h + 1.0 + U(rng) * 5 * h;
+            const glm::dvec3 eye = g.origin + g.a * (U(rng) * 1.4 * w - 0.2 * w) + g.b * ev + g.f() * (0.05 + U(rng));
+            PrewarpOptions o;
+            o.keep_outliers = i % 2 == 0;
+            SCOPED_TRACE("seed " + std::to_string(seed) + " " + std::to_string(w) + "x" + std::to_string(h) +
+                         " epipole row " + std::to_string(ev));
+            compare(t, eye, o);
+            if (HasFatalFailure()) return;
+        }
+    }
+    for (int i = 0; i < 12; ++i) {
+        const int w = 60 + int(rng() % 120), h = 60 + int(rng() % 120);
+        const ReliefGeometry g = unit_width_geometry(w);
+        const double f = 0.2 + U(rng);
+        const ReliefTexture t = test::make_test_relief(
+            w, h, 0.0, 0.3, [&](int x, int r) { return 0.3 * std::abs(std::sin(x * f)) * std::abs(std::sin(r * f)); },
+            g);
+        const double ev = i % 2 ? U(rng) * h : -h * (0.5 + U(rng) * 3);
+        const glm::dvec3 eye = g.origin + g.a * (U(rng) * w) + g.b * ev + g.f() * (0.03 + U(rng) * 0.3);
+        PrewarpOptions o;
+        o.keep_outliers = i % 3 == 0;
+        SCOPED_TRACE("seed " + std::to_string(seed) + " foldovers " + std::to_string(w) + "x" + std::to_string(h) +
+                     " epipole row " + std::to_string(ev));
+        compare(t, eye, o);
+        if (HasFatalFailure()) return;
+    }
+}
+
+TEST_F(ReverseModeFixture, PipelinedRowChunksRecoverFromAnInterruptedPrewarp) {
+    // The scratch images of the row chunks are all 0 between pre-warps (the composite clears what it copies); one
+    // left with pixels by a pre-warp interrupted between its chunks and its composite is cleared before use.
+    const ReliefGeometry g = unit_width_geometry(200);
+    const ReliefTexture t = test::make_test_relief(
+        200, 150, 0.0, 0.3, [](int x, int r) { return 0.3 * std::abs(std::sin(x * 0.2)) * std::abs(std::cos(r * 0.1)); },
+        g);
+    const PrewarpCoefficients k = compute_coefficients(g, g.origin + g.a * 80.0 - g.b * 100.0 + g.f() * 0.8);
+    PrewarpOptions o;
+    o.method = Reconstruction::pipelined;
+    o.fast = false;
+    o.threads = 1;
+    PrewarpWorkspace ws_ref, ws;
+    ImageRGBA8 ref, fast;
+    prewarp(t, k, o, ws_ref, ref);
+    o.fast = true;
+    o.threads = 2;
+    fast::pipelined_chunks = 1;
+    prewarp(t, k, o, ws, fast);
+    ASSERT_EQ(first_difference(ref, fast), "");
+    ASSERT_FALSE(ws.chunk_scratch.empty());
+    EXPECT_FALSE(ws.chunk_scratch_dirty);
+    for (ImageRGBA8& img : ws.chunk_scratch) std::fill(img.pixels.begin(), img.pixels.end(), Rgba8{9, 9, 9, 255});
+    ws.chunk_scratch_dirty = true;  // as an exception out of a chunk would leave it
+    prewarp(t, k, o, ws, fast);
+    EXPECT_EQ(first_difference(ref, fast), "");
+    EXPECT_FALSE(ws.chunk_scratch_dirty);
+}
+
 TEST_F(ReverseModeFixture, PipelinedReverseModeAllocatesNothingInSteadyState) {
     ReliefGeometry g;
     g.a = {0.01, 0, 0};
@@ -514,14 +624,21 @@ TEST_F(ReverseModeFixture, PipelinedReverseModeAllocatesNothingInSteadyState) {
     o.keep_outliers = true;
     PrewarpWorkspace ws;
     ImageRGBA8 out;
-    for (int policy : {1, 0}) {
-        fast::pipelined_reverse = policy;
-        const PrewarpCoefficients k = compute_coefficients(g, {1.2, 0.3, 0.4});
-        prewarp(t, k, o, ws, out);  // warm-up: buffers grow to size
-        const long long before = g_allocations.load();
-        for (int i = 0; i < 3; ++i) prewarp(t, compute_coefficients(g, {1.2 + 0.01 * i, 0.3, 0.4}), o, ws, out);
-        EXPECT_EQ(g_allocations.load() - before, 0) << "policy " << policy;
-    }
+    // Two threads, the epipole inside the rows (two parts: column ranges) and below them (one part: row chunks and
+    // their scratch images).
+    for (int threads : {1, 2})
+        for (double ey : {0.3, -0.3})
+            for (int policy : {1, 0}) {
+                fast::pipelined_reverse = policy;
+                o.threads = threads;
+                const PrewarpCoefficients k = compute_coefficients(g, {1.2, ey, 0.4});
+                prewarp(t, k, o, ws, out);  // warm-up: buffers grow to size
+                const long long before = g_allocations.load();
+                for (int i = 0; i < 3; ++i)
+                    prewarp(t, compute_coefficients(g, {1.2 + 0.01 * i, ey, 0.4}), o, ws, out);
+                EXPECT_EQ(g_allocations.load() - before, 0)
+                    << "policy " << policy << " threads " << threads << " eye y " << ey;
+            }
 }
 
 // The two-pass kernel's backward rows (warp/fast_line.h, warp_line_reverse: a row's items in the reverse of the
