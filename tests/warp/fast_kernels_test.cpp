@@ -408,6 +408,16 @@ TEST(Lerp8, FixedPointWithinOneLevelOfTheFloatFormula) {
 // above, and foldover-heavy reliefs (noise and steep ridges seen at grazing angles: spans far longer than a pixel,
 // columns whose written rows are not one interval), still texels (samples on pixel centres, spans on both sides
 // of one), empty texels (columns whose runs restart with points), one to three threads (column ranges).
+// The relief of the steady-state allocation tests: 300x200 texels of 0.01, sine ridges across the rows, which fold
+// over from the views they use.
+ReliefTexture steady_state_relief() {
+    ReliefGeometry g;
+    g.a = {0.01, 0, 0};
+    g.b = {0, 0.01, 0};
+    return test::make_test_relief(300, 200, 0.0, 0.5, [](int x, int) { return 0.5 * std::abs(std::sin(x * 0.3)); },
+                                  g);
+}
+
 class ReverseModeFixture : public ::testing::Test {
 protected:
     void SetUp() override {
@@ -613,11 +623,8 @@ TEST_F(ReverseModeFixture, PipelinedRowChunksRecoverFromAnInterruptedPrewarp) {
 }
 
 TEST_F(ReverseModeFixture, PipelinedReverseModeAllocatesNothingInSteadyState) {
-    ReliefGeometry g;
-    g.a = {0.01, 0, 0};
-    g.b = {0, 0.01, 0};
-    const ReliefTexture t = test::make_test_relief(
-        300, 200, 0.0, 0.5, [](int x, int) { return 0.5 * std::abs(std::sin(x * 0.3)); }, g);
+    const ReliefTexture t = steady_state_relief();
+    const ReliefGeometry& g = t.geometry;
     PrewarpOptions o;
     o.method = Reconstruction::pipelined;
     o.threads = 1;
@@ -749,11 +756,8 @@ TEST_F(TwoPassReverseRows, FoldoversEmptyRowsAndMarksMatchTheReference) {
 }
 
 TEST_F(TwoPassReverseRows, AllocatesNothingInSteadyState) {
-    ReliefGeometry g;
-    g.a = {0.01, 0, 0};
-    g.b = {0, 0.01, 0};
-    const ReliefTexture t = test::make_test_relief(
-        300, 200, 0.0, 0.5, [](int x, int) { return 0.5 * std::abs(std::sin(x * 0.3)); }, g);
+    const ReliefTexture t = steady_state_relief();
+    const ReliefGeometry& g = t.geometry;
     PrewarpOptions o;
     o.method = Reconstruction::two_pass;
     o.threads = 1;
