@@ -322,6 +322,33 @@ struct RowTask {
     bool seam = true;
 };
 
+// A part's rows and output rows: part 0 warps relief rows 0, 1, .. split_v - 1 into output v-rows [0, ysplit),
+// part 1 rows h - 1, h - 2, .. split_v into [ysplit, out height); `count` rows in all.
+struct PartRows {
+    int first, step, count;
+    int y0, y1;
+};
+
+PartRows part_rows(const fast::PipelinedJob& job, int part) {
+    const int h = job.relief->height, s = job.split_v;
+    if (part == 0) return {0, 1, s, 0, job.ysplit};
+    return {h - 1, -1, h - s, job.ysplit, job.out->height};
+}
+
+// The task of rows [r0, r1) of a part, counted in the part's order, columns [x0, x1).
+RowTask part_task(const fast::PipelinedJob& job, int part, int r0, int r1, int x0, int x1) {
+    const PartRows p = part_rows(job, part);
+    RowTask k;
+    k.part = part;
+    k.step = p.step;
+    k.first = p.first + p.step * r0;
+    k.end = p.first + p.step * r1;
+    k.x0 = x0;
+    k.x1 = x1;
+    k.seam = r1 == p.count;
+    return k;
+}
+
 // Prepares row j and warps it into the row buffer, the emissions in columns [x0, x1) going to `emit`; returns the
 // texels prepare_row dropped.
 template <class E>
@@ -414,8 +441,9 @@ struct RowRange {
 // row, forwards or in reverse mode. With `track`, returns the range of row coordinates emitted, the row before
 // included.
 RowRange run_rows(const fast::PipelinedJob& job, const RowTask& k, uint32_t* pixels, bool track) {
-    const int h = job.relief->height, ow = job.out->width, oh = job.out->height;
-    const int y0 = k.part == 0 ? 0 : job.ysplit, y1 = k.part == 0 ? job.ysplit : oh;
+    const int ow = job.out->width, oh = job.out->height;
+    const PartRows part = part_rows(job, k.part);
+    const int y0 = part.y0, y1 = part.y1;
     PipeScratch& sc = pipe_scratch();
     sc.reserve(ow);
     sc.line.reserve(job.relief->width);
@@ -425,7 +453,7 @@ RowRange run_rows(const fast::PipelinedJob& job, const RowTask& k, uint32_t* pix
     sc.vmin = _mm512_set1_ps(std::numeric_limits<float>::infinity());
     sc.vmax = _mm512_set1_ps(-std::numeric_limits<float>::infinity());
     const Emitter emit{sc, ColumnOut{pixels, ow, oh, y0, y1}};
-    if (k.first != (k.part == 0 ? 0 : h - 1)) {
+    if (k.first != part.first) {
         // The row before, drawn into no output rows (y0 to y0).
         std::memset(sc.cur_ok + k.x0, 0, size_t(k.x1 - k.x0));
         warp_row(job, sc, k.first - k.step, k.x0, k.x1, Emitter{sc, ColumnOut{pixels, ow, oh, y0, y0}});
@@ -461,9 +489,9 @@ RowRange run_rows(const fast::PipelinedJob& job, const RowTask& k, uint32_t* pix
 // Clears output v-rows of the part, columns [x0, x1).
 void clear_part(const fast::PipelinedJob& job, int part, int x0, int x1) {
     const int ow = job.out->width, oh = job.out->height;
-    const int y0 = part == 0 ? 0 : job.ysplit, y1 = part == 0 ? job.ysplit : oh;
+    const PartRows p = part_rows(job, part);
     uint32_t* out = reinterpret_cast<uint32_t*>(job.out->pixels.data());
-    for (int y = y0; y < y1; ++y)
+    for (int y = p.y0; y < p.y1; ++y)
         std::memset(out + size_t(oh - 1 - y) * size_t(ow) + size_t(x0), 0, size_t(x1 - x0) * 4);
 }
 
@@ -475,29 +503,14 @@ int pipelined_reverse = 0;
 int pipelined_chunks = 0;
 
 void pipelined_part(const PipelinedJob& job, int part, int x0, int x1) {
-    const int h = job.relief->height, split = job.split_v;
     clear_part(job, part, x0, x1);
-    RowTask k;
-    k.part = part;
-    k.first = part == 0 ? 0 : h - 1;
-    k.end = part == 0 ? split : split - 1;
-    k.step = part == 0 ? 1 : -1;
-    k.x0 = x0;
-    k.x1 = x1;
-    run_rows(job, k, reinterpret_cast<uint32_t*>(job.out->pixels.data()), false);
+    run_rows(job, part_task(job, part, 0, part_rows(job, part).count, x0, x1),
+             reinterpret_cast<uint32_t*>(job.out->pixels.data()), false);
 }
 
 void pipelined_chunk(const PipelinedJob& job, PipelinedChunk& c) {
-    const int h = job.relief->height, ow = job.out->width, oh = job.out->height, split = job.split_v;
-    RowTask k;
-    k.part = c.part;
-    k.step = c.part == 0 ? 1 : -1;
-    const int first = c.part == 0 ? 0 : h - 1;
-    k.first = first + k.step * c.r0;
-    k.end = first + k.step * c.r1;
-    k.x0 = 0;
-    k.x1 = ow;
-    k.seam = c.r1 == (c.part == 0 ? split : h - split);
+    const int ow = job.out->width;
+    const RowTask k = part_task(job, c.part, c.r0, c.r1, 0, ow);
     if (c.r0 == 0) {
         clear_part(job, c.part, 0, ow);
         run_rows(job, k, reinterpret_cast<uint32_t*>(job.out->pixels.data()), false);
@@ -507,7 +520,8 @@ void pipelined_chunk(const PipelinedJob& job, PipelinedChunk& c) {
     const RowRange r = run_rows(job, k, reinterpret_cast<uint32_t*>(c.scratch->pixels.data()), true);
     // Every pixel written lies in v-rows floor(lo) .. floor(hi) (column_rows: a span's rows between its ends'
     // centres, a point's int(v)); one row more on each side for safety.
-    const int y0 = c.part == 0 ? 0 : job.ysplit, y1 = c.part == 0 ? job.ysplit : oh;
+    const PartRows p = part_rows(job, c.part);
+    const int y0 = p.y0, y1 = p.y1;
     auto clamp_row = [&](double y) { return int(std::clamp(y, double(y0), double(y1))); };
     c.ylo = r.lo <= r.hi ? clamp_row(std::floor(double(r.lo)) - 1.0) : y0;
     c.yhi = r.lo <= r.hi ? clamp_row(std::floor(double(r.hi)) + 2.0) : y0;
