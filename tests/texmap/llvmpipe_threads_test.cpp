@@ -8,6 +8,7 @@
 #include <fstream>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "texmap/gl_context.h"
@@ -24,21 +25,30 @@ std::vector<int> cpus_of(const cpu_set_t& s) {
     return v;
 }
 
-// The CPUs each llvmpipe thread of this process may run on, by thread id ("llvmpipe-<k>" -> k, cpus).
-std::multimap<int, std::vector<int>> llvmpipe_masks() {
-    std::multimap<int, std::vector<int>> m;
+// This process's llvmpipe threads: (thread id, k of "llvmpipe-<k>"), read from /proc independently of the code
+// under test.
+std::vector<std::pair<int, int>> llvmpipe_threads() {
+    std::vector<std::pair<int, int>> v;
     DIR* dir = opendir("/proc/self/task");
-    if (!dir) return m;
+    if (!dir) return v;
     while (const dirent* e = readdir(dir)) {
         if (e->d_name[0] < '0' || e->d_name[0] > '9') continue;
         std::ifstream f(std::string("/proc/self/task/") + e->d_name + "/comm");
         std::string comm;
-        if (!std::getline(f, comm) || comm.rfind("llvmpipe-", 0) != 0) continue;
-        cpu_set_t s;
-        if (sched_getaffinity(std::atoi(e->d_name), sizeof s, &s) != 0) continue;
-        m.emplace(std::atoi(comm.c_str() + 9), cpus_of(s));
+        if (std::getline(f, comm) && comm.rfind("llvmpipe-", 0) == 0)
+            v.emplace_back(std::atoi(e->d_name), std::atoi(comm.c_str() + 9));
     }
     closedir(dir);
+    return v;
+}
+
+// The CPUs each llvmpipe thread may run on, by k.
+std::multimap<int, std::vector<int>> llvmpipe_masks() {
+    std::multimap<int, std::vector<int>> m;
+    for (const auto& [tid, k] : llvmpipe_threads()) {
+        cpu_set_t s;
+        if (sched_getaffinity(tid, sizeof s, &s) == 0) m.emplace(k, cpus_of(s));
+    }
     return m;
 }
 
@@ -72,16 +82,7 @@ TEST(LlvmpipeThreads, EnvironmentTurnsPinningOff) {
     // set, then without.
     cpu_set_t all;
     ASSERT_EQ(sched_getaffinity(0, sizeof all, &all), 0);
-    DIR* dir = opendir("/proc/self/task");
-    ASSERT_NE(dir, nullptr);
-    while (const dirent* e = readdir(dir)) {
-        std::ifstream f(std::string("/proc/self/task/") + e->d_name + "/comm");
-        std::string comm;
-        if (e->d_name[0] >= '0' && e->d_name[0] <= '9' && std::getline(f, comm) && comm.rfind("llvmpipe-", 0) == 0) {
-            ASSERT_EQ(sched_setaffinity(std::atoi(e->d_name), sizeof all, &all), 0);
-        }
-    }
-    closedir(dir);
+    for (const auto& [tid, k] : llvmpipe_threads()) ASSERT_EQ(sched_setaffinity(tid, sizeof all, &all), 0) << k;
     ASSERT_EQ(setenv("RTM_NO_LLVMPIPE_PINNING", "1", 1), 0);
     EXPECT_EQ(spread_llvmpipe_threads(), 0);
     const auto masks = llvmpipe_masks();
