@@ -201,6 +201,10 @@ void ReliefQuad::draw(Renderer& renderer, const Camera& cam, RenderMethod method
                 // Coverage alpha: the texture-mapping stage expects premultiplied colour (it divides the
                 // filtered colour by the filtered alpha); point-sampled output has alpha 0 or 255 only.
                 if (o.filter == Filter::coverage) premultiply_alpha(prewarped_);
+                if (o.keep_outliers) {
+                    const PrewarpExtent& e = stats_.extent;
+                    wall_content_ = margin_content(prewarped_, e.left, e.right, e.bottom, e.top);
+                }
                 times.prewarp_ms += ms_since(t0);
                 cached_ = {true, lvl, method, o.exact, o.keep_outliers, d.depth_correction, o.filter, k};
                 // Skip: texels at zero displacement were copied, not warped (paper section 5, the brick wall).
@@ -226,6 +230,7 @@ void ReliefQuad::draw(Renderer& renderer, const Camera& cam, RenderMethod method
             if (o.keep_outliers) {
                 rs.wall_low = std::min(0.0, t.quant.min);
                 rs.wall_high = std::max(0.0, t.quant.max);
+                rs.wall_content = wall_content_;
             }
         }
     }

@@ -97,6 +97,7 @@ private:
     long long prewarp_version_ = 0;  // counts the pre-warps into prewarped_
     Image2D<uint8_t> displ_;  // quantized displacement seen at each pre-warped pixel (depth correction)
     PrewarpStats stats_;
+    std::vector<PlaneRect> wall_content_;  // margin_content of prewarped_ (side polygons on), made with it
     std::unique_ptr<GlTexture> texture_, displ_texture_;
     ImageRGBA8 flat_;  // source colours of level flat_level_ as an ordinary texture (alpha 0 where empty)
     int flat_level_ = -1;

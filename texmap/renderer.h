@@ -9,9 +9,11 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "texmap/camera.h"
+#include "texmap/wall_clip.h"
 #include "warp/image.h"
 
 namespace rtm {
@@ -52,6 +54,9 @@ struct ReliefSurface {
     // each border that has a margin. Their fragments show the samples that left the quad through that border:
     // standing-out texels leave it on the side away from the epipole, recessed texels (d < 0) towards it.
     double wall_low = 0.0, wall_high = 0.0;
+    // When set, the texture's margin_content (texmap/wall_clip.h): the side polygons are cut down to what can
+    // show a texel of it; empty, they are not drawn. Unset, they are drawn whole (less the quad's cone).
+    std::optional<std::vector<PlaneRect>> wall_content;
     // Depth correction (paper section 4.2): when `displ` is set, each fragment's eye-space depth is the plane
     // point's depth scaled by 1 + k3*d, d decoded from the index texture (min + q*qs, 254 = max, 255 = none).
     const GlTexture* displ = nullptr;
