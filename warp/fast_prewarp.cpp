@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -110,6 +112,28 @@ FastTables make_fast_tables(const PrewarpTables& tab) {
 bool fast_prewarp_available() {
     static const bool ok = fast::cpu_supported();
     return ok;
+}
+
+void balance_row_chunks(std::vector<int>& bounds, const double* ms) {
+    const int n = int(bounds.size()) - 1;
+    if (n < 2 || n > 64) return;
+    double total = 0.0;
+    for (int i = 0; i < n; ++i) {
+        if (!(std::isfinite(ms[i]) && ms[i] > 0.0)) return;
+        total += ms[i];
+    }
+    int old[65];  // per frame: no allocation
+    std::copy(bounds.begin(), bounds.end(), old);
+    int chunk = 0;
+    double before = 0.0;  // the time of the chunks before `chunk`
+    for (int k = 1; k < n; ++k) {
+        const double want = total * k / n;
+        while (before + ms[chunk] < want && chunk + 1 < n) before += ms[chunk++];
+        const double rows = old[chunk + 1] - old[chunk];
+        const double target = old[chunk] + (want - before) / ms[chunk] * rows;
+        const int moved = int(std::lround(0.5 * (old[k] + target)));
+        bounds[size_t(k)] = std::clamp(moved, bounds[size_t(k) - 1] + 1, old[n] - (n - k));
+    }
 }
 
 bool fast_prewarp_covers(const ReliefTexture& relief, const PrewarpCoefficients& k, const PrewarpOptions& options,
@@ -215,9 +239,8 @@ PrewarpStats fast_two_pass(const ReliefTexture& relief, const PrewarpCoefficient
 // --no-reference`, column ranges -> row chunks): bumps 256^2 0.095 -> 0.081, 1024^2 2.05 -> 1.72; bricks 0.199 ->
 // 0.166, 2.36 -> 1.83; ridges 0.329 -> 0.273, 4.75 -> 3.94 (1 thread, unchanged: 3.21 / 3.54 / 8.19 -> within the
 // noise); 2 rounds, bumps 2048^2 18.3 -> 13.7, 4096^2 110 -> 80, ridges 23.5 -> 21.6, 96.9 -> 92.9. Small images
-// too (3 rounds, 32^2 to 128^2: equal or faster, ridges 64^2 0.054 -> 0.033), so no size limit. Chunks of equal
-// rows: the remaining loss is their imbalance (1024^2: bumps 1.6 ms for the first half of the rows against 1.35
-// for the second, ridges 3.4 against 3.8). Two parts keep the column ranges: not measured (the benchmark's view
+// too (3 rounds, 32^2 to 128^2: equal or faster, ridges 64^2 0.054 -> 0.033), so no size limit. The chunks' rows
+// are balanced by time (pipelined_in_row_chunks). Two parts keep the column ranges: not measured (the benchmark's view
 // has one part, and more threads than parts needs more than this machine's 2 cores).
 bool pipelined_row_chunks(int threads, int np) {
     if (fast::pipelined_chunks != 0) return fast::pipelined_chunks == 1;
@@ -257,6 +280,13 @@ void pipelined_in_column_ranges(const fast::PipelinedJob& job, int threads_optio
 // disjoint), composited over the output afterwards in row order. The first chunk clears its part's output rows
 // itself: clearing the whole output in parallel first measured the same (bumps 1024^2, 2 threads, 5 interleaved
 // rounds: 1.726 ms against 1.718).
+// The chunks' rows are balanced by their times in the last pre-warp (balance_row_chunks): equal rows took unequal
+// times (2 threads, 1024^2: bumps 1.64 ms for the first half against 1.50 for the second, ridges 3.6 against
+// 3.8; 256^2: bumps 0.076 against 0.096, ridges 0.243 against 0.290: the second chunk also warps the row before
+// it and draws into a scratch image). Measured (2 threads, `rtm bench --methods pipelined --no-exact
+// --no-reference`, median ms of interleaved rounds, equal rows -> balanced; a busy host, 1024^2 7 rounds, 256^2 9):
+// 1024^2 bumps 1.89 -> 1.65, bricks 1.96 -> 1.95, ridges 4.40 -> 4.09; 256^2 bumps 0.078 either way, bricks 0.161
+// -> 0.149, ridges 0.263 -> 0.255.
 void pipelined_in_row_chunks(const fast::PipelinedJob& job, int threads_option, int threads, PrewarpWorkspace& ws) {
     const int h = job.relief->height, ow = job.out->width, oh = job.out->height;
     const int rows[2] = {job.split_v, h - job.split_v};
@@ -273,18 +303,35 @@ void pipelined_in_row_chunks(const fast::PipelinedJob& job, int threads_option, 
         for (ImageRGBA8& img : ws.chunk_scratch) std::fill(img.pixels.begin(), img.pixels.end(), Rgba8{});
     ws.chunk_scratch_dirty = true;
     fast::PipelinedChunk chunks[2 * 64];
-    int nc = 0;
-    for (int p = 0; p < 2; ++p)
-        for (int i = 0; i < per_part[p]; ++i) {
+    double chunk_ms[2 * 64];
+    int nc = 0, first_chunk[2] = {0, 0};
+    for (int p = 0; p < 2; ++p) {
+        std::vector<int>& b = ws.chunk_bounds[size_t(p)];
+        const int n = per_part[p];
+        bool valid = int(b.size()) == n + 1 && b[0] == 0 && b[size_t(n)] == rows[p];
+        for (int i = 0; valid && i < n; ++i) valid = b[size_t(i)] < b[size_t(i) + 1];
+        if (!valid) {
+            b.resize(size_t(std::max(n, 0)) + 1);
+            for (int i = 0; i <= n; ++i) b[size_t(i)] = int((long long)rows[p] * i / std::max(n, 1));
+        }
+        first_chunk[p] = nc;
+        for (int i = 0; i < n; ++i) {
             fast::PipelinedChunk& c = chunks[nc++];
             c.part = p;
-            c.r0 = int((long long)rows[p] * i / per_part[p]);
-            c.r1 = int((long long)rows[p] * (i + 1) / per_part[p]);
+            c.r0 = b[size_t(i)];
+            c.r1 = b[size_t(i) + 1];
             c.scratch = i ? &ws.chunk_scratch[size_t(i - 1)] : nullptr;
         }
+    }
     run_ranges(threads_option, nc, 1, [&](int t0, int t1) {
-        for (int t = t0; t < t1; ++t) fast::pipelined_chunk(job, chunks[t]);
+        for (int t = t0; t < t1; ++t) {
+            const auto start = std::chrono::steady_clock::now();
+            fast::pipelined_chunk(job, chunks[t]);
+            chunk_ms[t] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        }
     });
+    for (int p = 0; p < 2; ++p)
+        if (per_part[p] > 1) balance_row_chunks(ws.chunk_bounds[size_t(p)], chunk_ms + first_chunk[p]);
     int y0 = oh, y1 = 0;
     for (int i = 0; i < nc; ++i)
         if (chunks[i].ylo < chunks[i].yhi) y0 = std::min(y0, chunks[i].ylo), y1 = std::max(y1, chunks[i].yhi);

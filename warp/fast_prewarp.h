@@ -20,6 +20,8 @@
 // explicit thread counts are created once per count.
 #pragma once
 
+#include <vector>
+
 #include "warp/image.h"
 #include "warp/prewarp.h"
 #include "warp/prewarp_coefficients.h"
@@ -37,5 +39,11 @@ PrewarpStats fast_prewarp(const ReliefTexture& relief, const PrewarpCoefficients
 
 // True when this CPU can run the fast kernels.
 bool fast_prewarp_available();
+
+// The pipelined kernel's row chunks (warp/fast_prewarp.cpp): `bounds` (n + 1 increasing rows, 0 first, the part's
+// row count last) of n chunks that took ms[0 .. n) are moved half-way towards the bounds that would give every
+// chunk the same time, each chunk's time spread evenly over its rows; every chunk keeps at least one row. Times
+// that are not all finite and positive, or more than 64 chunks (the kernel's most), leave the bounds as they are.
+void balance_row_chunks(std::vector<int>& bounds, const double* ms);
 
 }  // namespace rtm

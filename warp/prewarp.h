@@ -20,6 +20,7 @@
 // texture-mapping stage scales the polygon's eye-space depth by 1 + k3*d to get the perceived depth.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -69,6 +70,10 @@ struct PrewarpWorkspace {
     // everywhere between pre-warps (the kernel clears what it wrote).
     std::vector<ImageRGBA8> chunk_scratch;
     bool chunk_scratch_dirty = false;  // set while chunks and composite run: an interrupted pre-warp left pixels
+    // The row chunks of each part (0: bottom, 1: top): the first row of each chunk in the part's order and the
+    // part's row count last, balanced by the times the chunks took in the last pre-warp (balance_row_chunks). Any
+    // increasing bounds from 0 to the row count give the same output; others are replaced by equal chunks.
+    std::array<std::vector<int>, 2> chunk_bounds;
 };
 
 struct PrewarpStats {

@@ -525,6 +525,64 @@ TEST_F(ReverseModeFixture, PipelinedReverseModeFoldoversStillTexelsAndGaps) {
 // the reference, 2 to 4 threads, reverse mode off, forced and automatic: the random cases above (one part and two,
 // heights from 1 row), reliefs of 1 to 3 rows (fewer rows than threads) seen with the epipole inside and outside
 // the rows, and foldover-heavy reliefs whose chunks switch to reverse mode on their own; the dropped counts too.
+// Row chunks balanced by time (warp/fast_prewarp.cpp): exact cases worked by hand, then a sweep where each
+// chunk's time is the sum of fixed random costs of its rows: the bounds stay increasing from 0 to the row count
+// and within 40 rounds bring every chunk to the mean time within two of the costliest rows (the bounds move by
+// whole rows, and half-way each round).
+TEST(BalanceRowChunks, MovesHalfWayToEqualTimes) {
+    auto balanced = [](std::vector<int> b, std::vector<double> ms) {
+        balance_row_chunks(b, ms.data());
+        return b;
+    };
+    // Chunk 0 takes 3 of 4 ms: equal times put the bound at 2/3 of its 50 rows (33.3); half-way from 50: 41.7.
+    EXPECT_EQ(balanced({0, 50, 100}, {3, 1}), (std::vector<int>{0, 42, 100}));
+    EXPECT_EQ(balanced({0, 50, 100}, {1, 1}), (std::vector<int>{0, 50, 100}));
+    // Targets 2 and 4 of 6 ms: row 20 (the end of chunk 1) and 25 (half of chunk 2); half-way: 15, 22.5 -> 23.
+    EXPECT_EQ(balanced({0, 10, 20, 30}, {1, 1, 4}), (std::vector<int>{0, 15, 23, 30}));
+    // Every chunk keeps a row.
+    EXPECT_EQ(balanced({0, 1, 2, 3}, {100, 1, 1}), (std::vector<int>{0, 1, 2, 3}));
+    // Times that cannot be right change nothing.
+    EXPECT_EQ(balanced({0, 5, 10}, {0, 1}), (std::vector<int>{0, 5, 10}));
+    EXPECT_EQ(balanced({0, 5, 10}, {std::nan(""), 1}), (std::vector<int>{0, 5, 10}));
+    EXPECT_EQ(balanced({0, 10}, {1}), (std::vector<int>{0, 10}));
+}
+
+TEST(BalanceRowChunks, ConvergesToEqualTimes) {
+    const uint64_t seed = test::test_seed(80021);
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    for (int iter = 0; iter < 300; ++iter) {
+        const int n = 2 + int(rng() % 7), rows = n + int(rng() % 500);
+        std::vector<double> cost(static_cast<size_t>(rows));
+        const double skew = 4.0 * U(rng);  // rows get costlier (or cheaper) along the part, with noise
+        for (int r = 0; r < rows; ++r) cost[size_t(r)] = 0.1 + std::pow(double(r) / rows, skew) + 0.3 * U(rng);
+        std::vector<int> b(size_t(n) + 1);
+        for (int i = 0; i <= n; ++i) b[size_t(i)] = rows * i / n;
+        std::vector<double> ms(static_cast<size_t>(n));
+        auto times = [&] {
+            for (int i = 0; i < n; ++i) {
+                ms[size_t(i)] = 0.0;
+                for (int r = b[size_t(i)]; r < b[size_t(i) + 1]; ++r) ms[size_t(i)] += cost[size_t(r)];
+            }
+        };
+        for (int round = 0; round < 40; ++round) {
+            times();
+            balance_row_chunks(b, ms.data());
+            ASSERT_EQ(b.front(), 0);
+            ASSERT_EQ(b.back(), rows);
+            for (int i = 0; i < n; ++i) ASSERT_LT(b[size_t(i)], b[size_t(i) + 1]) << "round " << round;
+        }
+        times();
+        double total = 0.0, costliest = 0.0;
+        for (double m : ms) total += m;
+        for (double c : cost) costliest = std::max(costliest, c);
+        for (int i = 0; i < n; ++i)
+            ASSERT_NEAR(ms[size_t(i)], total / n, 2.0 * costliest)
+                << "iteration " << iter << ": chunk " << i << " of " << n << ", " << rows << " rows";
+    }
+}
+
 TEST_F(ReverseModeFixture, PipelinedRowChunksMatchTheReference) {
     const uint64_t seed = test::test_seed(80013);
     std::mt19937_64 rng(seed);
@@ -544,9 +602,20 @@ TEST_F(ReverseModeFixture, PipelinedRowChunksMatchTheReference) {
             fast::pipelined_reverse = policy;
             for (int threads : {2, 3, 4}) {
                 o.threads = threads;
-                const PrewarpStats sf = prewarp(t, k, o, ws_fast, fast);
-                ASSERT_EQ(first_difference(ref, fast), "") << "policy " << policy << " threads " << threads;
-                ASSERT_EQ(sf.dropped, sr.dropped) << "policy " << policy << " threads " << threads;
+                // Chunks as the last pre-warp's times balanced them, then at random bounds (the part's row count
+                // and number of chunks kept from the first call).
+                for (int split = 0; split < 2; ++split) {
+                    if (split)
+                        for (std::vector<int>& b : ws_fast.chunk_bounds)
+                            for (size_t i = 1; i + 1 < b.size(); ++i) {
+                                const int lo = b[i - 1] + 1, hi = b.back() - int(b.size() - 1 - i);
+                                b[i] = lo + int(rng() % uint64_t(hi - lo + 1));
+                            }
+                    const PrewarpStats sf = prewarp(t, k, o, ws_fast, fast);
+                    ASSERT_EQ(first_difference(ref, fast), "")
+                        << "policy " << policy << " threads " << threads << " split " << split;
+                    ASSERT_EQ(sf.dropped, sr.dropped) << "policy " << policy << " threads " << threads;
+                }
             }
         }
     };
