@@ -230,7 +230,7 @@ void ReliefQuad::draw(Renderer& renderer, const Camera& cam, RenderMethod method
             if (o.keep_outliers) {
                 rs.wall_low = std::min(0.0, t.quant.min);
                 rs.wall_high = std::max(0.0, t.quant.max);
-                rs.wall_content = wall_content_;
+                rs.wall_content = &wall_content_;
             }
         }
     }

@@ -9,7 +9,6 @@
 
 #include <array>
 #include <cstdint>
-#include <optional>
 #include <vector>
 
 #include "texmap/camera.h"
@@ -55,8 +54,8 @@ struct ReliefSurface {
     // standing-out texels leave it on the side away from the epipole, recessed texels (d < 0) towards it.
     double wall_low = 0.0, wall_high = 0.0;
     // When set, the texture's margin_content (texmap/wall_clip.h): the side polygons are cut down to what can
-    // show a texel of it; empty, they are not drawn. Unset, they are drawn whole (less the quad's cone).
-    std::optional<std::vector<PlaneRect>> wall_content;
+    // show a texel of it; empty, they are not drawn. Null, they are drawn whole (less the quad's cone).
+    const std::vector<PlaneRect>* wall_content = nullptr;
     // Depth correction (paper section 4.2): when `displ` is set, each fragment's eye-space depth is the plane
     // point's depth scaled by 1 + k3*d, d decoded from the index texture (min + q*qs, 254 = max, 255 = none).
     const GlTexture* displ = nullptr;
