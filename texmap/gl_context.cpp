@@ -84,6 +84,7 @@ public:
                                OSMESA_CONTEXT_MINOR_VERSION,
                                3,
                                0};
+        const std::vector<int> threads_before = process_threads();
         ctx_ = OSMesaCreateContextAttribs(attribs, nullptr);
         if (!ctx_)
             throw GlError("OSMesa: cannot create an OpenGL 3.3 core context (OSMesaCreateContextAttribs failed; is "
@@ -96,7 +97,7 @@ public:
             if (g_loaded_for == this) g_loaded_for = nullptr;
             throw;
         }
-        spread_llvmpipe_threads();
+        spread_llvmpipe_threads(threads_before);
     }
     ~OsMesaContext() override {
         if (OSMesaGetCurrentContext() == ctx_) OSMesaMakeCurrent(nullptr, nullptr, GL_UNSIGNED_BYTE, 0, 0);
@@ -167,6 +168,7 @@ public:
         glfwWindowHint(GLFW_VISIBLE, visible ? GLFW_TRUE : GLFW_FALSE);
         glfwWindowHint(GLFW_DEPTH_BITS, 24);
         glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
+        const std::vector<int> threads_before = process_threads();
         window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
         if (!window_) {
             std::string e = take_glfw_error();
@@ -182,7 +184,7 @@ public:
             throw;
         }
         glfwSwapInterval(0);
-        spread_llvmpipe_threads();
+        spread_llvmpipe_threads(threads_before);
     }
     ~GlfwContext() override {
         if (glfwGetCurrentContext() == window_) glfwMakeContextCurrent(nullptr);

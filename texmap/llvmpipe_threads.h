@@ -11,12 +11,26 @@
 // 0.69 to 0.76 in two and 1.24 to 1.26 in four.
 #pragma once
 
+#include <chrono>
+#include <vector>
+
 namespace rtm {
+
+// The ids of this process's threads, ascending.
+std::vector<int> process_threads();
+
+// How long spread_llvmpipe_threads waits for new threads to name themselves.
+constexpr std::chrono::milliseconds kWait{50};
 
 // Pins every thread of this process named "llvmpipe-<k>" to the k-th CPU of the process's affinity mask (modulo
 // their number). Does nothing when the process may use one CPU only, when no such thread exists (another OpenGL
 // driver) or when the environment sets RTM_NO_LLVMPIPE_PINNING (to measure the difference). Returns the number of
 // threads pinned. Best effort: a thread that cannot be pinned keeps its mask.
-int spread_llvmpipe_threads();
+// `before`: process_threads() from before the context was created. llvmpipe names each thread from inside it, so
+// right after the context is created a thread that has not run yet still has its creator's name and would be
+// missed (seen on a busy host: llvmpipe-1 left unpinned); the threads started since `before` are given up to kWait
+// to take their names first, while fewer llvmpipe threads than LP_NUM_THREADS or the online CPUs are found. Empty:
+// no wait.
+int spread_llvmpipe_threads(const std::vector<int>& before = {});
 
 }  // namespace rtm

@@ -2,12 +2,17 @@
 #include <gtest/gtest.h>
 
 #include <dirent.h>
+#include <pthread.h>
 #include <sched.h>
+#include <unistd.h>
 
+#include <atomic>
+#include <chrono>
 #include <cstdlib>
 #include <fstream>
 #include <map>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -90,6 +95,42 @@ TEST(LlvmpipeThreads, EnvironmentTurnsPinningOff) {
     ASSERT_EQ(unsetenv("RTM_NO_LLVMPIPE_PINNING"), 0);
     EXPECT_EQ(spread_llvmpipe_threads(), int(masks.size()));
     for (const auto& [k, m] : llvmpipe_masks()) EXPECT_EQ(m, std::vector<int>{cpus[size_t(k) % cpus.size()]});
+}
+
+// The race the wait closes: a thread started after `before` that names itself "llvmpipe-<k>" only some
+// milliseconds later (as llvmpipe's threads do from inside, late when the host is busy) is still pinned. Without the
+// wait it is missed: spread returns at once, the thread still bearing this thread's name. LP_NUM_THREADS (read by
+// the wait, and by Mesa only when its first context is made) says more llvmpipe threads are due than an earlier
+// test's context may have left.
+TEST(LlvmpipeThreads, WaitsForNewThreadsToNameThemselves) {
+    const std::vector<int> cpus = process_cpus();
+    if (cpus.size() < 2) GTEST_SKIP() << "the process may use one CPU only";
+    const char* had = std::getenv("LP_NUM_THREADS");
+    const std::string saved = had ? had : "";
+    ASSERT_EQ(setenv("LP_NUM_THREADS", "64", 1), 0);
+    const std::vector<int> before = process_threads();
+    std::atomic<bool> named{false}, done{false};
+    std::atomic<int> tid{0};
+    std::thread t([&] {
+        tid = int(gettid());
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));  // a fifth of kWait
+        pthread_setname_np(pthread_self(), "llvmpipe-7");
+        named = true;
+        while (!done) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    });
+    while (tid == 0) std::this_thread::yield();
+    const int pinned = spread_llvmpipe_threads(before);
+    if (had)
+        setenv("LP_NUM_THREADS", saved.c_str(), 1);
+    else
+        unsetenv("LP_NUM_THREADS");
+    EXPECT_TRUE(named);
+    EXPECT_GE(pinned, 1);
+    cpu_set_t s;
+    ASSERT_EQ(sched_getaffinity(pid_t(tid.load()), sizeof s, &s), 0);
+    EXPECT_EQ(cpus_of(s), std::vector<int>{cpus[7 % cpus.size()]});
+    done = true;
+    t.join();
 }
 
 }  // namespace
