@@ -586,12 +586,14 @@ inline void shade_subrun(const LineSoA& s, int k_first, int k_last, const LineOu
             if (!has1) continue;
             if (has3) {  // a span of 3 pixels or more: per pixel
                 const int c1 = imin(c0 + 16, S);
-                if constexpr (kStrict) {
+                {
                     // Spans of 3 and 4 pixels (stretched faces of foldover rows): span by span, four pixels each,
                     // the pixels put in order with two rounds of permutes and compressed into place. Ridges, fast
-                    // two-pass, one thread, medians of 6 interleaved runs: 256^2 0.290 -> 0.266 ms, 1024^2 5.31 ->
-                    // 4.91 ms (shade_per_pixel 19% -> 12.5% of the time). Only on backward rows (kStrict), where
-                    // it was measured; bumps never gets here.
+                    // two-pass (backward rows), one thread, medians of 6 interleaved runs: 256^2 0.290 -> 0.266 ms,
+                    // 1024^2 5.31 -> 4.91 ms (shade_per_pixel 19% -> 12.5% of the time). Forward rows too (the
+                    // pipelined kernel's, which shades every emission): ridges pipelined, one thread, medians of 5
+                    // interleaved runs, 256^2 0.486 -> 0.462 ms, 1024^2 8.67 -> 7.99; two-pass at 256^2 within
+                    // 1.5% for every relief. Bumps never gets here.
                     if (!_mm512_mask_cmpge_epi32_mask(m, cnt, _mm512_set1_epi32(4))) {
                         const __mmask16 has4 = _mm512_mask_cmpge_epi32_mask(m, cnt, _mm512_set1_epi32(3));
                         __m512i c[4];
