@@ -362,7 +362,8 @@ Renderer::Renderer() : impl_(new Impl) {
             }
 
         // Relief surface: the relief quad and the pieces of up to 4 side polygons (kMaxReliefVertices), as
-        // eye-relative positions and texture coordinates (used by the quad only).
+        // eye-relative positions and texture coordinates: (s, t, 1) on the quad, the homogeneous plane coordinates
+        // (U, V, W) on the side polygons.
         glGenVertexArrays(1, &m.relief_vao);
         glGenBuffers(1, &m.relief_vbo);
         glBindVertexArray(m.relief_vao);
@@ -509,6 +510,7 @@ void Renderer::draw_relief(const Camera& cam, const ReliefSurface& rs, const GlT
     const double t0 = 1.0 - rs.margin_bottom * inv_h, t1 = 1.0 - (rs.margin_bottom + rs.height) * inv_h;
     const std::array<glm::dvec2, 4> quad_st = {glm::dvec2(u0, t0), glm::dvec2(u1, t0), glm::dvec2(u1, t1),
                                                glm::dvec2(u0, t1)};
+    const double c_da = glm::dot(c, da), c_db = glm::dot(c, db);
     std::vector<float> data;
     std::vector<GLint> first{0};  // each polygon's first vertex; first.back() = vertices in all
     for (size_t i = 0; i < polygons.size(); ++i) {
@@ -519,7 +521,7 @@ void Renderer::draw_relief(const Camera& cam, const ReliefSurface& rs, const GlT
                 st = glm::dvec3(quad_st[k], 1.0);
             } else {
                 const double w = glm::dot(r, f) / cf;
-                st = glm::dvec3(glm::dot(r, da) - w * glm::dot(c, da), glm::dot(r, db) - w * glm::dot(c, db), w);
+                st = glm::dvec3(glm::dot(r, da) - w * c_da, glm::dot(r, db) - w * c_db, w);
             }
             data.insert(data.end(), {float(r.x), float(r.y), float(r.z), float(st.x), float(st.y), float(st.z)});
         }

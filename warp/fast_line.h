@@ -584,59 +584,57 @@ inline void shade_subrun(const LineSoA& s, int k_first, int k_last, const LineOu
             const __mmask16 has3 = _mm512_mask_cmpge_epi32_mask(m, cnt, _mm512_set1_epi32(2));
             const int p0 = imax(st(c0), 0);  // the first pixel of these spans (empty ones start where the next does)
             if (!has1) continue;
-            if (has3) {  // a span of 3 pixels or more: per pixel
+            if (has3) {  // a span of 3 pixels or more: span by span up to 4, else per pixel
                 const int c1 = imin(c0 + 16, S);
-                {
-                    // Spans of 3 and 4 pixels (stretched faces of foldover rows): span by span, four pixels each,
-                    // the pixels put in order with two rounds of permutes and compressed into place. Ridges, fast
-                    // two-pass (backward rows), one thread, medians of 6 interleaved runs: 256^2 0.290 -> 0.266 ms,
-                    // 1024^2 5.31 -> 4.91 ms (shade_per_pixel 19% -> 12.5% of the time). Forward rows too (the
-                    // pipelined kernel's, which shades every emission): ridges pipelined, one thread, medians of 5
-                    // interleaved runs, 256^2 0.486 -> 0.462 ms, 1024^2 8.67 -> 7.99; two-pass at 256^2 within
-                    // 1.5% for every relief. Bumps never gets here.
-                    if (!_mm512_mask_cmpge_epi32_mask(m, cnt, _mm512_set1_epi32(4))) {
-                        const __mmask16 has4 = _mm512_mask_cmpge_epi32_mask(m, cnt, _mm512_set1_epi32(3));
-                        __m512i c[4];
-                        __m512 v[4];
-                        span_pixels<A, kAttr, 4>(s, k0, lo, c, v);
-                        const __m512i qa = _mm512_setr_epi64(0, 8, 1, 9, 2, 10, 3, 11);
-                        const __m512i qb = _mm512_setr_epi64(4, 12, 5, 13, 6, 14, 7, 15);
-                        const __m512i p12l = _mm512_permutex2var_epi32(c[0], il_lo, c[1]);
-                        const __m512i p12h = _mm512_permutex2var_epi32(c[0], il_hi, c[1]);
-                        const __m512i p34l = _mm512_permutex2var_epi32(c[2], il_lo, c[3]);
-                        const __m512i p34h = _mm512_permutex2var_epi32(c[2], il_hi, c[3]);
-                        const __m512i qc[4] = {_mm512_permutex2var_epi64(p12l, qa, p34l),
-                                               _mm512_permutex2var_epi64(p12l, qb, p34l),
-                                               _mm512_permutex2var_epi64(p12h, qa, p34h),
-                                               _mm512_permutex2var_epi64(p12h, qb, p34h)};
-                        __m512 qv[4];
-                        if constexpr (kAttr) {
-                            const __m512d a12l = _mm512_castps_pd(_mm512_permutex2var_ps(v[0], il_lo, v[1]));
-                            const __m512d a12h = _mm512_castps_pd(_mm512_permutex2var_ps(v[0], il_hi, v[1]));
-                            const __m512d a34l = _mm512_castps_pd(_mm512_permutex2var_ps(v[2], il_lo, v[3]));
-                            const __m512d a34h = _mm512_castps_pd(_mm512_permutex2var_ps(v[2], il_hi, v[3]));
-                            qv[0] = _mm512_castpd_ps(_mm512_permutex2var_pd(a12l, qa, a34l));
-                            qv[1] = _mm512_castpd_ps(_mm512_permutex2var_pd(a12l, qb, a34l));
-                            qv[2] = _mm512_castpd_ps(_mm512_permutex2var_pd(a12h, qa, a34h));
-                            qv[3] = _mm512_castpd_ps(_mm512_permutex2var_pd(a12h, qb, a34h));
-                        }
-                        const uint32_t h1 = has1, h2 = has2, h3 = has3, h4 = has4;
-                        int p = p0;
-                        for (int g = 0; g < 4; ++g) {
-                            const int sh = 4 * g;
-                            const __mmask16 mg =
-                                __mmask16(_pdep_u32((h1 >> sh) & 0xF, 0x1111) | _pdep_u32((h2 >> sh) & 0xF, 0x2222) |
-                                          _pdep_u32((h3 >> sh) & 0xF, 0x4444) | _pdep_u32((h4 >> sh) & 0xF, 0x8888));
-                            if (!mg) continue;
-                            const int np = int(_mm_popcnt_u32(mg));
-                            const __mmask16 ms = first_lanes(np) & clip16(p);
-                            _mm512_mask_storeu_epi32(out.color + p, ms, _mm512_maskz_compress_epi32(mg, qc[g]));
-                            if constexpr (kAttr)
-                                _mm512_mask_storeu_ps(out.attr + p, ms, _mm512_maskz_compress_ps(mg, qv[g]));
-                            p += np;
-                        }
-                        continue;
+                // Spans of 3 and 4 pixels (stretched faces of foldover rows): span by span, four pixels each,
+                // the pixels put in order with two rounds of permutes and compressed into place. Ridges, fast
+                // two-pass (backward rows), one thread, medians of 6 interleaved runs: 256^2 0.290 -> 0.266 ms,
+                // 1024^2 5.31 -> 4.91 ms (shade_per_pixel 19% -> 12.5% of the time). Forward rows too (the
+                // pipelined kernel's, which shades every emission): ridges pipelined, one thread, medians of 5
+                // interleaved runs, 256^2 0.486 -> 0.462 ms, 1024^2 8.67 -> 7.99; two-pass at 256^2 within
+                // 1.5% for every relief. Bumps never gets here.
+                if (!_mm512_mask_cmpge_epi32_mask(m, cnt, _mm512_set1_epi32(4))) {
+                    const __mmask16 has4 = _mm512_mask_cmpge_epi32_mask(m, cnt, _mm512_set1_epi32(3));
+                    __m512i c[4];
+                    __m512 v[4];
+                    span_pixels<A, kAttr, 4>(s, k0, lo, c, v);
+                    const __m512i qa = _mm512_setr_epi64(0, 8, 1, 9, 2, 10, 3, 11);
+                    const __m512i qb = _mm512_setr_epi64(4, 12, 5, 13, 6, 14, 7, 15);
+                    const __m512i p12l = _mm512_permutex2var_epi32(c[0], il_lo, c[1]);
+                    const __m512i p12h = _mm512_permutex2var_epi32(c[0], il_hi, c[1]);
+                    const __m512i p34l = _mm512_permutex2var_epi32(c[2], il_lo, c[3]);
+                    const __m512i p34h = _mm512_permutex2var_epi32(c[2], il_hi, c[3]);
+                    const __m512i qc[4] = {_mm512_permutex2var_epi64(p12l, qa, p34l),
+                                           _mm512_permutex2var_epi64(p12l, qb, p34l),
+                                           _mm512_permutex2var_epi64(p12h, qa, p34h),
+                                           _mm512_permutex2var_epi64(p12h, qb, p34h)};
+                    __m512 qv[4];
+                    if constexpr (kAttr) {
+                        const __m512d a12l = _mm512_castps_pd(_mm512_permutex2var_ps(v[0], il_lo, v[1]));
+                        const __m512d a12h = _mm512_castps_pd(_mm512_permutex2var_ps(v[0], il_hi, v[1]));
+                        const __m512d a34l = _mm512_castps_pd(_mm512_permutex2var_ps(v[2], il_lo, v[3]));
+                        const __m512d a34h = _mm512_castps_pd(_mm512_permutex2var_ps(v[2], il_hi, v[3]));
+                        qv[0] = _mm512_castpd_ps(_mm512_permutex2var_pd(a12l, qa, a34l));
+                        qv[1] = _mm512_castpd_ps(_mm512_permutex2var_pd(a12l, qb, a34l));
+                        qv[2] = _mm512_castpd_ps(_mm512_permutex2var_pd(a12h, qa, a34h));
+                        qv[3] = _mm512_castpd_ps(_mm512_permutex2var_pd(a12h, qb, a34h));
                     }
+                    const uint32_t h1 = has1, h2 = has2, h3 = has3, h4 = has4;
+                    int p = p0;
+                    for (int g = 0; g < 4; ++g) {
+                        const int sh = 4 * g;
+                        const __mmask16 mg =
+                            __mmask16(_pdep_u32((h1 >> sh) & 0xF, 0x1111) | _pdep_u32((h2 >> sh) & 0xF, 0x2222) |
+                                      _pdep_u32((h3 >> sh) & 0xF, 0x4444) | _pdep_u32((h4 >> sh) & 0xF, 0x8888));
+                        if (!mg) continue;
+                        const int np = int(_mm_popcnt_u32(mg));
+                        const __mmask16 ms = first_lanes(np) & clip16(p);
+                        _mm512_mask_storeu_epi32(out.color + p, ms, _mm512_maskz_compress_epi32(mg, qc[g]));
+                        if constexpr (kAttr)
+                            _mm512_mask_storeu_ps(out.attr + p, ms, _mm512_maskz_compress_ps(mg, qv[g]));
+                        p += np;
+                    }
+                    continue;
                 }
                 const int q_lo = kStrict ? imax(p0, out.clip_lo) : p0;
                 const int q_end = imin(st(c1) - 1, n_out - 1);
