@@ -468,14 +468,14 @@ RowRange run_rows(const fast::PipelinedJob& job, const RowTask& k, uint32_t* pix
     }
     long long dropped = 0;
     bool reversed = false;
-    if (fast::pipelined_reverse == 1) {
+    if (job.reverse == KernelChoice::always) {
         reverse_rows(job, sc, emit.o, k, k.first, dropped);
         reversed = true;
     }
     for (int j = k.first; !reversed && j != k.end; j += k.step) {
         std::memset(sc.cur_ok + k.x0, 0, size_t(k.x1 - k.x0));
         // Every 4th row measures how many pixels its spans cover per column (at most oh each).
-        sc.measure = fast::pipelined_reverse != 2 && (j & 3) == 0 && j + k.step != k.end;
+        sc.measure = job.reverse == KernelChoice::automatic && (j & 3) == 0 && j + k.step != k.end;
         sc.drawn = _mm512_setzero_ps();
         const long long d = warp_row(job, sc, j, k.x0, k.x1, emit);
         if (k.x0 == 0) dropped += d;
@@ -505,9 +505,6 @@ void clear_part(const fast::PipelinedJob& job, int part, int x0, int x1) {
 }  // namespace
 
 namespace fast {
-
-int pipelined_reverse = 0;
-int pipelined_chunks = 0;
 
 void pipelined_part(const PipelinedJob& job, int part, int x0, int x1) {
     clear_part(job, part, x0, x1);

@@ -36,6 +36,7 @@ struct PipelinedJob {
     float* seam_v[2] = {nullptr, nullptr};
     uint32_t* seam_c[2] = {nullptr, nullptr};
     bool copy_still = true;  // PrewarpOptions::copy_still_runs
+    KernelChoice reverse = KernelChoice::automatic;  // FastKernelPolicy::pipelined_reverse
     std::atomic<long long>* dropped = nullptr;
 };
 
@@ -58,15 +59,6 @@ void pipelined_chunk(const PipelinedJob& job, PipelinedChunk& chunk);
 // Output v-rows [y0, y1): the pixels the scratch chunks wrote (alpha not 0) replace the output's, chunk after chunk
 // in the order given (the parts' row order), and the scratch rows are cleared to 0 again.
 void pipelined_composite(const PipelinedJob& job, const PipelinedChunk* chunks, int n, int y0, int y1);
-
-// Test hook: 0 lets each part switch to reverse mode (fast_pipelined.cpp, reverse_rows) where rows overdraw much,
-// 1 runs whole parts in reverse mode, 2 never uses it. The output is the same.
-extern int pipelined_reverse;
-
-// Test hook: 0 lets fast_prewarp choose between column ranges and row chunks (warp/fast_prewarp.cpp), 1 always
-// splits parts into row chunks (one per thread, fewer where a part has fewer rows), 2 never does. The output is the
-// same.
-extern int pipelined_chunks;
 
 // The span between the last rows of the two parts, in every column where both have a sample.
 void pipelined_seam(const PipelinedJob& job);

@@ -177,6 +177,8 @@ PrewarpStats fast_two_pass(const ReliefTexture& relief, const PrewarpCoefficient
     job.seam_c = mc + stride;
     job.col_ok = reinterpret_cast<uint16_t*>(mc + 2 * size_t(stride));
     job.copy_still = options.copy_still_runs;
+    job.reverse = options.kernel_policy.two_pass_reverse;
+    job.redo_forwards = options.kernel_policy.two_pass_redo_forwards;
     job.col_fl = reinterpret_cast<int32_t*>(mv + 2 * size_t(stride));
     job.col_ce = reinterpret_cast<int32_t*>(mv + 3 * size_t(stride));
     job.dropped = &dropped;
@@ -242,8 +244,8 @@ PrewarpStats fast_two_pass(const ReliefTexture& relief, const PrewarpCoefficient
 // too (3 rounds, 32^2 to 128^2: equal or faster, ridges 64^2 0.054 -> 0.033), so no size limit. The chunks' rows
 // are balanced by time (pipelined_in_row_chunks). Two parts keep the column ranges: not measured (the benchmark's view
 // has one part, and more threads than parts needs more than this machine's 2 cores).
-bool pipelined_row_chunks(int threads, int np) {
-    if (fast::pipelined_chunks != 0) return fast::pipelined_chunks == 1;
+bool pipelined_row_chunks(KernelChoice choice, int threads, int np) {
+    if (choice != KernelChoice::automatic) return choice == KernelChoice::always;
     return threads > 1 && np == 1;
 }
 
@@ -355,6 +357,7 @@ PrewarpStats fast_pipelined(const ReliefTexture& relief, const PrewarpCoefficien
     fast::PipelinedJob job;
     job.relief = &relief;
     job.copy_still = options.copy_still_runs;
+    job.reverse = options.kernel_policy.pipelined_reverse;
     job.tables = &tables;
     job.extent = e;
     job.split_u = split_index(k.epipole_u, w);
@@ -371,7 +374,7 @@ PrewarpStats fast_pipelined(const ReliefTexture& relief, const PrewarpCoefficien
         if (!parts[p]) std::fill(job.seam_c[p], job.seam_c[p] + ow, 0u);  // no rows: nothing received
     const int np = int(parts[0]) + int(parts[1]);
     const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
-    if (pipelined_row_chunks(threads, np))
+    if (pipelined_row_chunks(options.kernel_policy.pipelined_row_chunks, threads, np))
         pipelined_in_row_chunks(job, options.threads, threads, ws);
     else
         pipelined_in_column_ranges(job, options.threads, threads);

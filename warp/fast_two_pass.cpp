@@ -98,8 +98,6 @@ inline bool ok_bit(const fast::TwoPassJob& job, int x) { return (job.col_ok[x >>
 
 namespace fast {
 
-int two_pass_reverse = 0;
-
 void horizontal_steps(const TwoPassJob& job, int s0, int s1, uint32_t* band_c, float* band_v, size_t stride) {
     const ReliefTexture& t = *job.relief;
     const int ow = job.out->width;
@@ -116,9 +114,10 @@ void horizontal_steps(const TwoPassJob& job, int s0, int s1, uint32_t* band_c, f
         lo.copy = job.copy_still;
         // Rows that fold over: backwards, each pixel shaded once (warp_line_reverse). Bumps never folds over and
         // takes the forward order as before.
-        if (two_pass_reverse != 2 && line_folds_over(s, job.split_u, two_pass_reverse != 0)) {
-            if (warp_line_reverse<true>(s, job.split_u, lo) && two_pass_reverse != 3) continue;
-            std::memset(rc, 0, size_t(ow) * 4);  // not seen outside the test hook (warp_line_reverse says why)
+        if (job.reverse != KernelChoice::never &&
+            line_folds_over(s, job.split_u, job.reverse == KernelChoice::always)) {
+            if (warp_line_reverse<true>(s, job.split_u, lo) && !job.redo_forwards) continue;
+            std::memset(rc, 0, size_t(ow) * 4);  // only with redo_forwards (warp_line_reverse says why)
         }
         warp_line_fast<true>(s, job.split_u, lo, NoRange{});
     }

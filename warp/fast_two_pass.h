@@ -47,6 +47,8 @@ struct TwoPassJob {
     float* seam_v = nullptr;
     uint32_t* seam_c = nullptr;
     bool copy_still = true;  // PrewarpOptions::copy_still_runs
+    KernelChoice reverse = KernelChoice::automatic;  // FastKernelPolicy::two_pass_reverse
+    bool redo_forwards = false;                      // FastKernelPolicy::two_pass_redo_forwards
     std::atomic<long long>* dropped = nullptr;
 };
 
@@ -55,12 +57,6 @@ inline int step_row(const TwoPassJob& job, int s) {
     const int h = job.relief->height;
     return s < job.split_v ? h - 1 - s : s - job.split_v;
 }
-
-// Test hook for the horizontal pass: 0 warps rows that fold over backwards (warp/fast_line.h, warp_line_reverse)
-// and the others forwards, 1 warps every row whose samples all take part backwards, 2 never does, 3 does as 1 and
-// then clears the row and warps it forwards again (the fallback when warp_line_reverse fails). The output is the
-// same.
-extern int two_pass_reverse;
 
 // Steps [s0, s1) warped horizontally into band rows 0 .. s1 - s0 - 1 (colour and v, `stride` elements apart).
 void horizontal_steps(const TwoPassJob& job, int s0, int s1, uint32_t* band_c, float* band_v, size_t stride);

@@ -39,6 +39,25 @@ enum class Reconstruction { two_pass, pipelined };
 //              parts of spans that cover it, weighted by the length covered, and alpha = the covered fraction.
 enum class Filter { point, coverage };
 
+// How the fast kernels (warp/fast_prewarp.h) schedule their work where there is more than one way. Every choice
+// gives the same output to the bit; `automatic` is what the kernels' measurements chose, and the tests sweep the
+// others.
+enum class KernelChoice { automatic, always, never };
+struct FastKernelPolicy {
+    // The pipelined kernel's reverse mode (warp/fast_pipelined.cpp, reverse_rows): automatic switches a part to it
+    // where its rows overdraw much; always runs whole parts in it.
+    KernelChoice pipelined_reverse = KernelChoice::automatic;
+    // Threads of the pipelined kernel on chunks of rows rather than ranges of columns (warp/fast_prewarp.cpp,
+    // pipelined_row_chunks): automatic takes row chunks with threads and one part.
+    KernelChoice pipelined_row_chunks = KernelChoice::automatic;
+    // The two-pass kernel's backward rows (warp/fast_line.h, warp_line_reverse): automatic takes the rows that fold
+    // over; always every row whose samples all take part.
+    KernelChoice two_pass_reverse = KernelChoice::automatic;
+    // With two_pass_reverse: clear each backward row and warp it forwards again (the fallback for a backward warp
+    // that fails, otherwise unreachable).
+    bool two_pass_redo_forwards = false;
+};
+
 struct PrewarpOptions {
     Reconstruction method = Reconstruction::two_pass;
     bool exact = false;          // unquantized displacement and double-precision coordinates (the reference path)
@@ -52,6 +71,7 @@ struct PrewarpOptions {
     // level that decodes to exactly 0 (with `exact`: a displacement of exactly 0.0). It applies to the reference
     // kernels with the point filter (the fast kernels always copy one-pixel spans that lie on pixel centres).
     bool copy_still_runs = true;
+    FastKernelPolicy kernel_policy = {};  // the fast kernels' scheduling (same output)
 };
 
 // Texels of output beyond the quad on each side (all 0 unless keep_outliers).

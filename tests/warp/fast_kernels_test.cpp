@@ -423,16 +423,43 @@ protected:
     void SetUp() override {
         if (!fast_prewarp_available()) GTEST_SKIP() << "no AVX-512 on this CPU: the fast kernels are not used";
     }
-    void TearDown() override {
-        fast::pipelined_reverse = 0;
-        fast::pipelined_chunks = 0;
-    }
 };
 
-// The random cases above against the reference, the fast kernel run with `hook` (a kernel's test switch) set to
-// each of `policies`, on one and two threads, copies of still runs alternating; the dropped counts must agree too.
-void random_cases_with_hook(Reconstruction method, int& hook, std::initializer_list<int> policies, int cases,
-                            uint64_t seed_fallback) {
+const char* choice_name(KernelChoice c) {
+    return c == KernelChoice::always ? "always" : c == KernelChoice::never ? "never" : "automatic";
+}
+
+// Scheduling policies of the fast kernels (PrewarpOptions::kernel_policy), with names for the messages.
+struct NamedPolicy {
+    const char* name;
+    FastKernelPolicy policy;
+};
+FastKernelPolicy pipelined_policy(KernelChoice reverse, KernelChoice row_chunks = KernelChoice::automatic) {
+    FastKernelPolicy p;
+    p.pipelined_reverse = reverse;
+    p.pipelined_row_chunks = row_chunks;
+    return p;
+}
+FastKernelPolicy two_pass_policy(KernelChoice reverse, bool redo_forwards = false) {
+    FastKernelPolicy p;
+    p.two_pass_reverse = reverse;
+    p.two_pass_redo_forwards = redo_forwards;
+    return p;
+}
+const NamedPolicy kPipelinedReverse[] = {{"reverse mode always", pipelined_policy(KernelChoice::always)},
+                                         {"reverse mode never", pipelined_policy(KernelChoice::never)},
+                                         {"reverse mode automatic", pipelined_policy(KernelChoice::automatic)}};
+const NamedPolicy kTwoPassReverse[] = {{"backward rows always", two_pass_policy(KernelChoice::always)},
+                                       {"backward rows always, redone forwards",
+                                        two_pass_policy(KernelChoice::always, true)},
+                                       {"backward rows automatic", two_pass_policy(KernelChoice::automatic)},
+                                       {"backward rows never", two_pass_policy(KernelChoice::never)}};
+
+// The random cases above against the reference, the fast kernel run with each of `policies`, on one and two
+// threads, copies of still runs alternating; the dropped counts must agree too.
+template <size_t N>
+void random_cases_with_policies(Reconstruction method, const NamedPolicy (&policies)[N], int cases,
+                                uint64_t seed_fallback) {
     const uint64_t seed = test::test_seed(seed_fallback);
     std::mt19937_64 rng(seed);
     PrewarpWorkspace ws_ref, ws_fast;
@@ -447,13 +474,13 @@ void random_cases_with_hook(Reconstruction method, int& hook, std::initializer_l
         o.threads = 1;
         const PrewarpStats sr = prewarp(c.relief, k, o, ws_ref, ref);
         o.fast = true;
-        for (int policy : policies) {
-            hook = policy;
+        for (const NamedPolicy& policy : policies) {
+            o.kernel_policy = policy.policy;
             for (int threads : {1, 2}) {
                 o.threads = threads;
                 o.copy_still_runs = (i + threads) % 2 == 0;
                 const PrewarpStats sf = prewarp(c.relief, k, o, ws_fast, fast);
-                ASSERT_EQ(first_difference(ref, fast), "") << "policy " << policy << " threads " << threads;
+                ASSERT_EQ(first_difference(ref, fast), "") << policy.name << ", threads " << threads;
                 ASSERT_EQ(sf.dropped, sr.dropped);
             }
         }
@@ -461,7 +488,7 @@ void random_cases_with_hook(Reconstruction method, int& hook, std::initializer_l
 }
 
 TEST_F(ReverseModeFixture, PipelinedReverseModeMatchesTheReference) {
-    random_cases_with_hook(Reconstruction::pipelined, fast::pipelined_reverse, {1, 2, 0}, 1500, 80011);
+    random_cases_with_policies(Reconstruction::pipelined, kPipelinedReverse, 1500, 80011);
 }
 
 TEST_F(ReverseModeFixture, PipelinedReverseModeFoldoversStillTexelsAndGaps) {
@@ -505,22 +532,22 @@ TEST_F(ReverseModeFixture, PipelinedReverseModeFoldoversStillTexelsAndGaps) {
                      " " + std::to_string(w) + "x" + std::to_string(h) + " " + k.to_string());
         prewarp(t, k, o, ws_ref, ref);
         o.fast = true;
-        for (int policy : {1, 0}) {
-            fast::pipelined_reverse = policy;
+        for (KernelChoice reverse : {KernelChoice::always, KernelChoice::automatic}) {
+            o.kernel_policy = pipelined_policy(reverse);
             for (int threads : {1, 3}) {
                 o.threads = threads;
                 for (bool copy : {true, false}) {
                     o.copy_still_runs = copy;
                     prewarp(t, k, o, ws_fast, fast);
                     ASSERT_EQ(first_difference(ref, fast), "")
-                        << "policy " << policy << " threads " << threads << " copy " << copy;
+                        << "reverse mode " << choice_name(reverse) << " threads " << threads << " copy " << copy;
                 }
             }
         }
     }
 }
 
-// Row chunks (warp/fast_prewarp.cpp, fast::pipelined_chunks = 1: every part split into chunks of consecutive rows,
+// Row chunks (warp/fast_prewarp.cpp, kernel_policy.pipelined_row_chunks always: every part split into chunks of consecutive rows,
 // one per thread, each starting from the row before it warped without drawing, composited in row order) against
 // the reference, 2 to 4 threads, reverse mode off, forced and automatic: the random cases above (one part and two,
 // heights from 1 row), reliefs of 1 to 3 rows (fewer rows than threads) seen with the epipole inside and outside
@@ -597,9 +624,9 @@ TEST_F(ReverseModeFixture, PipelinedRowChunksMatchTheReference) {
         o.threads = 1;
         const PrewarpStats sr = prewarp(t, k, o, ws_ref, ref);
         o.fast = true;
-        fast::pipelined_chunks = 1;
-        for (int policy : {0, 1, 2}) {
-            fast::pipelined_reverse = policy;
+        for (const NamedPolicy& policy : kPipelinedReverse) {
+            o.kernel_policy = policy.policy;
+            o.kernel_policy.pipelined_row_chunks = KernelChoice::always;
             for (int threads : {2, 3, 4}) {
                 o.threads = threads;
                 // Chunks as the last pre-warp's times balanced them, then at random bounds (the part's row count
@@ -613,8 +640,8 @@ TEST_F(ReverseModeFixture, PipelinedRowChunksMatchTheReference) {
                             }
                     const PrewarpStats sf = prewarp(t, k, o, ws_fast, fast);
                     ASSERT_EQ(first_difference(ref, fast), "")
-                        << "policy " << policy << " threads " << threads << " split " << split;
-                    ASSERT_EQ(sf.dropped, sr.dropped) << "policy " << policy << " threads " << threads;
+                        << policy.name << ", threads " << threads << " split " << split;
+                    ASSERT_EQ(sf.dropped, sr.dropped) << policy.name << ", threads " << threads;
                 }
             }
         }
@@ -679,7 +706,7 @@ TEST_F(ReverseModeFixture, PipelinedRowChunksRecoverFromAnInterruptedPrewarp) {
     prewarp(t, k, o, ws_ref, ref);
     o.fast = true;
     o.threads = 2;
-    fast::pipelined_chunks = 1;
+    o.kernel_policy.pipelined_row_chunks = KernelChoice::always;
     prewarp(t, k, o, ws, fast);
     ASSERT_EQ(first_difference(ref, fast), "");
     ASSERT_FALSE(ws.chunk_scratch.empty());
@@ -704,8 +731,8 @@ TEST_F(ReverseModeFixture, PipelinedReverseModeAllocatesNothingInSteadyState) {
     // their scratch images).
     for (int threads : {1, 2})
         for (double ey : {0.3, -0.3})
-            for (int policy : {1, 0}) {
-                fast::pipelined_reverse = policy;
+            for (KernelChoice reverse : {KernelChoice::always, KernelChoice::automatic}) {
+                o.kernel_policy = pipelined_policy(reverse);
                 o.threads = threads;
                 const PrewarpCoefficients k = compute_coefficients(g, {1.2, ey, 0.4});
                 prewarp(t, k, o, ws, out);  // warm-up: buffers grow to size
@@ -713,26 +740,25 @@ TEST_F(ReverseModeFixture, PipelinedReverseModeAllocatesNothingInSteadyState) {
                 for (int i = 0; i < 3; ++i)
                     prewarp(t, compute_coefficients(g, {1.2 + 0.01 * i, ey, 0.4}), o, ws, out);
                 EXPECT_EQ(g_allocations.load() - before, 0)
-                    << "policy " << policy << " threads " << threads << " eye y " << ey;
+                    << "reverse mode " << choice_name(reverse) << " threads " << threads << " eye y " << ey;
             }
 }
 
 // The two-pass kernel's backward rows (warp/fast_line.h, warp_line_reverse: a row's items in the reverse of the
-// forward order, each pixel shaded once) against the reference, with the hook fast::two_pass_reverse: 1 takes
-// every row whose samples all take part backwards (also rows without foldovers: copies, spans of one, two and more
-// pixels, clipped on either side of the pixels already written), 3 does so and then redoes the row forwards (the
-// fallback), 0 only rows that fold over, 2 none. Rows with empty texels or texels that cannot be pre-warped always go
+// forward order, each pixel shaded once) against the reference, with each kernel_policy.two_pass_reverse:
+// always takes every row whose samples all take part backwards (also rows without foldovers: copies, spans of one,
+// two and more pixels, clipped on either side of the pixels already written), with two_pass_redo_forwards then
+// redoes the row forwards (the fallback), automatic takes only rows that fold over, never none. Rows with empty texels or texels that cannot be pre-warped always go
 // forwards.
 class TwoPassReverseRows : public ::testing::Test {
 protected:
     void SetUp() override {
         if (!fast_prewarp_available()) GTEST_SKIP() << "no AVX-512 on this CPU: the fast kernels are not used";
     }
-    void TearDown() override { fast::two_pass_reverse = 0; }
 };
 
 TEST_F(TwoPassReverseRows, RandomCasesMatchTheReference) {
-    random_cases_with_hook(Reconstruction::two_pass, fast::two_pass_reverse, {1, 3, 0, 2}, 1200, 80021);
+    random_cases_with_policies(Reconstruction::two_pass, kTwoPassReverse, 1200, 80021);
 }
 
 TEST_F(TwoPassReverseRows, FoldoversEmptyRowsAndMarksMatchTheReference) {
@@ -797,29 +823,29 @@ TEST_F(TwoPassReverseRows, FoldoversEmptyRowsAndMarksMatchTheReference) {
                      std::to_string(h) + " " + k.to_string());
         const PrewarpStats sr = prewarp(t, k, o, ws_ref, ref);
         o.fast = true;
-        for (int policy : {0, 1, 3, 2}) {
-            fast::two_pass_reverse = policy;
+        for (const NamedPolicy& policy : kTwoPassReverse) {
+            o.kernel_policy = policy.policy;
             for (int threads : {1, 3}) {
                 o.threads = threads;
                 for (bool copy : {true, false}) {
                     o.copy_still_runs = copy;
                     const PrewarpStats sf = prewarp(t, k, o, ws_fast, fast);
                     ASSERT_EQ(first_difference(ref, fast), "")
-                        << "policy " << policy << " threads " << threads << " copy " << copy;
+                        << policy.name << ", threads " << threads << " copy " << copy;
                     ASSERT_EQ(sf.dropped, sr.dropped);
                 }
             }
         }
-        // Discontinuity marks: the generic kernels, whatever the hook says.
+        // Discontinuity marks: the generic kernels, whatever the policy says.
         mark_discontinuities(t, 0.05);
         o.fast = false;
         prewarp(t, k, o, ws_ref, ref);
         o.fast = true;
         EXPECT_FALSE(fast_prewarp_covers(t, k, o, sr.extent, nullptr));
-        for (int policy : {0, 1}) {
-            fast::two_pass_reverse = policy;
+        for (KernelChoice reverse : {KernelChoice::automatic, KernelChoice::always}) {
+            o.kernel_policy = two_pass_policy(reverse);
             prewarp(t, k, o, ws_fast, fast);
-            ASSERT_EQ(first_difference(ref, fast), "") << "marks, policy " << policy;
+            ASSERT_EQ(first_difference(ref, fast), "") << "marks, backward rows " << choice_name(reverse);
         }
     }
 }
@@ -833,13 +859,14 @@ TEST_F(TwoPassReverseRows, AllocatesNothingInSteadyState) {
     o.keep_outliers = true;
     PrewarpWorkspace ws;
     ImageRGBA8 out;
-    for (int policy : {0, 1, 3}) {
-        fast::two_pass_reverse = policy;
+    for (const NamedPolicy& policy : kTwoPassReverse) {
+        if (policy.policy.two_pass_reverse == KernelChoice::never) continue;
+        o.kernel_policy = policy.policy;
         const PrewarpCoefficients k = compute_coefficients(g, {1.2, 0.3, 0.4});
         prewarp(t, k, o, ws, out);  // warm-up: buffers grow to size
         const long long before = g_allocations.load();
         for (int i = 0; i < 3; ++i) prewarp(t, compute_coefficients(g, {1.2 + 0.01 * i, 0.3, 0.4}), o, ws, out);
-        EXPECT_EQ(g_allocations.load() - before, 0) << "policy " << policy;
+        EXPECT_EQ(g_allocations.load() - before, 0) << policy.name;
     }
 }
 
