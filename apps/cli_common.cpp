@@ -155,6 +155,24 @@ Camera CameraArgs::resolve(const Bounds& bounds) const {
     return cam;
 }
 
+void check_output_file(const std::string& path, const std::string& flag) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path p(path);
+    const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+    if (!fs::is_directory(dir, ec))
+        throw IoError(flag + " " + path + ": cannot write: folder " + dir.string() + " does not exist");
+    if (fs::is_directory(p, ec)) throw IoError(flag + " " + path + ": cannot write: it is a folder");
+    // The temporary file write_json uses, created and removed: the folder takes new files.
+    const std::string probe = path + ".tmp";
+    const bool existed = fs::exists(probe, ec);
+    {
+        std::ofstream f(probe, std::ios::app);
+        if (!f) throw IoError(flag + " " + path + ": cannot write in folder " + dir.string());
+    }
+    if (!existed) fs::remove(probe, ec);
+}
+
 void write_json(const std::string& path, const nlohmann::json& j) {
     const std::string tmp = path + ".tmp";
     {

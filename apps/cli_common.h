@@ -43,6 +43,9 @@ struct CameraArgs {
 
 // Writes JSON atomically (temporary file + rename).
 void write_json(const std::string& path, const nlohmann::json& j);
+// For a long job that writes `path` at its end: throws IoError naming the file (given by `flag`) if its folder does
+// not exist or cannot be written, so that the job does not run for nothing.
+void check_output_file(const std::string& path, const std::string& flag);
 
 // Statistics over repeated timings.
 nlohmann::json timing_json(std::vector<double> ms);

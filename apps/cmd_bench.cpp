@@ -15,7 +15,8 @@ namespace {
 struct BenchArgs {
     std::string json, sizes, reliefs, threads, methods;
     bool full = false, no_exact = false, no_reference = false, no_table1 = false;
-    double min_time = -1;
+    double min_time = 0;
+    bool min_time_given = false;
 };
 
 std::vector<int> parse_ints(const std::string& text, const std::string& flag, int lo, int hi) {
@@ -37,16 +38,7 @@ void run_bench_command(const BenchArgs& a) {
     BenchConfig c = default_bench_config(a.full);
     if (!a.sizes.empty()) c.sizes = parse_ints(a.sizes, "--sizes", 8, 8192);
     if (!a.threads.empty()) c.threads = parse_ints(a.threads, "--threads", 1, 1024);
-    if (!a.reliefs.empty()) {
-        c.reliefs.clear();
-        std::stringstream ss(a.reliefs);
-        const std::vector<std::string> known = procedural_names();
-        for (std::string item; std::getline(ss, item, ',');) {
-            if (std::find(known.begin(), known.end(), item) == known.end())
-                throw UsageError("--reliefs: unknown relief \"" + item + "\"; known: bricks, facade, bumps, ridges");
-            c.reliefs.push_back(item);
-        }
-    }
+    if (!a.reliefs.empty()) c.reliefs = parse_relief_names(a.reliefs, "--reliefs");
     if (!a.methods.empty()) {
         c.methods.clear();
         std::stringstream ss(a.methods);
@@ -59,7 +51,16 @@ void run_bench_command(const BenchArgs& a) {
                 throw UsageError("--methods: unknown reconstruction \"" + item + "\"; known: two-pass, pipelined");
         }
     }
-    if (a.min_time >= 0) c.min_seconds = a.min_time;
+    if (a.min_time_given) {
+        if (!(a.min_time >= 0.0 && a.min_time <= 3600.0))
+        {
+            std::ostringstream found;
+            found << a.min_time;  // shortest form: "-2", "nan"
+            throw UsageError("--min-time: expected seconds in 0..3600, found " + found.str());
+        }
+        c.min_seconds = a.min_time;
+    }
+    if (!a.json.empty()) check_output_file(a.json, "--json");
     c.exact = !a.no_exact;
     c.reference = !a.no_reference;
     c.table1 = !a.no_table1;
@@ -80,7 +81,8 @@ void add_bench_command(CLI::App& app) {
     sub->add_option("--reliefs", a->reliefs, "Procedural reliefs, e.g. bumps,bricks,ridges");
     sub->add_option("--methods", a->methods, "Reconstructions, e.g. two-pass,pipelined (default both)");
     sub->add_option("--threads", a->threads, "Thread counts of the fast kernels, e.g. 1,2");
-    sub->add_option("--min-time", a->min_time, "Seconds of repeats per measurement (default 0.25)");
+    sub->add_option("--min-time", a->min_time, "Seconds of repeats per measurement (default 0.25)")
+        ->each([a](const std::string&) { a->min_time_given = true; });
     sub->add_flag("--no-exact", a->no_exact, "Skip the --exact (double precision) path");
     sub->add_flag("--no-reference", a->no_reference, "Skip the generic reference kernels");
     sub->add_flag("--no-table1", a->no_table1, "Skip the OpenGL frame (Table 1)");

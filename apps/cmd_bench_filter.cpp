@@ -22,6 +22,7 @@ void run(const Args& a) {
         throw UsageError("--samples: expected 1..64, found " + std::to_string(a.samples));
     if (a.repeat < 1) throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
     if (a.threads < 0) throw UsageError("--threads: expected N >= 0, found " + std::to_string(a.threads));
+    if (!a.json.empty()) check_output_file(a.json, "--json");
     FilterMeasureOptions o;
     o.size = a.size;
     o.samples = a.samples;

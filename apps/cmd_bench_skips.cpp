@@ -18,6 +18,7 @@ struct Args {
 
 void run(const Args& a) {
     if (a.frames < 2) throw UsageError("--frames: expected N >= 2, found " + std::to_string(a.frames));
+    if (!a.json.empty()) check_output_file(a.json, "--json");
     const auto rows = measure_skips(a.frames, [](const std::string& s) { std::fprintf(stderr, "%s\n", s.c_str()); });
     std::printf("%s", skip_table_markdown(rows).c_str());
     if (!a.json.empty()) {

@@ -5,10 +5,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -233,6 +235,8 @@ BenchResult run_bench(const BenchConfig& c) {
                                  .first;
                     row.bound_ms = it->second;
                     row.bound_ratio = row.ms_median / row.bound_ms;
+                    row.row_pixels = st.row_pixels;
+                    row.column_samples = st.column_samples;
                     res.rows.push_back(row);
                     char buf[256];
                     std::snprintf(buf, sizeof buf, "%s %d^2 %s %s %s %d thread%s: %.3f ms, %.0f Mtexel/s (%.1fx bound)",
@@ -314,6 +318,42 @@ BenchResult run_bench(const BenchConfig& c) {
     return res;
 }
 
+std::vector<PipelinedRatio> pipelined_ratios(const BenchResult& r) {
+    std::vector<PipelinedRatio> out;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    auto find = [&](const std::string& relief, int size, const char* method, const char* kernel, int threads) {
+        for (const BenchRow& x : r.rows)
+            if (x.relief == relief && x.size == size && x.method == method && x.path == "lut" && x.kernel == kernel &&
+                (threads == 0 || x.threads == threads))
+                return &x;
+        return static_cast<const BenchRow*>(nullptr);
+    };
+    for (const BenchRow& x : r.rows) {
+        if (x.method != "two-pass" || x.path != "lut") continue;
+        bool seen = false;
+        for (const PipelinedRatio& p : out) seen = seen || (p.relief == x.relief && p.size == x.size);
+        if (seen || !find(x.relief, x.size, "pipelined", x.kernel.c_str(), 0)) continue;
+        PipelinedRatio p;
+        p.relief = x.relief;
+        p.size = x.size;
+        const BenchRow* rt = find(x.relief, x.size, "two-pass", "reference", 1);
+        const BenchRow* rp = find(x.relief, x.size, "pipelined", "reference", 1);
+        const bool counted = rt && rp && rt->texels > 0 && rp->row_pixels > 0;
+        p.row_pixels_per_texel = counted ? double(rt->row_pixels) / double(rt->texels) : nan;
+        p.two_pass_samples_per_texel = counted ? double(rt->column_samples) / double(rt->texels) : nan;
+        p.pipelined_samples_per_texel = counted ? double(rp->column_samples) / double(rp->texels) : nan;
+        for (const BenchRow& t : r.rows) {
+            if (t.relief != x.relief || t.size != x.size || t.method != "two-pass" || t.path != "lut" ||
+                t.kernel != "fast")
+                continue;
+            if (const BenchRow* q = find(x.relief, x.size, "pipelined", "fast", t.threads))
+                p.time_ratio.emplace_back(t.threads, q->ms_median / t.ms_median);
+        }
+        out.push_back(p);
+    }
+    return out;
+}
+
 std::string bench_markdown(const BenchResult& r) {
     std::ostringstream s;
     char buf[512];
@@ -331,6 +371,35 @@ std::string bench_markdown(const BenchResult& r) {
                       x.relief.c_str(), x.size, x.method.c_str(), x.path.c_str(), x.kernel.c_str(), x.threads,
                       x.ms_median, x.ms_min, x.mtexels_per_s, x.prewarps_per_s, x.bound_ms, x.bound_ratio);
         s << buf;
+    }
+    const std::vector<PipelinedRatio> ratios = pipelined_ratios(r);
+    if (!ratios.empty()) {
+        s << "\n### Pipelined against two-pass\n\n";
+        s << "Work a texel, counted by the reference kernels (one row of each reconstruction's lookup-table run; "
+             "empty without it): the pixels the row warp produces, overwrites included (the same in both), and the "
+             "samples the column warp rasterizes: two-pass one per intermediate pixel that survives its row's "
+             "overwrites, pipelined every pixel the row warp produces (paper section 3.2.2). Time: the fast "
+             "kernels' median pipelined / two-pass.\n\n";
+        s << "| relief | size | row pixels a texel | column samples a texel, two-pass | pipelined | ratio | "
+             "time pipelined / two-pass |\n";
+        s << "|---|---:|---:|---:|---:|---:|---|\n";
+        for (const PipelinedRatio& p : ratios) {
+            std::string times;
+            for (const auto& [threads, ratio] : p.time_ratio) {
+                std::snprintf(buf, sizeof buf, "%s%.2f (%d thread%s)", times.empty() ? "" : ", ", ratio, threads,
+                              threads == 1 ? "" : "s");
+                times += buf;
+            }
+            if (std::isnan(p.row_pixels_per_texel))
+                std::snprintf(buf, sizeof buf, "| %s | %d^2 | | | | | %s |\n", p.relief.c_str(), p.size,
+                              times.c_str());
+            else
+                std::snprintf(buf, sizeof buf, "| %s | %d^2 | %.2f | %.2f | %.2f | %.2f | %s |\n", p.relief.c_str(),
+                              p.size, p.row_pixels_per_texel, p.two_pass_samples_per_texel,
+                              p.pipelined_samples_per_texel,
+                              p.pipelined_samples_per_texel / p.two_pass_samples_per_texel, times.c_str());
+            s << buf;
+        }
     }
     if (!r.table1.empty() || !r.gl_renderer.empty()) {
         s << "\n### Table 1: one relief quad in a " << "512x512 view\n\n";
@@ -372,7 +441,22 @@ nlohmann::json bench_json(const BenchResult& r) {
                         {"bytes_read", x.bytes_read},
                         {"bytes_written", x.bytes_written},
                         {"bound_ms", x.bound_ms},
-                        {"bound_ratio", x.bound_ratio}});
+                        {"bound_ratio", x.bound_ratio},
+                        {"row_pixels", x.row_pixels},
+                        {"column_samples", x.column_samples}});
+    // NaN (no reference row) goes out as null.
+    auto num = [](double v) { return std::isnan(v) ? nlohmann::json() : nlohmann::json(v); };
+    nlohmann::json ratios = nlohmann::json::array();
+    for (const PipelinedRatio& p : pipelined_ratios(r)) {
+        nlohmann::json times = nlohmann::json::array();
+        for (const auto& [threads, ratio] : p.time_ratio) times.push_back({{"threads", threads}, {"ratio", ratio}});
+        ratios.push_back({{"relief", p.relief},
+                          {"size", p.size},
+                          {"row_pixels_per_texel", num(p.row_pixels_per_texel)},
+                          {"two_pass_column_samples_per_texel", num(p.two_pass_samples_per_texel)},
+                          {"pipelined_column_samples_per_texel", num(p.pipelined_samples_per_texel)},
+                          {"time_ratio", times}});
+    }
     nlohmann::json t1 = nlohmann::json::array();
     for (const Table1Row& t : r.table1)
         t1.push_back({{"relief", t.relief},
@@ -389,7 +473,7 @@ nlohmann::json bench_json(const BenchResult& r) {
                       {"fps", t.fps}});
     return {{"command", "bench"}, {"machine", r.machine},       {"gl_renderer", r.gl_renderer},
             {"load_before", r.load_before}, {"load_after", r.load_after}, {"view", r.view},
-            {"rows", rows},             {"table1", t1}};
+            {"rows", rows},             {"pipelined_vs_two_pass", ratios}, {"table1", t1}};
 }
 
 }  // namespace rtm

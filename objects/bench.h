@@ -56,6 +56,19 @@ struct BenchRow {
     double bytes_read = 0, bytes_written = 0;  // what the passes read and write (their buffers, once each)
     double bound_ms = 0;         // median time of a streaming copy of the same bytes with the same threads
     double bound_ratio = 0;      // ms_median / bound_ms
+    // The reference kernels' work counts (PrewarpStats; 0 for the fast kernels, which do not count).
+    long long row_pixels = 0, column_samples = 0;
+};
+
+// Pipelined against two-pass for one relief and size: the work each does per texel, from the reference kernels
+// (NaN where the run has no reference row), and the fast kernels' median time ratio per thread count.
+struct PipelinedRatio {
+    std::string relief;
+    int size = 0;
+    double row_pixels_per_texel = 0;          // the same row warp in both
+    double two_pass_samples_per_texel = 0;    // column samples: one per surviving intermediate pixel
+    double pipelined_samples_per_texel = 0;   // column samples: every pixel of the row warp
+    std::vector<std::pair<int, double>> time_ratio;  // (threads, pipelined ms / two-pass ms), fast lookup tables
 };
 
 struct Table1Row {
@@ -81,6 +94,8 @@ struct BenchResult {
 };
 
 BenchResult run_bench(const BenchConfig& config);
+// The relief and size pairs of `result` that have both reconstructions, in the order of the rows.
+std::vector<PipelinedRatio> pipelined_ratios(const BenchResult& result);
 std::string bench_markdown(const BenchResult& result);
 nlohmann::json bench_json(const BenchResult& result);
 

@@ -202,13 +202,14 @@ long long warp_line_still_to(const LineInput<P, A>& in, const uint8_t* still, in
 template <class P>
 void horizontal_pass(const ReliefTexture& t, const PrewarpCoefficients& k, const PrewarpTables& tab, bool exact,
                      const Frame& fr, int r0, int r1, ImageRGBA8& mid, Image2D<P>& mid_v, Image2D<P>& mid_d,
-                     std::atomic<long long>& dropped, std::atomic<long long>& copied) {
+                     std::atomic<long long>& dropped, std::atomic<long long>& copied,
+                     std::atomic<long long>& row_pixels) {
     const int w = t.width, ow = fr.out_w();
     LineScratch<P> s;
     s.resize(w);
     const int split = split_index(k.epipole_u, w);
     const bool still = look_for_still(fr, k, tab, exact);
-    long long nd = 0, nc = 0;
+    long long nd = 0, nc = 0, np = 0;
     for (int r = r0; r < r1; ++r) {
         nd += row_samples(t, k, tab, exact, fr, r, s, still);
         Rgba8* oc = mid.row(r);
@@ -221,6 +222,7 @@ void horizontal_pass(const ReliefTexture& t, const PrewarpCoefficients& k, const
             oc[x] = c;
             ov[x] = a.v;
             od[x] = a.d;
+            ++np;
         };
         if (still && s.n_still > 0)
             nc += warp_line_still_to(in, s.still.data(), fr.e.left, split, ow, put, conn);
@@ -229,6 +231,7 @@ void horizontal_pass(const ReliefTexture& t, const PrewarpCoefficients& k, const
     }
     dropped += nd;
     copied += nc;
+    row_pixels += np;
 }
 
 // The vertical pass's input for intermediate column x, in v order (bottom row first): colour, validity, final
@@ -260,9 +263,10 @@ inline void put_displ(Image2D<uint8_t>* displ_out, const Quantizer& q, int x, in
 template <class P>
 void vertical_pass(const ReliefTexture& t, const PrewarpCoefficients& k, const Frame& fr, int x0, int x1,
                    const ImageRGBA8& mid, const Image2D<P>& mid_v, const Image2D<P>& mid_d, ImageRGBA8& out,
-                   Image2D<uint8_t>* displ_out) {
+                   Image2D<uint8_t>* displ_out, std::atomic<long long>& sampled) {
     const int h = fr.h, oh = fr.out_h();
     const bool copy_still = fr.copy_still;
+    long long ns = 0;
     LineScratch<P> s;
     s.resize(h);
     const int split = split_index(k.epipole_v, h);
@@ -272,7 +276,10 @@ void vertical_pass(const ReliefTexture& t, const PrewarpCoefficients& k, const F
         column_samples(mid, mid_v, mid_d, x, s, out, displ_out);
         // Still in this direction: on the centre of its own output row, as every texel at zero displacement
         // (and any pixel whose interpolated row happens to land there) is; the copy is exact all the same.
-        for (int j = 0; j < h; ++j) s.still[j] = copy_still && s.valid[j] && s.pos[j] == P(j) + P(0.5) + ob;
+        for (int j = 0; j < h; ++j) {
+            s.still[j] = copy_still && s.valid[j] && s.pos[j] == P(j) + P(0.5) + ob;
+            ns += s.valid[j] && std::isfinite(s.pos[j]);
+        }
         LineInput<P, P> in{h, s.pos.data(), s.color.data(), s.d.data(), s.valid.data()};
         auto put = [&](int y, Rgba8 c, P d) {
             out.at(x, oh - 1 - y) = c;
@@ -283,6 +290,7 @@ void vertical_pass(const ReliefTexture& t, const PrewarpCoefficients& k, const F
         else
             warp_line_to(in, split, oh, put, conn);
     }
+    sampled += ns;
 }
 
 // Coverage-weighted filtering (PrewarpOptions::filter == Filter::coverage, warp/coverage_line.h): the same two
@@ -375,9 +383,9 @@ PrewarpStats two_pass(const ReliefTexture& t, const PrewarpCoefficients& k, cons
         });
         return {(long long)t.width * t.height, dropped.load(), fr.e};
     }
-    std::atomic<long long> copied{0};
+    std::atomic<long long> copied{0}, row_pixels{0}, column_samples{0};
     run(threads, t.height, 16, [&](int r0, int r1) {
-        horizontal_pass<P>(t, k, tab, exact, fr, r0, r1, mid, mid_v, mid_d, dropped, copied);
+        horizontal_pass<P>(t, k, tab, exact, fr, r0, r1, mid, mid_v, mid_d, dropped, copied, row_pixels);
     });
     // The vertical pass looks for pixels on their own rows' centres where the horizontal pass copied at least an
     // eighth of the texels: a relief with only a few still texels does not pay for the search (bumps 256^2, 34
@@ -386,8 +394,9 @@ PrewarpStats two_pass(const ReliefTexture& t, const PrewarpCoefficients& k, cons
     Frame fv = fr;
     fv.copy_still = fr.copy_still && copied.load() * 8 >= (long long)t.width * t.height;
     run(threads, ow, 16,
-        [&](int x0, int x1) { vertical_pass<P>(t, k, fv, x0, x1, mid, mid_v, mid_d, out, displ_out); });
-    return {(long long)t.width * t.height, dropped.load(), fr.e, copied.load()};
+        [&](int x0, int x1) { vertical_pass<P>(t, k, fv, x0, x1, mid, mid_v, mid_d, out, displ_out, column_samples); });
+    return {(long long)t.width * t.height, dropped.load(), fr.e, copied.load(), row_pixels.load(),
+            column_samples.load()};
 }
 
 // Pipelined reconstruction (paper section 3.2.2, Figure 11): rows are warped in occlusion-compatible order and
@@ -407,6 +416,7 @@ struct PipelinedPart {
     std::vector<uint8_t> prev_ok, cur_ok;
     long long dropped = 0;
     long long copied = 0;  // still texels copied (warp_line_still_to)
+    long long row_pixels = 0, column_samples = 0;  // PrewarpStats
 };
 
 template <class P>
@@ -449,7 +459,9 @@ void pipelined_part(const ReliefTexture& t, const PrewarpCoefficients& k, const 
                 put_displ(displ_out, t.quant, x, oh - 1 - y, d);
             };
             const ColumnSample<P> now{a.v, a.d, c};
+            ++part.row_pixels;
             if (!std::isfinite(a.v)) return;
+            ++part.column_samples;
             const bool connected = part.prev_ok[x] && column_connected(part.prev[x], now, thr);
             if (still && a.v == v_here && (!connected || part.prev[x].v == v_prev))
                 put(j + fr.e.bottom, Rgba8{c.r, c.g, c.b, 255}, a.d);
@@ -504,7 +516,9 @@ PrewarpStats pipelined(const ReliefTexture& t, const PrewarpCoefficients& k, con
             });
         }
     }
-    return {(long long)t.width * h, bottom.dropped + top.dropped, fr.e, bottom.copied + top.copied};
+    return {(long long)t.width * h,         bottom.dropped + top.dropped,
+            fr.e,                           bottom.copied + top.copied,
+            bottom.row_pixels + top.row_pixels, bottom.column_samples + top.column_samples};
 }
 
 }  // namespace

@@ -104,6 +104,13 @@ struct PrewarpStats {
     // those right after a connected moving texel in occlusion-compatible order, whose span is drawn. Counted by the
     // reference kernels only (0 from the fast kernels, which copy without counting).
     long long still_copied = 0;
+    // The work the reconstruction does, counted by the reference kernels with point sampling only (0 otherwise):
+    // pixels the row warp produced, overwrites included (the same for both reconstructions), and samples the
+    // column warp rasterized (two-pass: the intermediate pixels that survived their row's overwrites; pipelined:
+    // every pixel the row warp produced, paper section 3.2.2). Their ratio is what the pipelined reconstruction
+    // pays for foldovers.
+    long long row_pixels = 0;
+    long long column_samples = 0;
 };
 
 // Non-empty texels at zero displacement (the texels copy_still_runs copies), whatever the view: a level that decodes

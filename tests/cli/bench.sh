@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# rtm bench: a small run end to end (every section of the report, the JSON's figures and their invariants) and the
+# errors of its flags.
+. "$(dirname "$0")/lib.bash"
+
+# Two sizes, three reliefs, both reconstructions; the fast kernels on 1 and 2 threads, the reference and the exact
+# path; Table 1 through OSMesa. --min-time 0: the fewest repeats (3 per measurement, 50 frames in Table 1).
+expect_ok bench --sizes 16,32 --reliefs bumps,bricks,ridges --threads 1,2 --min-time 0 --json "$T/b.json"
+cp "$T/stdout" "$T/b.md"
+for section in '### Pre-warp throughput' '### Pipelined against two-pass' '### Table 1: one relief quad'; do
+  if grep -q -- "^$section" "$T/b.md"; then passes=$((passes + 1)); else
+    echo "FAIL: the report lacks '$section'"; fails=$((fails + 1)); fi
+done
+if python3 - "$T/b.json" <<'PY'; then passes=$((passes + 1)); else fails=$((fails + 1)); fi
+import json, math, sys
+d = json.load(open(sys.argv[1]))
+bad = []
+def check(ok, what):
+    if not ok: bad.append(what)
+rows = d["rows"]
+# 2 sizes x 3 reliefs x 2 methods x (fast 1 thread, fast 2 threads, reference, exact)
+check(len(rows) == 48, f"{len(rows)} rows, want 48")
+for r in rows:
+    name = f'{r["relief"]} {r["size"]} {r["method"]} {r["path"]} {r["kernel"]} {r["threads"]}'
+    check(r["texels"] == r["size"] ** 2, name + ": texels")
+    med = r["prewarp_ms"]["median"]
+    check(0 < r["prewarp_ms"]["min"] <= med, name + ": min <= median")
+    check(abs(r["mtexels_per_s"] - r["texels"] / (med * 1e3)) <= 1e-9 * r["mtexels_per_s"], name + ": Mtexel/s")
+    check(abs(r["prewarps_per_s"] - 1000 / med) <= 1e-9 * r["prewarps_per_s"], name + ": pre-warps/s")
+    check(r["bound_ms"] > 0 and r["bytes_read"] > 0 and r["bytes_written"] > 0, name + ": bound")
+    check(r["repeats"] >= 3, name + ": repeats")
+    counted = r["kernel"] == "reference"
+    check((r["row_pixels"] > 0) == counted and (r["column_samples"] > 0) == counted, name + ": work counts")
+ratios = d["pipelined_vs_two_pass"]
+check(len(ratios) == 6, f"{len(ratios)} pipelined/two-pass rows, want 6")
+for p in ratios:
+    name = f'{p["relief"]} {p["size"]}'
+    check(p["pipelined_column_samples_per_texel"] >= p["two_pass_column_samples_per_texel"] > 0, name + ": samples")
+    check(p["pipelined_column_samples_per_texel"] <= p["row_pixels_per_texel"], name + ": samples <= row pixels")
+    check(sorted(t["threads"] for t in p["time_ratio"]) == [1, 2], name + ": thread counts")
+    check(all(t["ratio"] > 0 for t in p["time_ratio"]), name + ": ratios")
+t1 = d["table1"]
+check(len(t1) == 6, f"{len(t1)} Table 1 rows, want 6")
+for t in t1:
+    name = f'table 1 {t["relief"]} {t["method"]}'
+    check(t["frames"] >= 50 and t["size"] == 256, name + ": frames and size")
+    parts = t["prewarp_ms"] + t["upload_ms"] + t["texture_map_ms"] + t["other_ms"]
+    check(t["total_ms"] > 0 and parts >= t["total_ms"] * (1 - 1e-9), name + ": the parts make the frame")
+    check(abs(t["fps"] - 1000 / t["total_ms"]) <= 1e-9 * t["fps"], name + ": frames/s")
+for b in bad: print("FAIL: bench JSON:", b)
+sys.exit(1 if bad else 0)
+PY
+
+# Without the reference kernels the work columns stay empty (null in the JSON).
+expect_ok bench --sizes 16 --reliefs ridges --threads 1 --min-time 0 --no-reference --no-exact --no-table1 \
+  --json "$T/n.json"
+if python3 -c 'import json,sys; p=json.load(open(sys.argv[1]))["pipelined_vs_two_pass"]; sys.exit(not (len(p) == 1 and p[0]["row_pixels_per_texel"] is None and p[0]["time_ratio"][0]["threads"] == 1))' "$T/n.json"; then
+  passes=$((passes + 1)); else echo "FAIL: --no-reference work columns"; fails=$((fails + 1)); fi
+
+# Errors: usage (2) names the flag and the value; an unwritable --json fails (1) before the run, naming the file.
+expect_fail 2 'sizes.*"0"' -- bench --sizes 0
+expect_fail 2 'sizes.*"16,x"' -- bench --sizes 16,x
+expect_fail 2 'threads.*"0"' -- bench --threads 0
+expect_fail 2 'reliefs.*moon' -- bench --reliefs moon
+expect_fail 2 'methods.*foo' -- bench --methods foo
+expect_fail 2 'min-time.*-2' -- bench --min-time -2
+expect_fail 2 'min-time.*nan' -- bench --min-time nan
+expect_fail 1 'nowhere/b\.json.*does not exist' -- bench --json "$T/nowhere/b.json"
+expect_fail 1 'json.*folder' -- bench --json "$T"
+expect_fail 1 'nowhere/f\.json' -- bench-filter --json "$T/nowhere/f.json"
+expect_fail 1 'nowhere/s\.json' -- bench-skips --json "$T/nowhere/s.json"
+finish
