@@ -328,11 +328,16 @@ std::vector<PipelinedRatio> pipelined_ratios(const BenchResult& r) {
                 return &x;
         return static_cast<const BenchRow*>(nullptr);
     };
+    bool any_fast = false;
+    for (const BenchRow& x : r.rows) any_fast = any_fast || x.kernel == "fast";
+    const char* timed_kernel = any_fast ? "fast" : "reference";
     for (const BenchRow& x : r.rows) {
         if (x.method != "two-pass" || x.path != "lut") continue;
         bool seen = false;
         for (const PipelinedRatio& p : out) seen = seen || (p.relief == x.relief && p.size == x.size);
-        if (seen || !find(x.relief, x.size, "pipelined", x.kernel.c_str(), 0)) continue;
+        const bool pipelined_too =
+            find(x.relief, x.size, "pipelined", "fast", 0) || find(x.relief, x.size, "pipelined", "reference", 0);
+        if (seen || !pipelined_too) continue;
         PipelinedRatio p;
         p.relief = x.relief;
         p.size = x.size;
@@ -342,11 +347,15 @@ std::vector<PipelinedRatio> pipelined_ratios(const BenchResult& r) {
         p.row_pixels_per_texel = counted ? double(rt->row_pixels) / double(rt->texels) : nan;
         p.two_pass_samples_per_texel = counted ? double(rt->column_samples) / double(rt->texels) : nan;
         p.pipelined_samples_per_texel = counted ? double(rp->column_samples) / double(rp->texels) : nan;
+        // The fast kernels' times; on a CPU without them, the generic kernels' (the first row per thread count).
         for (const BenchRow& t : r.rows) {
             if (t.relief != x.relief || t.size != x.size || t.method != "two-pass" || t.path != "lut" ||
-                t.kernel != "fast")
+                t.kernel != timed_kernel)
                 continue;
-            if (const BenchRow* q = find(x.relief, x.size, "pipelined", "fast", t.threads))
+            bool have = false;
+            for (const auto& [threads, ratio] : p.time_ratio) have = have || threads == t.threads;
+            if (have) continue;
+            if (const BenchRow* q = find(x.relief, x.size, "pipelined", timed_kernel, t.threads))
                 p.time_ratio.emplace_back(t.threads, q->ms_median / t.ms_median);
         }
         out.push_back(p);

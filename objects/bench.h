@@ -68,7 +68,8 @@ struct PipelinedRatio {
     double row_pixels_per_texel = 0;          // the same row warp in both
     double two_pass_samples_per_texel = 0;    // column samples: one per surviving intermediate pixel
     double pipelined_samples_per_texel = 0;   // column samples: every pixel of the row warp
-    std::vector<std::pair<int, double>> time_ratio;  // (threads, pipelined ms / two-pass ms), fast lookup tables
+    // (threads, pipelined ms / two-pass ms), lookup tables, the fast kernels (the generic ones on a CPU without)
+    std::vector<std::pair<int, double>> time_ratio;
 };
 
 struct Table1Row {
