@@ -6,7 +6,6 @@
 
 #include "cli_common.h"
 #include "objects/bench.h"
-#include "objects/procedural_media.h"
 
 namespace rtm::cli {
 
@@ -52,8 +51,7 @@ void run_bench_command(const BenchArgs& a) {
         }
     }
     if (a.min_time_given) {
-        if (!(a.min_time >= 0.0 && a.min_time <= 3600.0))
-        {
+        if (!(a.min_time >= 0.0 && a.min_time <= 3600.0)) {
             std::ostringstream found;
             found << a.min_time;  // shortest form: "-2", "nan"
             throw UsageError("--min-time: expected seconds in 0..3600, found " + found.str());

@@ -393,8 +393,9 @@ PrewarpStats two_pass(const ReliefTexture& t, const PrewarpCoefficients& k, cons
     // still: 2.25 -> 1.50 ms, 1 thread).
     Frame fv = fr;
     fv.copy_still = fr.copy_still && copied.load() * 8 >= (long long)t.width * t.height;
-    run(threads, ow, 16,
-        [&](int x0, int x1) { vertical_pass<P>(t, k, fv, x0, x1, mid, mid_v, mid_d, out, displ_out, column_samples); });
+    run(threads, ow, 16, [&](int x0, int x1) {
+        vertical_pass<P>(t, k, fv, x0, x1, mid, mid_v, mid_d, out, displ_out, column_samples);
+    });
     return {(long long)t.width * t.height, dropped.load(), fr.e, copied.load(), row_pixels.load(),
             column_samples.load()};
 }
@@ -516,9 +517,14 @@ PrewarpStats pipelined(const ReliefTexture& t, const PrewarpCoefficients& k, con
             });
         }
     }
-    return {(long long)t.width * h,         bottom.dropped + top.dropped,
-            fr.e,                           bottom.copied + top.copied,
-            bottom.row_pixels + top.row_pixels, bottom.column_samples + top.column_samples};
+    PrewarpStats st;
+    st.texels = (long long)t.width * h;
+    st.dropped = bottom.dropped + top.dropped;
+    st.extent = fr.e;
+    st.still_copied = bottom.copied + top.copied;
+    st.row_pixels = bottom.row_pixels + top.row_pixels;
+    st.column_samples = bottom.column_samples + top.column_samples;
+    return st;
 }
 
 }  // namespace
