@@ -388,7 +388,7 @@ std::string bench_markdown(const BenchResult& r) {
              "empty without it): the pixels the row warp produces, overwrites included (the same in both), and the "
              "samples the column warp rasterizes: two-pass one per intermediate pixel that survives its row's "
              "overwrites, pipelined every pixel the row warp produces (paper section 3.2.2). Time: the fast "
-             "kernels' median pipelined / two-pass.\n\n";
+             "kernels' median pipelined / two-pass (the generic kernels' on a CPU without the fast ones).\n\n";
         s << "| relief | size | row pixels a texel | column samples a texel, two-pass | pipelined | ratio | "
              "time pipelined / two-pass |\n";
         s << "|---|---:|---:|---:|---:|---:|---|\n";
