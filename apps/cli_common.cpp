@@ -10,9 +10,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "objects/procedural_media.h"
-#include "objects/timing.h"
-#include "texmap/image_io.h"
+#include "procedural/procedural_media.h"
+#include "warp/timing.h"
+#include "formats/image_io.h"
 
 namespace rtm::cli {
 

@@ -27,7 +27,7 @@ glm::dvec3 parse_vec3(const std::string& text, const std::string& flag);
 int parse_level(const std::string& text);
 // --filter point|coverage; coverage needs the two-pass reconstruction. Throws UsageError naming the value.
 Filter parse_filter(const std::string& text, Reconstruction method);
-// A comma-separated list of procedural relief names (objects/procedural_media.h); throws UsageError naming the
+// A comma-separated list of procedural relief names (procedural/procedural_media.h); throws UsageError naming the
 // unknown one.
 std::vector<std::string> parse_relief_names(const std::string& text, const std::string& flag);
 void parse_size(const std::string& text, const std::string& flag, int& w, int& h);

@@ -1,11 +1,11 @@
-// rtm bench: pre-warp throughput against the memory bound, and the paper's Table 1 (objects/bench.h). Progress on
+// rtm bench: pre-warp throughput against the memory bound, and the paper's Table 1 (measure/bench.h). Progress on
 // stderr, a Markdown report on stdout, JSON with --json FILE.
 #include <cstdio>
 #include <memory>
 #include <sstream>
 
 #include "cli_common.h"
-#include "objects/bench.h"
+#include "measure/bench.h"
 
 namespace rtm::cli {
 

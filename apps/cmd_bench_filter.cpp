@@ -4,8 +4,8 @@
 #include <memory>
 
 #include "cli_common.h"
-#include "objects/filter_measure.h"
-#include "texmap/image_io.h"
+#include "measure/filter_measure.h"
+#include "formats/image_io.h"
 
 namespace rtm::cli {
 

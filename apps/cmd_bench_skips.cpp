@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "cli_common.h"
-#include "objects/skip_measure.h"
+#include "measure/skip_measure.h"
 
 namespace rtm::cli {
 

@@ -6,9 +6,9 @@
 #include <memory>
 
 #include "cli_common.h"
-#include "objects/compare.h"
-#include "objects/relief_manifest.h"
-#include "texmap/image_io.h"
+#include "measure/compare.h"
+#include "formats/relief_manifest.h"
+#include "formats/image_io.h"
 
 namespace rtm::cli {
 

@@ -1,4 +1,4 @@
-// rtm diff: error of a rendering against a reference (objects/image_diff.h). Prints one "name value" line per
+// rtm diff: error of a rendering against a reference (measure/image_diff.h). Prints one "name value" line per
 // figure: psnr, rmse, iou, max_error and the coverage counts. Non-finite values print as inf / nan; JSON has no
 // such numbers, so there psnr of identical images is the string "inf" and an undefined value (no pixel covered in
 // both images) is null.
@@ -7,8 +7,8 @@
 #include <memory>
 
 #include "cli_common.h"
-#include "objects/image_diff.h"
-#include "texmap/image_io.h"
+#include "measure/image_diff.h"
+#include "formats/image_io.h"
 
 namespace rtm::cli {
 

@@ -6,9 +6,9 @@
 
 #include "cli_common.h"
 #include "objects/bounds.h"
-#include "objects/relief_manifest.h"
+#include "formats/relief_manifest.h"
 #include "objects/relief_quad.h"
-#include "texmap/image_io.h"
+#include "formats/image_io.h"
 #include "warp/prewarp.h"
 
 namespace rtm::cli {

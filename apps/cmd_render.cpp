@@ -11,10 +11,10 @@
 #include "cli_common.h"
 #include "objects/bounds.h"
 #include "objects/render_relief.h"
-#include "objects/relief_manifest.h"
+#include "formats/relief_manifest.h"
 #include "objects/relief_quad.h"
 #include "texmap/gl_context.h"
-#include "texmap/image_io.h"
+#include "formats/image_io.h"
 
 namespace rtm::cli {
 

@@ -1,4 +1,4 @@
-// rtm-make-media: writes the procedural relief textures (objects/procedural_media.h) as NAME.relief.json plus
+// rtm-make-media: writes the procedural relief textures (procedural/procedural_media.h) as NAME.relief.json plus
 // NAME_color.png and NAME_disp.png, for the shipped media/ folder and for tests.
 //
 //   rtm-make-media --out DIR [--size N]
@@ -10,9 +10,9 @@
 #include <filesystem>
 #include <string>
 
-#include "objects/procedural_media.h"
-#include "objects/relief_manifest.h"
-#include "texmap/image_io.h"
+#include "procedural/procedural_media.h"
+#include "formats/relief_manifest.h"
+#include "formats/image_io.h"
 
 int main(int argc, char** argv) {
     CLI::App app{

@@ -20,8 +20,8 @@
 #include <vector>
 
 #include "fuzz_util.h"
-#include "objects/relief_manifest.h"
-#include "texmap/image_io.h"
+#include "formats/relief_manifest.h"
+#include "formats/image_io.h"
 
 namespace {
 

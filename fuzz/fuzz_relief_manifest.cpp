@@ -1,4 +1,4 @@
-// libFuzzer target: the bytes are a relief manifest (NAME.relief.json, objects/relief_manifest.h).
+// libFuzzer target: the bytes are a relief manifest (NAME.relief.json, formats/relief_manifest.h).
 //
 // They are written to a file in a scratch folder that also holds small valid images (c.png, d.png, c.ppm, d.pgm,
 // d.pfm, 4x3 texels, and a 2x2 one, d22.png, for size mismatches), so that a manifest naming them gets past the
@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "fuzz_util.h"
-#include "objects/relief_manifest.h"
-#include "texmap/image_io.h"
+#include "formats/relief_manifest.h"
+#include "formats/image_io.h"
 
 namespace {
 

@@ -11,7 +11,7 @@
 #include <fstream>
 #include <typeinfo>
 
-#include "texmap/image_io.h"
+#include "formats/image_io.h"
 
 namespace rtm::fuzz {
 

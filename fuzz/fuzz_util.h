@@ -15,7 +15,7 @@
 namespace rtm::fuzz {
 
 // Once per process: points sanitizer reports at a duplicate of the original stderr. The image reader sends stderr
-// to /dev/null while OpenImageIO runs (texmap/image_io.cpp, QuietStderr), which would otherwise swallow a report
+// to /dev/null while OpenImageIO runs (formats/image_io.cpp, QuietStderr), which would otherwise swallow a report
 // from inside it.
 void init_reports();
 

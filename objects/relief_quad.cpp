@@ -8,8 +8,8 @@
 #include <stdexcept>
 
 #include "objects/bounds.h"
-#include "objects/micromesh.h"
-#include "objects/timing.h"
+#include "truth/micromesh.h"
+#include "warp/timing.h"
 #include "objects/view_analysis.h"
 #include "warp/fast_prewarp.h"
 #include "warp/pyramid.h"

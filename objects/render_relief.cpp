@@ -3,9 +3,9 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "objects/micromesh.h"
-#include "objects/raycast.h"
-#include "objects/timing.h"
+#include "truth/micromesh.h"
+#include "truth/raycast.h"
+#include "warp/timing.h"
 
 namespace rtm {
 

@@ -4,8 +4,8 @@
 // take the same samples in the same occlusion-compatible order, and both draw the same signal:
 //
 // The signal along a line. Between two connected samples A and B (positions pa, pb) colour and attributes are
-// linear, as in warp_line_to and as on the surface the ground truths use (objects/raycast.h and
-// objects/micromesh.h: bilinear between texel centres). A run of connected samples therefore covers
+// linear, as in warp_line_to and as on the surface the ground truths use (truth/raycast.h and
+// truth/micromesh.h: bilinear between texel centres). A run of connected samples therefore covers
 // [first position, last position]: like the truths, the surface ends at its outermost texel centres. A sample
 // with no connected neighbour covers one pixel's width centred on its position (the point filter writes the
 // pixel containing it).

@@ -7,7 +7,7 @@
 # The corpus is generated at run time into a fresh temporary folder: manifests of every kind the reader must refuse,
 # images that are empty, truncated, corrupt, not images at all, or whose headers claim absurd sizes, displacement
 # that is non-finite or outside 0..1, colour and displacement of different sizes, and degenerate cameras.
-# tests/objects/relief_manifest_test.cpp and tests/texmap/image_io_test.cpp hold the finer-grained unit corpus.
+# tests/formats/relief_manifest_test.cpp and tests/formats/image_io_test.cpp hold the finer-grained unit corpus.
 . "$(dirname "$0")/lib.bash"
 command -v python3 >/dev/null || { echo "FAIL: python3 is needed to write the binary test files"; exit 1; }
 

@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <unistd.h>
 
-#include "texmap/image_io.h"
+#include "formats/image_io.h"
 
 namespace rtm::test {
 namespace fs = std::filesystem;

@@ -1,0 +1,418 @@
+// Image files through OpenImageIO 2.4.
+//
+// Reading checks the file itself (exists, is a regular file, is not empty, no PNG chunk or OpenEXR attribute
+// claims more bytes than the file holds) and then the header's claimed size against kMaxImagePixels before any
+// pixel buffer is allocated (docs/DESIGN.md, "Input limits"). Alpha stays unassociated
+// ("oiio:UnassociatedAlpha"), so a PNG round trip is bit-exact and the colour of a texel with alpha 0 survives.
+//
+// Writing goes to a temporary file in the destination folder (same file system, so std::rename is atomic) and is
+// renamed over `path` only when the writer reports success; on any failure the temporary file is removed.
+#include "formats/image_io.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <new>
+#include <system_error>
+#include <vector>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+namespace rtm {
+namespace {
+
+namespace fs = std::filesystem;
+
+static_assert(sizeof(Rgba8) == 4, "Rgba8 must be 4 tightly packed bytes");
+
+// The message is one line whatever the path holds: control characters (a newline in a file name, which a manifest
+// can ask for: found by fuzz/fuzz_relief_manifest) are shown as '?'.
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+    std::string msg = path + ": " + what;
+    for (char& c : msg)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    throw IoError(msg);
+}
+
+// OpenImageIO accumulates one error per line; join them into one line.
+std::string one_line(const std::string& s) {
+    std::string out;
+    size_t start = 0;
+    while (start <= s.size()) {
+        size_t end = s.find('\n', start);
+        if (end == std::string::npos) end = s.size();
+        std::string line = s.substr(start, end - start);
+        while (!line.empty() && (line.back() == ' ' || line.back() == '.' || line.back() == '\r')) line.pop_back();
+        if (!line.empty()) out += (out.empty() ? "" : "; ") + line;
+        start = end + 1;
+    }
+    return out;
+}
+
+// libpng reports a corrupt file through OpenImageIO's error handler (which we turn into the IoError message) and
+// then prints the same text as "libpng error: ..." on stderr itself, because OpenImageIO's handler returns. The
+// command line promises one line on stderr per failure, so file reads and writes run with stderr pointed at
+// /dev/null. The mutex keeps concurrent readers from restoring each other's descriptor out of order.
+class QuietStderr {
+public:
+    QuietStderr() : lock_(mutex()) {
+        std::fflush(stderr);
+        saved_ = ::dup(STDERR_FILENO);
+        int devnull = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+        if (saved_ >= 0 && devnull >= 0) ::dup2(devnull, STDERR_FILENO);
+        if (devnull >= 0) ::close(devnull);
+    }
+    ~QuietStderr() {
+        std::fflush(stderr);
+        if (saved_ >= 0) {
+            ::dup2(saved_, STDERR_FILENO);
+            ::close(saved_);
+        }
+    }
+    QuietStderr(const QuietStderr&) = delete;
+    QuietStderr& operator=(const QuietStderr&) = delete;
+
+private:
+    static std::mutex& mutex() {
+        static std::mutex m;
+        return m;
+    }
+    std::lock_guard<std::mutex> lock_;
+    int saved_ = -1;
+};
+
+// Returns the file's size.
+std::uintmax_t check_readable_file(const std::string& path) {
+    std::error_code ec;
+    fs::file_status st = fs::status(path, ec);
+    if (ec || !fs::exists(st)) {
+        int err = ec ? ec.value() : ENOENT;
+        fail(path, std::string("cannot open: ") + std::strerror(err));
+    }
+    if (fs::is_directory(st)) fail(path, "is a directory");
+    if (!fs::is_regular_file(st)) fail(path, "is not a regular file");
+    auto size = fs::file_size(path, ec);
+    if (ec) fail(path, "cannot open: " + ec.message());
+    if (size == 0) fail(path, "file is empty");
+    return size;
+}
+
+// For a catch (...) around OpenImageIO: some of its readers throw on corrupt files instead of reporting an error
+// (the SGI reader's std::length_error, "vector::_M_default_append", found by fuzz/fuzz_relief_loader).
+std::string reader_exception() {
+    try {
+        throw;
+    } catch (const std::bad_alloc&) {
+        return "the reader ran out of memory (corrupt file?)";
+    } catch (const std::exception& e) {
+        return "the reader failed (" + one_line(e.what()) + "; corrupt file?)";
+    } catch (...) {
+        return "the reader failed (corrupt file?)";
+    }
+}
+
+// Some decoders allocate, and clear, whatever a length field in the file claims before reading that many bytes:
+// libpng for an ancillary chunk (OpenImageIO 2.4 lets it go up to 2 GB), OpenEXR 3.1 for a header attribute. A
+// 348-byte PNG whose tEXt chunk claims 2016634473 bytes, and a 594-byte EXR whose string attribute claims 1.9 GB,
+// each made rtm touch 2 GB of memory (found by fuzz/fuzz_relief_loader). So, for these two formats (recognized by
+// their signature, whatever the file's extension), no such field may claim more bytes than the file has left.
+// PNG's IDAT is left to libpng, which streams it and says more about a file cut short in its pixel data.
+class ContainerCheck {
+public:
+    explicit ContainerCheck(const std::string& path)
+        : path_(path), f_(std::fopen(path.c_str(), "rb"), &std::fclose) {
+        std::error_code ec;
+        size_ = fs::file_size(path, ec);
+        if (ec) f_.reset();
+    }
+    void run() {
+        unsigned char magic[8];
+        if (!f_ || !read_at(0, magic, 8)) return;  // the reader reports what is wrong
+        if (std::memcmp(magic, "\x89PNG\r\n\x1a\n", 8) == 0) png();
+        if (std::memcmp(magic, "\x76\x2f\x31\x01", 4) == 0) exr(magic[5] & 0x10);  // flags: bit 12 = multi-part
+    }
+
+private:
+    bool read_at(std::uintmax_t pos, unsigned char* out, size_t n) {
+        if (pos + n > size_) return false;
+        if (pos != at_ && ::fseeko(f_.get(), off_t(pos), SEEK_SET) != 0) return false;
+        at_ = pos + n;
+        return std::fread(out, 1, n, f_.get()) == n;
+    }
+    void check(const char* format, const char* what, const std::string& name, std::uintmax_t pos,
+               std::uintmax_t claimed, std::uintmax_t from) {
+        if (claimed <= size_ - std::min(size_, from)) return;
+        std::string printable;
+        for (char c : name) printable += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
+        fail(path_, std::string("cannot read as an image: ") + format + " " + what + " \"" + printable +
+                        "\" at byte " + std::to_string(pos) + " claims " + std::to_string(claimed) +
+                        " bytes, more than the " + std::to_string(size_ - std::min(size_, from)) +
+                        " left in the file (truncated or corrupt)");
+    }
+    void png() {
+        unsigned char h[8];
+        for (std::uintmax_t pos = 8; read_at(pos, h, 8);) {
+            const std::uintmax_t length = std::uintmax_t(h[0]) << 24 | std::uintmax_t(h[1]) << 16 |
+                                          std::uintmax_t(h[2]) << 8 | std::uintmax_t(h[3]);
+            const std::string type(reinterpret_cast<const char*>(h + 4), 4);
+            if (type == "IEND") return;
+            if (type != "IDAT") check("PNG", "chunk", type, pos, length, pos + 8);
+            pos += 12 + length;
+        }
+    }
+    // A string ending in \0 (at most 255 characters) at `pos`, which moves past it.
+    bool read_string(std::uintmax_t& pos, std::string& out) {
+        out.clear();
+        for (unsigned char c; read_at(pos++, &c, 1);) {
+            if (c == 0) return true;
+            if (out.size() == 255) return false;
+            out += char(c);
+        }
+        return false;
+    }
+    // A header is a list of attributes (name\0 type\0 int32 size, then the value) ended by an empty name; a
+    // multi-part file has several headers, the list ended by an empty header.
+    void exr(bool multi_part) {
+        std::uintmax_t pos = 8;
+        std::string name, type;
+        do {
+            if (!read_string(pos, name) || name.empty()) return;
+            while (!name.empty()) {
+                const std::uintmax_t at = pos - name.size() - 1;
+                unsigned char n[4];
+                if (!read_string(pos, type) || !read_at(pos, n, 4)) return;
+                pos += 4;
+                const int32_t claimed =
+                    int32_t(uint32_t(n[0]) | uint32_t(n[1]) << 8 | uint32_t(n[2]) << 16 | uint32_t(n[3]) << 24);
+                if (claimed < 0) return;  // OpenEXR refuses that itself
+                check("OpenEXR", "attribute", name, at, std::uintmax_t(claimed), pos);
+                pos += std::uintmax_t(claimed);
+                if (!read_string(pos, name)) return;
+            }
+        } while (multi_part);
+    }
+
+    std::string path_;
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> f_;
+    std::uintmax_t size_ = 0;
+    std::uintmax_t at_ = 0;  // the stream's position
+};
+
+// An opened image whose size has been checked; `spec` describes subimage 0, mip level 0.
+struct OpenedImage {
+    std::unique_ptr<OIIO::ImageInput> in;
+    OIIO::ImageSpec spec;
+};
+
+OpenedImage open_checked(const std::string& path) {
+    const std::uintmax_t file_size = check_readable_file(path);
+    ContainerCheck(path).run();
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    std::unique_ptr<OIIO::ImageInput> in;
+    try {
+        QuietStderr quiet;
+        in = OIIO::ImageInput::open(path, &config);
+    } catch (...) {
+        fail(path, "cannot read as an image: " + reader_exception());
+    }
+    if (!in) {
+        std::string msg = one_line(OIIO::geterror());
+        fail(path, "cannot read as an image" + (msg.empty() ? std::string() : ": " + msg));
+    }
+    OIIO::ImageSpec spec = in->spec();
+    // Check the claimed size before anything allocates pixel memory.
+    if (spec.width <= 0 || spec.height <= 0)
+        fail(path, "image header claims " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                       " pixels, expected a width and height of at least 1");
+    if (spec.depth > 1) fail(path, "is a volume image (depth " + std::to_string(spec.depth) + "), not a 2-D image");
+    const long long pixels = (long long)spec.width * (long long)spec.height;
+    if (pixels > kMaxImagePixels)
+        fail(path, "image claims " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                       " pixels, more than the limit of 16384x16384");
+    if (std::uintmax_t(pixels / kMaxPixelsPerFileByte) > file_size)
+        fail(path, "image claims " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                       " pixels, more than " + std::to_string(kMaxPixelsPerFileByte) + " per byte of a " +
+                       std::to_string(file_size) + "-byte file (truncated or corrupt)");
+    if (spec.nchannels < 1) fail(path, "image has no channels");
+    return {std::move(in), spec};
+}
+
+// Reads the first `nch` channels of the whole image as `type` into `data`, whose pixels are `out_nch` >= nch
+// channels apart (the channels past nch are left as they are).
+void read_channels(const std::string& path, OpenedImage& im, int nch, int out_nch, OIIO::TypeDesc type, void* data) {
+    const OIIO::ImageSpec& s = im.spec;
+    const OIIO::stride_t out_pixel = OIIO::stride_t(out_nch) * OIIO::stride_t(type.size());
+    const OIIO::stride_t out_row = out_pixel * OIIO::stride_t(s.width);
+    bool ok = true;
+    try {
+        QuietStderr quiet;
+        if (s.tile_width == 0 && s.channelformats.empty() && s.format.size() > 0) {
+            // A scanline file: read in its own format a band of rows at a time, and converted here into place.
+            // OpenImageIO 2.4's read_image would convert through a 64 MB scratch buffer per call, whatever the
+            // image's size (ImageInput::read_scanlines allocates it for any requested format but the "native"
+            // UNKNOWN): untouched and cheap normally, but AddressSanitizer poisons all of it, which made every read
+            // of a small image cost milliseconds in the sanitizer suite and the fuzzers. Bands of about 4 MB.
+            const size_t file_row = s.scanline_bytes(true);  // all channels: what the reader decodes
+            const size_t in_row = size_t(s.width) * size_t(nch) * s.format.size();
+            const int band = int(std::clamp<size_t>((size_t(1) << 22) / std::max<size_t>(file_row, 1), 1,
+                                                    size_t(s.height)));
+            std::vector<unsigned char> buf(size_t(band) * in_row);
+            for (int y = 0; ok && y < s.height; y += band) {
+                const int rows = std::min(band, s.height - y);
+                ok = im.in->read_scanlines(0, 0, s.y + y, s.y + y + rows, s.z, 0, nch, OIIO::TypeDesc::UNKNOWN,
+                                           buf.data()) &&
+                     OIIO::convert_image(nch, s.width, rows, 1, buf.data(), s.format, OIIO::AutoStride,
+                                         OIIO::AutoStride, OIIO::AutoStride,
+                                         static_cast<unsigned char*>(data) + size_t(y) * size_t(out_row), type,
+                                         out_pixel, out_row, OIIO::AutoStride);
+            }
+        } else {
+            ok = im.in->read_image(0, 0, 0, nch, type, data, out_pixel, out_row);
+        }
+    } catch (...) {
+        fail(path, "cannot read pixels: " + reader_exception());
+    }
+    if (!ok) {
+        std::string msg = one_line(im.in->geterror());
+        fail(path, "cannot read pixels" + (msg.empty() ? std::string(" (file truncated or corrupt?)") : ": " + msg));
+    }
+    if (im.in->has_error()) fail(path, "cannot read pixels: " + one_line(im.in->geterror()));
+}
+
+// Temporary file beside `path`, unique per process and call.
+std::string temp_name_for(const std::string& path) {
+    static std::atomic<unsigned> counter{0};
+    fs::path p(path);
+    fs::path dir = p.parent_path();
+    // Built with += : GCC 12 gives a false -Wrestrict warning for "." + std::string&&.
+    std::string name = ".";
+    name += p.filename().string();
+    name += ".tmp";
+    name += std::to_string(::getpid());
+    name += "-";
+    name += std::to_string(counter.fetch_add(1));
+    return (dir / name).string();
+}
+
+// Writes `nch` channels of `type` from `data` with the format given by `path`'s extension, atomically.
+void write_atomic(const std::string& path, int width, int height, int nch, OIIO::TypeDesc file_type,
+                  OIIO::TypeDesc data_type, const void* data, bool has_alpha) {
+    if (width <= 0 || height <= 0)
+        fail(path, "cannot write an empty image (" + std::to_string(width) + "x" + std::to_string(height) + ")");
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) fail(path, "is a directory");
+    fs::path parent = fs::path(path).parent_path();
+    if (!parent.empty() && !fs::is_directory(parent, ec))
+        fail(path, "cannot write: folder " + parent.string() + " does not exist");
+
+    // The plug-in is chosen by the destination's extension; the temporary file gets the same plug-in.
+    auto out = OIIO::ImageOutput::create(path);
+    if (!out) {
+        std::string msg = one_line(OIIO::geterror());
+        fail(path, "cannot write: no image writer for this file name" +
+                       (msg.empty() ? std::string() : " (" + msg + ")"));
+    }
+    int channels = nch;
+    OIIO::stride_t xstride = OIIO::stride_t(nch) * OIIO::stride_t(data_type.size());
+    if (has_alpha && !out->supports("alpha")) channels = 3;  // e.g. JPEG: drop alpha, keep colour
+    OIIO::ImageSpec spec(width, height, channels, file_type);
+    if (has_alpha && channels == 4) {
+        spec.alpha_channel = 3;
+        spec.attribute("oiio:UnassociatedAlpha", 1);  // our data is not premultiplied; write it as is
+    }
+    const std::string tmp = temp_name_for(path);
+    auto remove_tmp = [&] {
+        std::error_code ignore;
+        fs::remove(tmp, ignore);
+    };
+    bool ok = false;
+    std::string msg;
+    {
+        QuietStderr quiet;
+        if (!out->open(tmp, spec)) {
+            msg = one_line(out->geterror());
+        } else {
+            ok = out->write_image(data_type, data, xstride);
+            if (!ok) msg = one_line(out->geterror());
+            if (!out->close() && ok) {
+                ok = false;
+                msg = one_line(out->geterror());
+            }
+        }
+        out.reset();
+    }
+    if (!ok) {
+        remove_tmp();
+        fail(path, "cannot write: " + msg);
+    }
+    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+        int err = errno;
+        remove_tmp();
+        fail(path, std::string("cannot write: rename from temporary file failed: ") + std::strerror(err));
+    }
+}
+
+}  // namespace
+
+ImageRGBA8 read_rgba8(const std::string& path) {
+    OpenedImage im = open_checked(path);
+    const int nch = std::min(im.spec.nchannels, 4);
+    ImageRGBA8 img(im.spec.width, im.spec.height);
+    // Straight into the RGBA pixels, then filled out in place: no second image-sized buffer.
+    read_channels(path, im, nch, 4, OIIO::TypeDesc::UINT8, img.pixels.data());
+    if (nch < 4) {
+        for (Rgba8& d : img.pixels) {
+            if (nch == 1) {
+                d = {d.r, d.r, d.r, 255};
+            } else if (nch == 2) {  // grey + alpha
+                d = {d.r, d.r, d.r, d.g};
+            } else {
+                d.a = 255;
+            }
+        }
+    }
+    return img;
+}
+
+ImageF read_gray(const std::string& path) {
+    OpenedImage im = open_checked(path);
+    ImageF img(im.spec.width, im.spec.height);
+    read_channels(path, im, 1, 1, OIIO::TypeDesc::FLOAT, img.pixels.data());
+    return img;
+}
+
+void write_rgba8(const std::string& path, const ImageRGBA8& img) {
+    if (img.pixels.size() != size_t(std::max(img.width, 0)) * size_t(std::max(img.height, 0)))
+        fail(path, "cannot write: image claims " + std::to_string(img.width) + "x" + std::to_string(img.height) +
+                       " but holds " + std::to_string(img.pixels.size()) + " pixels");
+    write_atomic(path, img.width, img.height, 4, OIIO::TypeDesc::UINT8, OIIO::TypeDesc::UINT8, img.pixels.data(),
+                 true);
+}
+
+void write_gray(const std::string& path, const ImageF& img) {
+    if (img.pixels.size() != size_t(std::max(img.width, 0)) * size_t(std::max(img.height, 0)))
+        fail(path, "cannot write: image claims " + std::to_string(img.width) + "x" + std::to_string(img.height) +
+                       " but holds " + std::to_string(img.pixels.size()) + " pixels");
+    std::vector<float> clamped(img.pixels.size());
+    for (size_t i = 0; i < clamped.size(); ++i) {
+        float v = img.pixels[i];
+        clamped[i] = std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f;
+    }
+    // 16 bits per sample; a format without 16-bit support (JPEG, ...) falls back to what it supports.
+    write_atomic(path, img.width, img.height, 1, OIIO::TypeDesc::UINT16, OIIO::TypeDesc::FLOAT, clamped.data(),
+                 false);
+}
+
+}  // namespace rtm

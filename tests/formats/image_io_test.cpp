@@ -1,0 +1,303 @@
+// Image files: exact round trips, channel handling, and every way a file can be wrong.
+#include "formats/image_io.h"
+
+#include <gtest/gtest.h>
+
+#include <sys/resource.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "texmap/test_util.h"
+
+namespace rtm {
+namespace {
+
+using test::TempDir;
+
+ImageRGBA8 random_rgba(int w, int h, uint32_t seed) {
+    std::mt19937 rng(seed);
+    ImageRGBA8 img(w, h);
+    for (Rgba8& p : img.pixels) {
+        uint32_t v = rng();
+        p = {uint8_t(v), uint8_t(v >> 8), uint8_t(v >> 16), uint8_t(v >> 24)};
+    }
+    return img;
+}
+
+// Runs `fn`, expecting an IoError whose message starts with "<path>: " and contains `fragment`.
+template <class Fn>
+void expect_io_error(Fn fn, const std::string& path, const std::string& fragment) {
+    try {
+        fn();
+        ADD_FAILURE() << "no IoError for " << path;
+    } catch (const IoError& e) {
+        std::string msg = e.what();
+        EXPECT_EQ(msg.rfind(path + ": ", 0), 0u) << "message does not start with the path: " << msg;
+        EXPECT_NE(msg.find(fragment), std::string::npos) << "message lacks \"" << fragment << "\": " << msg;
+        EXPECT_EQ(msg.find('\n'), std::string::npos) << "message is not one line: " << msg;
+    } catch (const std::exception& e) {
+        ADD_FAILURE() << "expected IoError for " << path << ", got another exception: " << e.what();
+    }
+}
+
+TEST(ImageIo, PngRoundTripIsBitExact) {
+    TempDir dir;
+    // Odd sizes, every byte value, and alpha 0 texels with non-zero colour (alpha must stay unassociated).
+    ImageRGBA8 img = random_rgba(37, 23, 1234);
+    img.at(0, 0) = {200, 100, 50, 0};
+    img.at(1, 0) = {1, 2, 3, 255};
+    const std::string path = dir.file("round.png");
+    write_rgba8(path, img);
+    ImageRGBA8 back = read_rgba8(path);
+    EXPECT_EQ(back.width, 37);
+    EXPECT_EQ(back.height, 23);
+    EXPECT_EQ(test::compare_images(img, back, 0), "");
+    EXPECT_EQ(back.at(0, 0), (Rgba8{200, 100, 50, 0}));
+}
+
+TEST(ImageIo, RowZeroIsTheTopOfTheFile) {
+    TempDir dir;
+    // 1x2 RGB PNG written by hand: top row red, bottom row blue.
+    const std::string path = dir.file("top.png");
+    test::write_bytes(path, test::encode_png(1, 2, 3, 8, {255, 0, 0, 0, 0, 255}));
+    ImageRGBA8 img = read_rgba8(path);
+    ASSERT_EQ(img.height, 2);
+    EXPECT_EQ(img.at(0, 0), (Rgba8{255, 0, 0, 255}));
+    EXPECT_EQ(img.at(0, 1), (Rgba8{0, 0, 255, 255}));
+}
+
+TEST(ImageIo, RgbGetsOpaqueAlphaAndRgbaKeepsIt) {
+    TempDir dir;
+    const std::string rgb = dir.file("rgb.png"), rgba = dir.file("rgba.png");
+    test::write_bytes(rgb, test::encode_png(2, 1, 3, 8, {10, 20, 30, 40, 50, 60}));
+    test::write_bytes(rgba, test::encode_png(2, 1, 4, 8, {10, 20, 30, 0, 40, 50, 60, 128}));
+    ImageRGBA8 a = read_rgba8(rgb);
+    EXPECT_EQ(a.at(0, 0), (Rgba8{10, 20, 30, 255}));
+    EXPECT_EQ(a.at(1, 0), (Rgba8{40, 50, 60, 255}));
+    ImageRGBA8 b = read_rgba8(rgba);
+    EXPECT_EQ(b.at(0, 0), (Rgba8{10, 20, 30, 0}));  // colour kept under alpha 0: not premultiplied
+    EXPECT_EQ(b.at(1, 0), (Rgba8{40, 50, 60, 128}));
+}
+
+TEST(ImageIo, GreyIsReplicatedAndGreyAlphaKeepsAlpha) {
+    TempDir dir;
+    const std::string g = dir.file("g.png"), ga = dir.file("ga.png");
+    test::write_bytes(g, test::encode_png(2, 1, 1, 8, {7, 250}));
+    test::write_bytes(ga, test::encode_png(1, 1, 2, 8, {99, 0}));
+    ImageRGBA8 a = read_rgba8(g);
+    EXPECT_EQ(a.at(0, 0), (Rgba8{7, 7, 7, 255}));
+    EXPECT_EQ(a.at(1, 0), (Rgba8{250, 250, 250, 255}));
+    EXPECT_EQ(read_rgba8(ga).at(0, 0), (Rgba8{99, 99, 99, 0}));
+}
+
+TEST(ImageIo, ReadsPortablePixmap) {
+    TempDir dir;
+    const std::string path = dir.file("p.ppm");
+    test::write_bytes(path, std::string("P6\n2 1\n255\n") + std::string("\x01\x02\x03\xfd\xfe\xff", 6));
+    ImageRGBA8 img = read_rgba8(path);
+    EXPECT_EQ(img.at(0, 0), (Rgba8{1, 2, 3, 255}));
+    EXPECT_EQ(img.at(1, 0), (Rgba8{253, 254, 255, 255}));
+}
+
+TEST(ImageIo, ReadGrayNormalizes8And16Bit) {
+    TempDir dir;
+    const std::string g8 = dir.file("g8.png"), g16 = dir.file("g16.png"), rgb = dir.file("rgb.png");
+    test::write_bytes(g8, test::encode_png(3, 1, 1, 8, {0, 51, 255}));
+    test::write_bytes(g16, test::encode_png(3, 1, 1, 16, {0, 1000, 65535}));
+    test::write_bytes(rgb, test::encode_png(1, 1, 3, 8, {102, 0, 255}));
+    ImageF a = read_gray(g8);
+    EXPECT_FLOAT_EQ(a.at(0, 0), 0.0f);
+    EXPECT_NEAR(a.at(1, 0), 51.0 / 255.0, 1e-6);
+    EXPECT_FLOAT_EQ(a.at(2, 0), 1.0f);
+    ImageF b = read_gray(g16);
+    EXPECT_NEAR(b.at(1, 0), 1000.0 / 65535.0, 1e-7);  // 16 bits survive: not squeezed through 8 bits
+    EXPECT_FLOAT_EQ(b.at(2, 0), 1.0f);
+    EXPECT_NEAR(read_gray(rgb).at(0, 0), 102.0 / 255.0, 1e-6);  // the first channel
+}
+
+TEST(ImageIo, GrayRoundTripKeeps16Bits) {
+    TempDir dir;
+    ImageF img(5, 3);
+    for (size_t i = 0; i < img.pixels.size(); ++i) img.pixels[i] = float(i * 4099 % 65536) / 65535.0f;
+    img.at(0, 0) = -1.0f;  // clamped to 0
+    img.at(1, 0) = 2.0f;   // clamped to 1
+    img.at(2, 0) = NAN;    // written as 0
+    const std::string path = dir.file("disp.png");
+    write_gray(path, img);
+    ImageF back = read_gray(path);
+    ASSERT_EQ(back.width, 5);
+    ASSERT_EQ(back.height, 3);
+    EXPECT_EQ(back.at(0, 0), 0.0f);
+    EXPECT_EQ(back.at(1, 0), 1.0f);
+    EXPECT_EQ(back.at(2, 0), 0.0f);
+    for (size_t i = 3; i < img.pixels.size(); ++i)
+        EXPECT_NEAR(back.pixels[i], img.pixels[i], 0.5 / 65535.0 + 1e-7) << "pixel " << i;
+    EXPECT_EQ(dir.list(), std::vector<std::string>{"disp.png"});
+}
+
+TEST(ImageIo, MissingFile) {
+    TempDir dir;
+    const std::string path = dir.file("nothing_here.png");
+    expect_io_error([&] { read_rgba8(path); }, path, "cannot open: No such file");
+    expect_io_error([&] { read_gray(path); }, path, "cannot open: No such file");
+}
+
+TEST(ImageIo, Directory) {
+    TempDir dir;
+    std::filesystem::create_directory(dir.file("folder.png"));
+    expect_io_error([&] { read_rgba8(dir.file("folder.png")); }, dir.file("folder.png"), "is a directory");
+}
+
+TEST(ImageIo, EmptyFile) {
+    TempDir dir;
+    const std::string path = dir.file("empty.png");
+    test::write_bytes(path, "");
+    expect_io_error([&] { read_rgba8(path); }, path, "empty");
+}
+
+TEST(ImageIo, TextFileNamedPng) {
+    TempDir dir;
+    const std::string path = dir.file("notes.png");
+    test::write_bytes(path, "These are notes, not an image.\nSecond line.\n");
+    expect_io_error([&] { read_rgba8(path); }, path, "cannot read");
+}
+
+TEST(ImageIo, TruncatedPng) {
+    TempDir dir;
+    std::vector<uint16_t> samples(64 * 64 * 4);
+    for (size_t i = 0; i < samples.size(); ++i) samples[i] = uint16_t(i * 31 % 256);
+    std::string png = test::encode_png(64, 64, 4, 8, samples);
+    // Cut in the middle of the pixel data: the header is intact, so the reader only notices when reading pixels.
+    const std::string path = dir.file("cut.png");
+    test::write_bytes(path, png.substr(0, png.size() / 2));
+    // The failure is reported once, in the exception: libpng's own "libpng error: ..." line must not reach stderr
+    // (the command line promises one line on stderr per failure).
+    ::testing::internal::CaptureStderr();
+    expect_io_error([&] { read_rgba8(path); }, path, "cannot read pixels");
+    expect_io_error([&] { read_gray(path); }, path, "cannot read pixels");
+    EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+}
+
+TEST(ImageIo, ZeroSizedImage) {
+    TempDir dir;
+    const std::string path = dir.file("zero.ppm");
+    test::write_bytes(path, "P6\n0 0\n255\n");
+    expect_io_error([&] { read_rgba8(path); }, path, "");
+}
+
+// A header that claims a huge image must be rejected from the header alone. Checked in a child process whose
+// address space is capped at its current size + 1 GiB: reading 100000 x 100000 RGBA (40 GB) would have to allocate
+// and fail with std::bad_alloc (exit code 3) instead of the expected IoError (exit code 0).
+void expect_rejected_without_allocating(const std::string& path) {
+    EXPECT_EXIT(
+        {
+            long pages = 0;
+            if (FILE* f = std::fopen("/proc/self/statm", "r")) {
+                if (std::fscanf(f, "%ld", &pages) != 1) pages = 0;
+                std::fclose(f);
+            }
+            rlimit lim{};
+            lim.rlim_cur = lim.rlim_max = rlim_t(pages) * rlim_t(sysconf(_SC_PAGESIZE)) + (rlim_t(1) << 30);
+            setrlimit(RLIMIT_AS, &lim);
+            try {
+                read_rgba8(path);
+                std::_Exit(1);
+            } catch (const IoError& e) {
+                std::string msg = e.what();
+                bool ok = msg.rfind(path + ": ", 0) == 0 &&
+                          msg.find("image claims 100000x100000 pixels, more than the limit of 16384x16384") !=
+                              std::string::npos;
+                if (!ok) std::fprintf(stderr, "unexpected message: %s\n", msg.c_str());
+                std::_Exit(ok ? 0 : 2);
+            } catch (const std::bad_alloc&) {
+                std::_Exit(3);
+            } catch (...) {
+                std::_Exit(4);
+            }
+        },
+        ::testing::ExitedWithCode(0), "");
+}
+
+TEST(ImageIoDeathTest, HugePpmHeaderIsRejectedBeforeAllocating) {
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    TempDir dir;
+    const std::string path = dir.file("huge.ppm");
+    test::write_bytes(path, "P6\n100000 100000\n255\n");
+    expect_rejected_without_allocating(path);
+}
+
+TEST(ImageIoDeathTest, HugePngHeaderIsRejectedBeforeAllocating) {
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    TempDir dir;
+    const std::string path = dir.file("huge.png");
+    test::write_bytes(path, test::png_claiming_size(100000, 100000));
+    expect_rejected_without_allocating(path);
+}
+
+TEST(ImageIo, LimitIsOnPixelsNotOnOneSide) {
+    TempDir dir;
+    // 20000 x 1 is wide but small: accepted (only the header check matters here, the file has the data).
+    const std::string path = dir.file("wide.pgm");
+    test::write_bytes(path, "P5\n20000 1\n255\n" + std::string(20000, '\x10'));
+    ImageRGBA8 img = read_rgba8(path);
+    EXPECT_EQ(img.width, 20000);
+    EXPECT_EQ(img.at(19999, 0), (Rgba8{16, 16, 16, 255}));
+}
+
+TEST(ImageIo, WriteReplacesAnExistingFileAndLeavesNoTemporary) {
+    TempDir dir;
+    const std::string path = dir.file("out.png");
+    write_rgba8(path, ImageRGBA8(3, 3, Rgba8{1, 2, 3, 255}));
+    write_rgba8(path, ImageRGBA8(2, 2, Rgba8{9, 8, 7, 255}));
+    ImageRGBA8 back = read_rgba8(path);
+    EXPECT_EQ(back.width, 2);
+    EXPECT_EQ(back.at(1, 1), (Rgba8{9, 8, 7, 255}));
+    EXPECT_EQ(dir.list(), std::vector<std::string>{"out.png"});
+}
+
+TEST(ImageIo, WriteErrorsNameThePathAndLeaveNothing) {
+    TempDir dir;
+    ImageRGBA8 img(2, 2, Rgba8{1, 2, 3, 4});
+    const std::string missing_folder = dir.file("no/such/folder/out.png");
+    expect_io_error([&] { write_rgba8(missing_folder, img); }, missing_folder, "does not exist");
+
+    std::filesystem::create_directory(dir.file("taken.png"));
+    expect_io_error([&] { write_rgba8(dir.file("taken.png"), img); }, dir.file("taken.png"), "is a directory");
+
+    const std::string unknown = dir.file("out.unknownformat");
+    expect_io_error([&] { write_rgba8(unknown, img); }, unknown, "cannot write");
+
+    const std::string empty = dir.file("empty.png");
+    expect_io_error([&] { write_rgba8(empty, ImageRGBA8()); }, empty, "empty image");
+    expect_io_error([&] { write_gray(empty, ImageF()); }, empty, "empty image");
+
+    EXPECT_EQ(dir.list(), std::vector<std::string>{"taken.png"});  // no partial or temporary files
+}
+
+TEST(ImageIo, WriteFailureKeepsThePreviousFile) {
+    TempDir dir;
+    const std::string path = dir.file("keep.png");
+    write_rgba8(path, ImageRGBA8(2, 2, Rgba8{5, 6, 7, 255}));
+    const std::string before = test::read_bytes(path);
+    ImageRGBA8 broken(4, 4);
+    broken.pixels.resize(3);  // inconsistent: must be refused before anything is written
+    expect_io_error([&] { write_rgba8(path, broken); }, path, "holds 3 pixels");
+    EXPECT_EQ(test::read_bytes(path), before);
+    EXPECT_EQ(dir.list(), std::vector<std::string>{"keep.png"});
+}
+
+TEST(ImageIo, FormatWithoutAlphaDropsIt) {
+    TempDir dir;
+    const std::string path = dir.file("out.ppm");
+    write_rgba8(path, ImageRGBA8(2, 1, Rgba8{10, 20, 30, 0}));
+    ImageRGBA8 back = read_rgba8(path);
+    EXPECT_EQ(back.at(1, 0), (Rgba8{10, 20, 30, 255}));
+}
+
+}  // namespace
+}  // namespace rtm
