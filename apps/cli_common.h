@@ -1,4 +1,4 @@
-// What the subcommands share: errors and exit codes, CAMERA options, JSON output (shared/CONVENTIONS.md,
+// What the subcommands share: errors and exit codes, CAMERA options, JSON output (docs/FORMATS.md,
 // "Command line"). Exit status: 0 success; 1 runtime failure with one line naming the file or value; 2 usage.
 #pragma once
 

@@ -7,7 +7,7 @@
 
 namespace {
 
-// One line on stderr per failure (shared/CONVENTIONS.md), even when the message quotes a file name or a flag value
+// One line on stderr per failure (docs/FORMATS.md), even when the message quotes a file name or a flag value
 // holding a newline: control characters are shown as '?'.
 std::string one_line(const char* what) {
     std::string s = what;

@@ -1,4 +1,4 @@
-// NAME.relief.json reading and writing (shared/CONVENTIONS.md, "Files").
+// NAME.relief.json reading and writing (docs/FORMATS.md, "The relief manifest").
 //
 // Every failure is an rtm::IoError with one line: "<manifest path>: <what is wrong, expected vs found>". Values that
 // are quoted back to the user go through describe(), which never recurses into nested containers, so a hostile
@@ -298,7 +298,7 @@ ReliefManifest parse_relief_manifest(const std::string& path) {
 
     ReliefManifest m;
     m.path = path;
-    // Required fields, in the order of CONVENTIONS.md.
+    // Required fields, in the order of docs/FORMATS.md.
     m.color_path = resolve(path, get_file_name(path, j, "color"));
     m.displacement_path = resolve(path, get_file_name(path, j, "displacement"));
     const std::vector<double> range =

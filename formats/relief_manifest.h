@@ -1,4 +1,4 @@
-// NAME.relief.json (shared/CONVENTIONS.md):
+// NAME.relief.json (docs/FORMATS.md):
 //   { "color": "x_color.png", "displacement": "x_disp.png", "displacement_range": [min, max],
 //     "origin": [x,y,z], "a": [x,y,z], "b": [x,y,z] }
 // Optional: "name" (string), "discontinuity_threshold" (number, world units, >= 0).

@@ -1,5 +1,5 @@
 // Axis-aligned bounds of what is rendered; the orbit camera and the clip planes use the bounding sphere
-// (centre of the box, radius = half its diagonal; shared/CONVENTIONS.md).
+// (centre of the box, radius = half its diagonal; docs/FORMATS.md, "CAMERA").
 #pragma once
 
 #include <glm/vec3.hpp>

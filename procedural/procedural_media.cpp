@@ -1,7 +1,7 @@
 // Procedural relief textures (see procedural_media.h).
 //
 // Every generator works in relief coordinates x = (i + 0.5)/size to the right and y = (h - 1 - row + 0.5)/size
-// upwards (shared/CONVENTIONS.md: the image shows the surface from +f with a to the right and b up), computes a
+// upwards (docs/FORMATS.md: the image shows the surface from +f with a to the right and b up), computes a
 // colour and a displacement in world units, and stores the displacement normalized over [range_min, range_max].
 // Randomness is a fixed integer hash of texel or cell coordinates, never a global generator, so the same call gives
 // the same bytes. Colours get a little baked lighting from the displacement (the paper's relief textures come from

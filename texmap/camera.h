@@ -1,4 +1,4 @@
-// A perspective pinhole camera (shared/CONVENTIONS.md, command line CAMERA): eye, look-at, up, vertical field of
+// A perspective pinhole camera (docs/FORMATS.md, "CAMERA"): eye, look-at, up, vertical field of
 // view in degrees, image size. Right-handed, looking down -z in eye space as OpenGL does. Double precision.
 #pragma once
 

@@ -2,7 +2,7 @@
 //
 // Texture orientation: images are uploaded as stored (row 0 = top of the picture), and glTexImage2D puts the first
 // row at t = 0, so the picture's top row lies at t = 0. The relief convention puts the top row at v = 1
-// (shared/CONVENTIONS.md), hence every texture coordinate is given to GL as (u, t) = (u, 1 - v). Flipping t instead
+// (docs/FORMATS.md), hence every texture coordinate is given to GL as (u, t) = (u, 1 - v). Flipping t instead
 // of the rows keeps upload() a straight copy and lets upload_rect() address rows as the image does.
 //
 // Output alpha: what is drawn is opaque. A quad fragment is kept when its bilinearly filtered texture alpha is at

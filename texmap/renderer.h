@@ -46,7 +46,7 @@ struct MeshVertex {
 // A relief quad with its pre-warped texture, for draw_relief. The texture covers the quad plus margins (samples
 // kept beyond the quad, paper section 4): texel units u in [-margin_left, width + margin_right), v likewise.
 struct ReliefSurface {
-    glm::dvec3 origin{0.0}, a{1, 0, 0}, b{0, 1, 0};  // the relief plane (shared/CONVENTIONS.md)
+    glm::dvec3 origin{0.0}, a{1, 0, 0}, b{0, 1, 0};  // the relief plane (docs/FORMATS.md)
     int width = 0, height = 0;                        // the quad, in texels
     int margin_left = 0, margin_right = 0, margin_bottom = 0, margin_top = 0;
     // wall_low < wall_high: side polygons perpendicular to the quad, spanning these displacements along f, along
@@ -74,7 +74,7 @@ public:
     // finish() between them (the upload's timer) would force, 0.15 to 0.18 ms a frame at 512x512.
     void begin_frame(const Camera& cam);
     // corners: world positions of the texture's (u,v) = (0,0), (w,0), (w,h), (0,h) in that order; the texture's
-    // top row is v = h (shared/CONVENTIONS.md).
+    // top row is v = h (docs/FORMATS.md).
     void draw_textured_quad(const Camera& cam, const std::array<glm::dvec3, 4>& corners, const GlTexture& tex);
     // Vertex alpha, like texture alpha, is coverage: fragments whose interpolated alpha is below one half are
     // discarded; everything drawn is written opaque. Indices must be < vertices.size() (else std::out_of_range).

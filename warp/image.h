@@ -1,4 +1,4 @@
-// Plain CPU images. Conventions (shared/CONVENTIONS.md): storage is row-major with row 0 the TOP row of the
+// Plain CPU images. Conventions (docs/FORMATS.md): storage is row-major with row 0 the TOP row of the
 // picture (the first row of an image file). Relief-texture "v" rows count from the bottom: v-row j is storage
 // row h - 1 - j. Pixel (x, row) covers u in [x, x+1), v in [h-1-row, h-row).
 #pragma once

@@ -1,6 +1,6 @@
 // A relief texture: a parallel-projection image with one orthogonal displacement per texel (paper section 3.1).
 //
-// Geometry (shared/CONVENTIONS.md): the 3-D point of texel centre (u, v) is
+// Geometry (docs/FORMATS.md): the 3-D point of texel centre (u, v) is
 //     X(u, v) = origin + a*u + b*v + f*displ(u, v),   f = normalize(cross(a, b)).
 // Texel (i, row) -- column i, row counted from the TOP of the image -- has its centre at u = i + 0.5,
 // v = (h - 1 - row) + 0.5. The relief quad has corners origin, origin + a*w, origin + a*w + b*h, origin + b*h.

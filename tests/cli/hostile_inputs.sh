@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Hostile input on the command line (shared/CONVENTIONS.md, "Exit status"): every bad file or camera makes
+# Hostile input on the command line (docs/FORMATS.md, "Exit status and errors"): every bad file or camera makes
 # `rtm render`, `rtm prewarp` and `rtm diff` exit 1 (bad file) or 2 (bad flag) with exactly one line on stderr that
 # contains the message given here (which names the file or the flag), without a crash or a hang, and without
 # leaving anything in the output folder: no output image, no JSON, no temporary file.

@@ -1,5 +1,5 @@
 // Helpers for the ground-truth tests (micromesh, raycast): small reliefs built from functions, random geometry,
-// and an independent evaluation of the bilinear surface and colour straight from shared/CONVENTIONS.md.
+// and an independent evaluation of the bilinear surface and colour straight from docs/FORMATS.md.
 // Header-only so it does not clash with other helpers compiled into objects_tests.
 #pragma once
 
@@ -71,7 +71,7 @@ inline glm::dvec3 from_uvd(const ReliefGeometry& g, const glm::dvec3& q) {
 inline double surface_height(const ReliefTexture& t, double u, double v) {
     const int i = std::min(int(std::floor(u - 0.5)), t.width - 2), j = std::min(int(std::floor(v - 0.5)), t.height - 2);
     const double s = u - (i + 0.5), r = v - (j + 0.5);
-    // v-row j is image row h-1-j (shared/CONVENTIONS.md)
+    // v-row j is image row h-1-j (docs/FORMATS.md)
     const double h00 = t.displ(i, t.height - 1 - j), h10 = t.displ(i + 1, t.height - 1 - j);
     const double h01 = t.displ(i, t.height - 2 - j), h11 = t.displ(i + 1, t.height - 2 - j);
     return h00 * (1 - s) * (1 - r) + h10 * s * (1 - r) + h01 * (1 - s) * r + h11 * s * r;

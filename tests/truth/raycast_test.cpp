@@ -119,7 +119,7 @@ TEST(Raycast, FlatReliefMatchesThePlaneIntersection) {
 
 TEST(Raycast, ImageIsNotMirrored) {
     // 2x2 relief, image rows top to bottom: red green / blue white. Seen from +f with b up, the picture looks
-    // like the image file (shared/CONVENTIONS.md). The view shows exactly the rectangle of texel centres.
+    // like the image file (docs/FORMATS.md). The view shows exactly the rectangle of texel centres.
     ReliefGeometry g;
     g.a = {0.01, 0, 0};
     g.b = {0, 0.01, 0};
