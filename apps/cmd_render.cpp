@@ -126,7 +126,7 @@ void run_render(const RenderArgs& a) {
 
 void add_render_command(CLI::App& app) {
     auto a = std::make_shared<RenderArgs>();
-    CLI::App* sub = app.add_subcommand("render", "Render a relief texture (or object, scene) to an image");
+    CLI::App* sub = app.add_subcommand("render", "Render a relief texture to an image");
     sub->add_option("--relief", a->relief, "Relief texture manifest (NAME.relief.json)");
     a->camera.add_to(*sub);
     sub->add_option("--method", a->method, "flat, two-pass, pipelined, micromesh or raycast")->capture_default_str();
