@@ -62,7 +62,7 @@ int split_index(double split_pos, int n);
 // (a * (2^14 - w) + b * w + 2^13) >> 14, i.e. a + (b - a) * w / 2^14 rounded. An odd w never makes a tie
 // ((b - a) * w is never an odd multiple of 2^13), so the result is the nearest integer to a + (b - a) * w / 2^14. The
 // vector kernels (warp/fast_line.h) do the same with integer dot products on packed colours, a third of the work of
-// the float formula uint8_t(a * (1 - t) + b * t + 0.5) it replaced (docs/BENCHMARKS.md).
+// the float formula uint8_t(a * (1 - t) + b * t + 0.5) it replaced (docs/perf-history.md).
 // Against that formula: |t - w / 2^14| <= 2^-14 moves the exact value a + (b - a) * t by at most 255 / 2^14 < 0.016,
 // and each result rounds its own value (the float one with an error far below that), so the two differ by at most 1
 // level, and only where the exact value lies within 0.016 of a rounding boundary (tests/warp/fast_kernels_test.cpp
