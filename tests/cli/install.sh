@@ -24,10 +24,11 @@ expect_ok --version
 check "rtm --version prints 'rtm $version', got '$(cat "$T/stdout")'" grep -qx "rtm $version" "$T/stdout"
 
 PREFIX="$T/prefix"
+LIB=$(cache_value CMAKE_INSTALL_LIBDIR)  # lib, or lib/x86_64-linux-gnu when configured for the prefix /usr
 check "cmake --install" cmake --install "$BUILD" --prefix "$PREFIX"
-for f in bin/rtm bin/rtm-make-media lib/librtm_warp.a lib/librtm_formats.a lib/librtm_measure.a \
+for f in bin/rtm bin/rtm-make-media "$LIB"/librtm_warp.a "$LIB"/librtm_formats.a "$LIB"/librtm_measure.a \
   include/rtm/warp/prewarp.h include/rtm/formats/relief_manifest.h include/rtm/rtm_version.h \
-  lib/cmake/rtm/rtmConfig.cmake lib/cmake/rtm/rtmConfigVersion.cmake lib/cmake/rtm/rtmTargets.cmake; do
+  "$LIB"/cmake/rtm/rtmConfig.cmake "$LIB"/cmake/rtm/rtmConfigVersion.cmake "$LIB"/cmake/rtm/rtmTargets.cmake; do
   check "installed $f" test -f "$PREFIX/$f"
 done
 check "installed rtm --version" grep -qx "rtm $version" <("$PREFIX/bin/rtm" --version)
@@ -40,7 +41,7 @@ check "configure examples/prewarp_relief against $PREFIX" \
   -DCMAKE_PREFIX_PATH="$PREFIX" -DCMAKE_CXX_COMPILER="$(cache_value CMAKE_CXX_COMPILER)" \
   -DCMAKE_CXX_COMPILER_LAUNCHER="$(cache_value CMAKE_CXX_COMPILER_LAUNCHER)"
 check "the example found rtm in $PREFIX, not elsewhere" \
-  grep -qx "rtm_DIR:PATH=$PREFIX/lib/cmake/rtm" "$T/example/CMakeCache.txt"
+  grep -qx "rtm_DIR:PATH=$PREFIX/$LIB/cmake/rtm" "$T/example/CMakeCache.txt"
 check "build examples/prewarp_relief" cmake --build "$T/example"
 
 EX="$T/example/prewarp_relief"
