@@ -21,7 +21,6 @@ install(TARGETS rtm rtm-make-media RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 # rtm_flags and rtm_glad are exported only because the static libraries link them privately: a consumer gets
 # $<LINK_ONLY:...> of them, i.e. the glad loader's object code and the sanitizer link options of an RTM_SANITIZE
 # build, never the project's warning and optimisation flags or the glad headers (which are not installed).
-set_target_properties(rtm_glad PROPERTIES OUTPUT_NAME rtm_glad)
 install(TARGETS ${RTM_LIBRARIES} rtm_flags rtm_glad EXPORT rtmTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 foreach(lib ${RTM_LIBRARIES})
