@@ -4,6 +4,7 @@
 #include <string>
 
 #include "cli_common.h"
+#include "rtm_version.h"
 
 namespace {
 
@@ -21,6 +22,7 @@ std::string one_line(const char* what) {
 int main(int argc, char** argv) {
     CLI::App app{"rtm: relief texture mapping (Oliveira, Bishop, McAllister 2000)", "rtm"};
     app.require_subcommand(1);
+    app.set_version_flag("--version", "rtm " RTM_VERSION, "Print the version (rtm X.Y.Z) and exit");
     rtm::cli::add_prewarp_command(app);
     rtm::cli::add_render_command(app);
     rtm::cli::add_compare_command(app);
@@ -34,6 +36,8 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
     } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         std::fprintf(stderr, "rtm: %s (try --help)\n", one_line(e.what()).c_str());
