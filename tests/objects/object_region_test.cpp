@@ -42,7 +42,9 @@ void check_faces(const ObjectRegion& r, const std::array<int, 3>& side) {
         }
         // Every other visible face is among them (the paper's even regions: left onto right and right onto left).
         for (int g : vis) {
-            if (g != f) EXPECT_NE(std::find(adj.begin(), adj.end(), g), adj.end());
+            if (g != f) {
+                EXPECT_NE(std::find(adj.begin(), adj.end(), g), adj.end());
+            }
         }
     }
 }
