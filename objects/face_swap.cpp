@@ -89,25 +89,40 @@ void AdjacentBuffer::reset(int width, int height) {
     std::fill(depth.pixels.begin(), depth.pixels.end(), -std::numeric_limits<float>::infinity());
 }
 
+int first_pass_coordinate(const FaceSwap& s) {
+    // Column 0 of m is where G's u_s goes (glm: m[column][row]).
+    int t = -1;
+    for (int i = 0; i < 3; ++i)
+        if (s.m[0][i] != 0.0 && (t < 0 || std::abs(s.m[0][i]) > std::abs(s.m[0][t]))) t = i;
+    if (t == 0 || t == 1) return t;
+    // G's rows run along F's displacement: the row pass computes the coordinate G's displacement feeds.
+    return std::abs(s.m[2][0]) >= std::abs(s.m[2][1]) ? 0 : 1;
+}
+
 long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geom, int width, int height,
                              const PrewarpCoefficients& kf, bool exact, AdjacentWorkspace& ws, AdjacentBuffer& out,
                              int threads) {
     const int gw = g.width, gh = g.height;
     const FaceSwap swap = make_face_swap(g.geometry, f_geom);
+    // Which of F's final coordinates the pass along G's rows computes: the one G's rows spread along (u_i for a
+    // row that runs along F's u or whose displacement does; else v_i), so that no row collapses onto one pixel.
+    const int first = first_pass_coordinate(swap);
+    const int n1 = first == 0 ? width : height;   // pass 1's output length (F's columns, or F's rows from the bottom)
+    const int n2 = first == 0 ? height : width;   // pass 2's
     // The eye's foot on G's plane, in G's texel units: where G's occlusion-compatible order converges.
     const glm::dvec3 rel = kf.eye - g.geometry.origin;
     const double foot_u = glm::dot(rel, g.geometry.a) / glm::dot(g.geometry.a, g.geometry.a);
     const double foot_v = glm::dot(rel, g.geometry.b) / glm::dot(g.geometry.b, g.geometry.b);
     const int split_u = split_index(foot_u, gw), split_v = split_index(foot_v, gh);
-    if (ws.mid_color.width != width || ws.mid_color.height != gh) {
-        ws.mid_color = ImageRGBA8(width, gh);
-        ws.mid_v = Image2D<double>(width, gh);
-        ws.mid_d = Image2D<double>(width, gh);
-        ws.mid_g = Image2D<double>(width, gh);
+    if (ws.mid_color.width != n1 || ws.mid_color.height != gh) {
+        ws.mid_color = ImageRGBA8(n1, gh);
+        ws.mid_v = Image2D<double>(n1, gh);
+        ws.mid_d = Image2D<double>(n1, gh);
+        ws.mid_g = Image2D<double>(n1, gh);
     }
     std::vector<long long> dropped_rows(size_t(gh), 0);
 
-    // Pass 1: along G's rows to F's final columns.
+    // Pass 1: along G's rows to F's final coordinate `first`, carrying the other.
     run_parallel(gh, threads, [&](int r0, int r1) {
         std::vector<double> pos(static_cast<size_t>(gw));
         std::vector<SwapAttr> attr(static_cast<size_t>(gw));
@@ -129,15 +144,16 @@ long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geo
                 const bool ok = den > 0.0;
                 valid[size_t(x)] = ok;
                 nd += !ok;
-                pos[size_t(x)] = ok ? (p.x + kf.k1 * p.z) / den : 0.0;
-                attr[size_t(x)] = {ok ? (p.y + kf.k2 * p.z) / den : 0.0, p.z, d};
+                const double ui = ok ? (p.x + kf.k1 * p.z) / den : 0.0, vi = ok ? (p.y + kf.k2 * p.z) / den : 0.0;
+                pos[size_t(x)] = first == 0 ? ui : vi;
+                attr[size_t(x)] = {first == 0 ? vi : ui, p.z, d};
             }
             dropped_rows[size_t(r)] = nd;
             Rgba8* oc = ws.mid_color.row(r);
             double* ov = ws.mid_v.row(r);
             double* od = ws.mid_d.row(r);
             double* og = ws.mid_g.row(r);
-            std::fill(oc, oc + width, Rgba8{});
+            std::fill(oc, oc + n1, Rgba8{});
             const uint8_t* brk = g.breaks.empty() ? nullptr : &g.breaks[size_t(r) * size_t(gw)];
             auto connected = [&](int a, int b) { return !brk || !(brk[std::min(a, b)] & kBreakRight); };
             auto put = [&](int x, Rgba8 c, const SwapAttr& a) {
@@ -147,39 +163,40 @@ long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geo
                 og[x] = a.g;
             };
             LineInput<double, SwapAttr> in{gw, pos.data(), color.data(), attr.data(), valid.data()};
-            warp_line_to(in, split_u, width, put, connected);
+            warp_line_to(in, split_u, n1, put, connected);
         }
     });
 
-    // Pass 2: along the intermediate columns (G's rows bottom first) to F's final rows, z-tested into `out`.
+    // Pass 2: along the intermediate columns (G's rows bottom first) to the other final coordinate, z-tested.
     const double threshold = g.breaks.empty() ? 0.0 : g.discontinuity_threshold;
-    run_parallel(width, threads, [&](int x0, int x1) {
+    run_parallel(n1, threads, [&](int c0, int c1) {
         std::vector<double> pos(static_cast<size_t>(gh));
         std::vector<ColAttr> attr(static_cast<size_t>(gh));
         std::vector<Rgba8> color(static_cast<size_t>(gh));
         std::vector<uint8_t> valid(static_cast<size_t>(gh));
-        for (int x = x0; x < x1; ++x) {
+        for (int c = c0; c < c1; ++c) {
             for (int j = 0; j < gh; ++j) {
                 const int r = gh - 1 - j;
-                const Rgba8 c = ws.mid_color.at(x, r);
-                color[size_t(j)] = c;
-                valid[size_t(j)] = c.a != 0;
-                pos[size_t(j)] = ws.mid_v.at(x, r);
-                attr[size_t(j)] = {ws.mid_d.at(x, r), ws.mid_g.at(x, r)};
+                const Rgba8 col = ws.mid_color.at(c, r);
+                color[size_t(j)] = col;
+                valid[size_t(j)] = col.a != 0;
+                pos[size_t(j)] = ws.mid_v.at(c, r);
+                attr[size_t(j)] = {ws.mid_d.at(c, r), ws.mid_g.at(c, r)};
             }
             auto connected = [&](int a, int b) {
                 return !(threshold > 0.0) || std::abs(attr[size_t(a)].g - attr[size_t(b)].g) <= threshold;
             };
-            auto put = [&](int j, Rgba8 c, const ColAttr& a) {
-                const int row = height - 1 - j;
+            auto put = [&](int j, Rgba8 col, const ColAttr& a) {
+                const int x = first == 0 ? c : j;
+                const int row = height - 1 - (first == 0 ? j : c);
                 float& z = out.depth.at(x, row);
                 if (float(a.d) > z) {
                     z = float(a.d);
-                    out.color.at(x, row) = c;
+                    out.color.at(x, row) = col;
                 }
             };
             LineInput<double, ColAttr> in{gh, pos.data(), color.data(), attr.data(), valid.data()};
-            warp_line_to(in, split_v, height, put, connected);
+            warp_line_to(in, split_v, n2, put, connected);
         }
     });
     long long dropped = 0;

@@ -7,8 +7,10 @@
 // equations 4a and 4b and F's coefficients:  u_i = (u' + k1 d') / (1 + k3 d'),  v_i = (v' + k2 d') / (1 + k3 d').
 //
 // warp_adjacent_face does it with the same 1-D passes as the single relief (warp/line_warp.h, warp_line_to): a pass
-// along G's rows to F's final columns (carrying the final row, d' and G's own displacement), then a pass along the
-// intermediate columns to F's final rows. Each pass keeps G's occlusion-compatible order: samples lie on G's
+// along G's rows to one of F's final coordinates (carrying the other, d' and G's own displacement), then a pass along
+// the intermediate columns to the other. The row pass computes the coordinate G's rows spread along: F's u when G's
+// rows run along F's u (or run along F's normal while G's displacement feeds F's u), else F's v. (Always computing u
+// first would collapse a row of G that runs along F's v onto one column.) Each pass keeps G's occlusion-compatible order: samples lie on G's
 // parallel sampling rays, so along a line of G the ray nearer to the eye's foot on G's plane can hide the farther
 // one, never the reverse, whichever side of G's plane the eye is on; the lines are warped from the borders towards
 // that foot. Spans are not drawn across G's marked discontinuities (section 4.1.1). The output is z-tested on d'

@@ -84,10 +84,15 @@ void ReliefObject::prewarp_face(int face, const glm::dvec3& eye, int level, cons
     long long filled = 0;
     for (size_t i = 0; i < out.image.pixels.size(); ++i) {
         Rgba8& p = out.image.pixels[i];
-        const bool own = p.a != 0;
+        // A pixel the face covers less than half (the coverage filter's fractional alpha; the texture-mapping stage
+        // discards it) is a hole too.
+        bool own = p.a >= 128;
         if (!own && adjacent_.color.pixels[i].a != 0) {
             p = adjacent_.color.pixels[i];
+            if (o.filter == Filter::coverage) p = {p.r, p.g, p.b, 255};
             ++filled;
+        } else if (!own && p.a != 0) {
+            own = true;  // the face's own partial coverage stays (no adjacent sample to prefer)
         }
         if (!with_displ) continue;
         uint8_t& dq = out.displ.pixels[i];

@@ -70,10 +70,13 @@ uint8_t channel(double v) { return uint8_t(std::clamp(v, 0.0, 1.0) * 255.0 + 0.5
 SyntheticShape parse_synthetic_shape(const std::string& s) {
     if (s == "sphere") return SyntheticShape::sphere;
     if (s == "cross-box") return SyntheticShape::cross_box;
-    throw std::invalid_argument("unknown synthetic object \"" + s + "\"; known: sphere, cross-box");
+    if (s == "rounded-cube") return SyntheticShape::rounded_cube;
+    throw std::invalid_argument("unknown synthetic object \"" + s + "\"; known: sphere, cross-box, rounded-cube");
 }
 
-std::string to_string(SyntheticShape s) { return s == SyntheticShape::sphere ? "sphere" : "cross-box"; }
+std::string to_string(SyntheticShape s) {
+    return s == SyntheticShape::sphere ? "sphere" : s == SyntheticShape::cross_box ? "cross-box" : "rounded-cube";
+}
 
 bool synthetic_hit(SyntheticShape s, const glm::dvec3& o, const glm::dvec3& d, double& t, Rgba8& color) {
     if (s == SyntheticShape::sphere) {
@@ -89,6 +92,27 @@ bool synthetic_hit(SyntheticShape s, const glm::dvec3& o, const glm::dvec3& d, d
         const double shade = (band & 1) ? 0.55 : 1.0;
         color = {channel(shade * (0.5 + 0.5 * p.x)), channel(shade * (0.5 + 0.5 * p.y)),
                  channel(shade * (0.5 + 0.5 * p.z)), 255};
+        return true;
+    }
+    if (s == SyntheticShape::rounded_cube) {
+        // Entry into the intersection of the cube and the sphere: the later of the two entries, if before both exits.
+        constexpr double R = 1.3;
+        const double b = glm::dot(o, d), c = glm::dot(o, o) - R * R, disc = b * b - c;
+        if (disc < 0.0) return false;
+        const double s0 = -b - std::sqrt(disc), s1 = -b + std::sqrt(disc);
+        double tb;
+        int axis;
+        if (!hit_box({glm::dvec3(-1.0), glm::dvec3(1.0), 0}, o, d, tb, axis)) return false;
+        double tb1 = std::numeric_limits<double>::infinity();  // the cube's exit
+        for (int i = 0; i < 3; ++i)
+            if (d[i] != 0.0) tb1 = std::min(tb1, std::max((-1.0 - o[i]) / d[i], (1.0 - o[i]) / d[i]));
+        t = std::max(tb, s0);
+        if (t > std::min(tb1, s1) || t < 0.0) return false;
+        const glm::dvec3 p = o + d * t;
+        const bool check = (int(std::floor(p.x * 4.0)) + int(std::floor(p.y * 4.0)) + int(std::floor(p.z * 4.0))) & 1;
+        const double k = check ? 0.55 : 1.0;
+        color = {channel(k * (0.55 + 0.4 * p.x)), channel(k * (0.55 + 0.4 * p.y)), channel(k * (0.55 + 0.4 * p.z)),
+                 255};
         return true;
     }
     double best = std::numeric_limits<double>::infinity();

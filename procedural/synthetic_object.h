@@ -4,7 +4,9 @@
 // shape get alpha 0. Deterministic.
 //   sphere     - the unit sphere at the origin, coloured by longitude and latitude bands;
 //   cross-box  - the cube [-0.8, 0.8]^3 with a raised cross on each face (arms 0.3 wide and 1.4 long, standing
-//                0.2 out to the bounding box), coloured per part with a checker.
+//                0.2 out to the bounding box), coloured per part with a checker;
+//   rounded-cube - the cube [-1, 1]^3 cut by the sphere of radius 1.3: flat discs on the faces of the box and rounded
+//                edges and corners, so that the surface meets the box along every edge's middle (for crack tests).
 #pragma once
 
 #include <array>
@@ -18,9 +20,9 @@
 
 namespace rtm {
 
-enum class SyntheticShape { sphere, cross_box };
+enum class SyntheticShape { sphere, cross_box, rounded_cube };
 
-SyntheticShape parse_synthetic_shape(const std::string& s);  // "sphere", "cross-box"; throws std::invalid_argument
+SyntheticShape parse_synthetic_shape(const std::string& s);  // "sphere", "cross-box", "rounded-cube"; throws std::invalid_argument
 std::string to_string(SyntheticShape s);
 
 // The first hit of the ray origin + t*dir (t > 0, dir unit length) with the shape: its distance and colour.

@@ -1,0 +1,188 @@
+// Six-face objects rendered by relief texture mapping (at most three quads) against their micro-polygon truth (the
+// six faces' meshes), frame by frame from one-, two- and three-face views and views on region boundaries: coverage
+// IoU and PSNR with stated thresholds, no cracks along the box's edges, depth correction against other geometry.
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
+#include <glm/mat4x4.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "formats/image_io.h"
+#include "measure/image_diff.h"
+#include "objects/relief_object.h"
+#include "procedural/synthetic_object.h"
+#include "texmap/gl_context.h"
+
+namespace rtm {
+namespace {
+
+constexpr int kTexels = 64;  // per face side
+constexpr int kPixels = 256;
+
+struct Gl {
+    std::unique_ptr<GlContext> ctx = GlContext::create_offscreen(kPixels, kPixels);
+    Renderer renderer;
+};
+
+Camera camera(const glm::dvec3& eye) {
+    Camera cam;
+    cam.eye = eye;
+    cam.look_at = glm::dvec3(0.0);
+    cam.width = cam.height = kPixels;
+    cam.fit_clip_planes(glm::dvec3(0.0), std::sqrt(3.0));
+    return cam;
+}
+
+// Orbit as on the command line: azimuth about +y from +z, elevation, distance in bounding-sphere radii.
+glm::dvec3 orbit(double az_deg, double el_deg, double d) {
+    const double az = glm::radians(az_deg), el = glm::radians(el_deg), r = std::sqrt(3.0) * d;
+    return r * glm::dvec3(std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el));
+}
+
+struct View {
+    const char* name;
+    glm::dvec3 eye;
+    size_t faces;  // visible faces
+};
+
+const View kViews[] = {
+    {"one face +z", orbit(0, 0, 3), 1},
+    {"one face -y", orbit(20, -80, 3), 1},
+    {"two faces +x +z", orbit(45, 0, 3), 2},
+    {"two faces -x +y", orbit(-80, 40, 2.5), 2},
+    {"three faces +x +y +z", orbit(45, 35, 3), 3},
+    {"three faces -x -y -z", orbit(210, -30, 2.5), 3},
+    {"on the plane x = 1", {1.0, 0.3, 4.5}, 1},
+    {"a hair outside x = 1", {std::nextafter(1.0, 2.0), 0.3, 4.5}, 2},
+    {"on the edge x = y = 1", {1.0, 1.0, 4.5}, 1},
+    {"close, three faces", orbit(130, 25, 1.6), 3},
+};
+
+void dump(const std::string& name, const ImageRGBA8& img) {
+    if (const char* dir = std::getenv("RTM_DUMP")) {
+        std::string file = name;
+        for (char& c : file)
+            if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+        write_rgba8(std::string(dir) + "/" + file + ".png", img);
+    }
+}
+
+// Pixels near the projection of the box's 12 edges (within 3 pixels of a segment).
+std::vector<uint8_t> near_box_edges(const Camera& cam) {
+    std::vector<uint8_t> mask(size_t(kPixels) * kPixels, 0);
+    const glm::dmat4 vp = cam.projection() * cam.view();
+    auto project = [&](const glm::dvec3& p) {
+        const glm::dvec4 c = vp * glm::dvec4(p, 1.0);
+        return glm::dvec2((c.x / c.w * 0.5 + 0.5) * kPixels, (0.5 - c.y / c.w * 0.5) * kPixels);
+    };
+    for (int axis = 0; axis < 3; ++axis)
+        for (int s1 = -1; s1 <= 1; s1 += 2)
+            for (int s2 = -1; s2 <= 1; s2 += 2) {
+                glm::dvec3 a(0.0), b(0.0);
+                a[axis] = -1;
+                b[axis] = 1;
+                a[(axis + 1) % 3] = b[(axis + 1) % 3] = s1;
+                a[(axis + 2) % 3] = b[(axis + 2) % 3] = s2;
+                const glm::dvec2 pa = project(a), pb = project(b);
+                for (int row = 0; row < kPixels; ++row)
+                    for (int x = 0; x < kPixels; ++x) {
+                        const glm::dvec2 p(x + 0.5, row + 0.5), ab = pb - pa;
+                        const double t = std::clamp(glm::dot(p - pa, ab) / std::max(glm::dot(ab, ab), 1e-12), 0.0, 1.0);
+                        if (glm::length(p - (pa + t * ab)) <= 3.0) mask[size_t(row) * kPixels + size_t(x)] = 1;
+                    }
+            }
+    return mask;
+}
+
+// Background pixels of `test` inside the truth's coverage: pixels whose 5x5 neighbourhood is all covered in the
+// truth (so silhouettes, where resampling differs, do not count), restricted to `mask` when given.
+int holes(const ImageRGBA8& truth, const ImageRGBA8& test, const std::vector<uint8_t>* mask = nullptr) {
+    int n = 0;
+    for (int row = 2; row < kPixels - 2; ++row)
+        for (int x = 2; x < kPixels - 2; ++x) {
+            if (mask && !(*mask)[size_t(row) * kPixels + size_t(x)]) continue;
+            bool interior = true;
+            for (int dy = -2; dy <= 2 && interior; ++dy)
+                for (int dx = -2; dx <= 2 && interior; ++dx) interior = covered(truth.at(x + dx, row + dy));
+            n += interior && !covered(test.at(x, row));
+        }
+    return n;
+}
+
+struct Thresholds {
+    double iou, psnr;
+    int holes, edge_holes;
+};
+
+void compare_with_truth(SyntheticShape shape, RenderMethod method, bool depth, const Thresholds& th,
+                        Filter filter = Filter::point) {
+    Gl gl;
+    ReliefObject object(make_synthetic_object(shape, kTexels));
+    PrewarpOptions o;
+    o.filter = filter;
+    DrawOptions d;
+    d.depth_correction = depth;
+    for (const View& v : kViews) {
+        SCOPED_TRACE(to_string(shape) + " " + to_string(method) + ", " + v.name);
+        const Camera cam = camera(v.eye);
+        StageTimes t;
+        ObjectReport rep;
+        const ImageRGBA8 truth = render_object_frame(object, gl.renderer, cam, RenderMethod::micromesh, o, d, t);
+        const ImageRGBA8 img = render_object_frame(object, gl.renderer, cam, method, o, d, t, &rep);
+        dump(to_string(shape) + "_" + to_string(method) + "_" + v.name, img);
+        dump(to_string(shape) + "_truth_" + v.name, truth);
+        EXPECT_EQ(rep.region.visible_faces().size(), v.faces);
+        EXPECT_LE(rep.faces.size(), 3u);
+        const DiffResult r = diff_images(truth, img);
+        const int h = holes(truth, img);
+        const std::vector<uint8_t> edges = near_box_edges(cam);
+        const int eh = holes(truth, img, &edges);
+        std::printf("%-14s %-10s %-24s depth %d: iou %.4f psnr %.2f holes %d near edges %d\n",
+                    to_string(shape).c_str(), to_string(method).c_str(), v.name, int(depth), r.iou, r.psnr, h, eh);
+        EXPECT_GE(r.iou, th.iou);
+        EXPECT_GE(r.psnr, th.psnr);
+        EXPECT_LE(h, th.holes);
+        EXPECT_LE(eh, th.edge_holes);
+    }
+}
+
+// Thresholds. The truth's micro-polygons join every 2x2 block of non-empty texels, so at the shapes' steep slopes
+// and steps they stretch skins (the cross walls, the sphere's rim) that the pre-warp leaves to the adjacent faces;
+// the two agree on coverage to a few percent and on colour to the resampling of 64-texel faces on 256-pixel views.
+// The figures printed by the test (measured on llvmpipe) sit above the thresholds by about 2 dB and 0.02: sphere
+// IoU 0.960..0.990, PSNR 26.9..34.7 dB, at most 6 interior holes; rounded cube IoU 0.979..0.997, PSNR 29.3..36.5 dB,
+// at most 28 interior holes and none within 3 pixels of a projected box edge (no cracks along edges and corners).
+TEST(ObjectRender, SphereTwoPassMatchesMicromesh) {
+    compare_with_truth(SyntheticShape::sphere, RenderMethod::two_pass, false, {0.94, 25.0, 40, 0});
+}
+TEST(ObjectRender, SpherePipelinedMatchesMicromesh) {
+    compare_with_truth(SyntheticShape::sphere, RenderMethod::pipelined, false, {0.94, 25.0, 40, 0});
+}
+TEST(ObjectRender, SphereDepthCorrection) {
+    compare_with_truth(SyntheticShape::sphere, RenderMethod::two_pass, true, {0.94, 25.0, 40, 0});
+}
+// The coverage filter: the face's own fractional coverage meets the adjacent faces' point samples at the seams, and
+// the texture-mapping stage discards what is covered less than half. Measured IoU 0.971..0.989, PSNR 23.4..30.1 dB,
+// up to 591 interior holes in the close view: a known problem (docs/OBJECTS.md); the thresholds hold the figures.
+TEST(ObjectRender, SphereCoverageFilter) {
+    compare_with_truth(SyntheticShape::sphere, RenderMethod::two_pass, false, {0.96, 22.5, 650, 20}, Filter::coverage);
+}
+TEST(ObjectRender, RoundedCubeHasNoCracks) {
+    compare_with_truth(SyntheticShape::rounded_cube, RenderMethod::two_pass, true, {0.95, 25.0, 40, 10});
+}
+// The cross-box is the hard case: every cross wall is seen only by an adjacent face, at grazing angles from close
+// views, and the walls' samples are spread over many pixels. Measured: IoU 0.92..0.97, PSNR 18.9..23.2 dB, up to
+// 3280 interior holes (close three-face view) and 206 near the box's edges; the thresholds hold these figures so
+// that a regression shows, and the holes are a known problem (docs/OBJECTS.md, "Limitations").
+TEST(ObjectRender, CrossBoxMatchesMicromesh) {
+    compare_with_truth(SyntheticShape::cross_box, RenderMethod::two_pass, true, {0.91, 18.0, 3600, 240});
+}
+
+}  // namespace
+}  // namespace rtm
