@@ -49,7 +49,8 @@ int main(int argc, char** argv) {
             rtm::write_relief(path, m, p.color, p.displacement);
             std::printf("wrote %s (%dx%d)\n", path.c_str(), p.color.width, p.color.height);
         }
-        for (const rtm::SyntheticShape shape : {rtm::SyntheticShape::sphere, rtm::SyntheticShape::cross_box}) {
+        for (const rtm::SyntheticShape shape :
+             {rtm::SyntheticShape::sphere, rtm::SyntheticShape::cross_box, rtm::SyntheticShape::rounded_cube}) {
             const std::string name = rtm::to_string(shape);
             const auto faces = rtm::synthetic_faces(shape, object_size);
             std::array<rtm::ObjectFaceImages, rtm::kFaceCount> images;
