@@ -165,6 +165,7 @@ void run_prewarp_object(const ObjectPrewarpArgs& a) {
                          {"height", w.image.height},
                          {"adjacent", face_keys(w.adjacent)},
                          {"adjacent_pixels", w.adjacent_pixels},
+                         {"crack_pixels", w.crack_pixels},
                          {"texels", w.texels},
                          {"prewarp_ms", timing_json(times)}});
         outputs.emplace_back(path, std::move(w.image));
