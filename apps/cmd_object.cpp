@@ -47,7 +47,10 @@ void run_render_object(const ObjectRenderArgs& a) {
     (void)a.camera.resolve(Bounds{glm::dvec3(-1), glm::dvec3(1)});
     if (!a.out.empty()) check_output_file(a.out, "--out");
 
-    ReliefObject object(load_object(a.object));
+    SixFaceObject loaded = load_object(a.object);
+    if (a.discontinuity >= 0)
+        for (ReliefTexture& t : loaded.faces) mark_discontinuities(t, a.discontinuity);
+    ReliefObject object(std::move(loaded));
     const Camera cam = a.camera.resolve(object.bounds());
     PrewarpOptions opt;
     opt.exact = a.exact;

@@ -12,6 +12,7 @@ struct ObjectRenderArgs {
     CameraArgs camera;
     bool exact = false, depth_correction = false, no_skips = false;
     int repeat = 1, threads = 0;
+    double discontinuity = -1;  // >= 0: re-mark every face's discontinuities with this threshold (0 = none)
 };
 void run_render_object(const ObjectRenderArgs& a);
 

@@ -33,8 +33,10 @@ struct RenderArgs {
 void run_render(const RenderArgs& a) {
     if (!a.object.empty()) {
         if (!a.relief.empty()) throw UsageError("render takes one of --relief and --object, not both");
+        if (!(a.discontinuity >= 0 || a.discontinuity == -1) || !std::isfinite(a.discontinuity))
+            throw UsageError("--discontinuity: expected a threshold >= 0, found " + std::to_string(a.discontinuity));
         return run_render_object({a.object, a.out, a.json, a.method, a.level, a.filter, a.camera, a.exact,
-                                  a.depth_correction, a.no_skips, a.repeat, a.threads});
+                                  a.depth_correction, a.no_skips, a.repeat, a.threads, a.discontinuity});
     }
     RenderMethod method;
     try {
