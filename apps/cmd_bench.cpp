@@ -13,7 +13,7 @@ namespace {
 
 struct BenchArgs {
     std::string json, sizes, reliefs, threads, methods;
-    bool full = false, no_exact = false, no_reference = false, no_table1 = false;
+    bool full = false, no_exact = false, no_reference = false, no_table1 = false, no_objects = false;
     double min_time = 0;
     bool min_time_given = false;
 };
@@ -62,6 +62,7 @@ void run_bench_command(const BenchArgs& a) {
     c.exact = !a.no_exact;
     c.reference = !a.no_reference;
     c.table1 = !a.no_table1;
+    c.objects = !a.no_objects;
     c.progress = [](const std::string& line) { std::fprintf(stderr, "bench: %s\n", line.c_str()); };
     const BenchResult r = run_bench(c);
     if (!a.json.empty()) write_json(a.json, bench_json(r));
@@ -83,7 +84,8 @@ void add_bench_command(CLI::App& app) {
         ->each([a](const std::string&) { a->min_time_given = true; });
     sub->add_flag("--no-exact", a->no_exact, "Skip the --exact (double precision) path");
     sub->add_flag("--no-reference", a->no_reference, "Skip the generic reference kernels");
-    sub->add_flag("--no-table1", a->no_table1, "Skip the OpenGL frame (Table 1)");
+    sub->add_flag("--no-table1", a->no_table1, "Skip the OpenGL frame (Table 1) and the objects beside it");
+    sub->add_flag("--no-objects", a->no_objects, "Skip the six-face objects' frames beside Table 1");
     sub->callback([a] { run_bench_command(*a); });
 }
 

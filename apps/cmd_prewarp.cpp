@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "cli_common.h"
+#include "cmd_object.h"
 #include "objects/bounds.h"
 #include "formats/relief_manifest.h"
 #include "objects/relief_quad.h"
@@ -16,12 +17,16 @@ namespace rtm::cli {
 namespace {
 
 struct PrewarpArgs {
-    std::string relief, eye, out, method = "two-pass", level = "0", json, filter = "point";
+    std::string relief, object, eye, out, method = "two-pass", level = "0", json, filter = "point";
     bool exact = false;
     int repeat = 1, threads = 0;
 };
 
 void run_prewarp(const PrewarpArgs& a) {
+    if (a.relief.empty() == a.object.empty()) throw UsageError("prewarp needs exactly one of --relief M and --object O");
+    if (!a.object.empty())
+        return run_prewarp_object({a.object, a.eye, a.out, a.method, a.level, a.json, a.filter, a.exact, a.repeat,
+                                   a.threads});
     const glm::dvec3 eye = parse_vec3(a.eye, "--eye");
     PrewarpOptions opt;
     if (a.method == "two-pass")
@@ -96,7 +101,9 @@ void run_prewarp(const PrewarpArgs& a) {
 void add_prewarp_command(CLI::App& app) {
     auto a = std::make_shared<PrewarpArgs>();
     CLI::App* sub = app.add_subcommand("prewarp", "Pre-warp a relief texture for one centre of projection");
-    sub->add_option("--relief", a->relief, "Relief texture manifest (NAME.relief.json)")->required();
+    sub->add_option("--relief", a->relief, "Relief texture manifest (NAME.relief.json)");
+    sub->add_option("--object", a->object,
+                    "Six-face object manifest (NAME.object.json): writes OUT_+x.png ... per visible face");
     sub->add_option("--eye", a->eye, "Centre of projection X,Y,Z")->required();
     sub->add_option("--out", a->out, "Output image (the pre-warped texture)")->required();
     sub->add_option("--method", a->method, "two-pass or pipelined")->capture_default_str();

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "cli_common.h"
+#include "cmd_object.h"
 #include "objects/bounds.h"
 #include "objects/render_relief.h"
 #include "formats/relief_manifest.h"
@@ -22,7 +23,7 @@ namespace {
 
 
 struct RenderArgs {
-    std::string relief, out, json, method = "two-pass", level = "0", filter = "point";
+    std::string relief, object, out, json, method = "two-pass", level = "0", filter = "point";
     CameraArgs camera;
     bool exact = false, progress = false, no_sidewalls = false, depth_correction = false, no_skips = false;
     double discontinuity = -1;
@@ -30,6 +31,13 @@ struct RenderArgs {
 };
 
 void run_render(const RenderArgs& a) {
+    if (!a.object.empty()) {
+        if (!a.relief.empty()) throw UsageError("render takes one of --relief and --object, not both");
+        if (!(a.discontinuity >= 0 || a.discontinuity == -1) || !std::isfinite(a.discontinuity))
+            throw UsageError("--discontinuity: expected a threshold >= 0, found " + std::to_string(a.discontinuity));
+        return run_render_object({a.object, a.out, a.json, a.method, a.level, a.filter, a.camera, a.exact,
+                                  a.depth_correction, a.no_skips, a.repeat, a.threads, a.discontinuity});
+    }
     RenderMethod method;
     try {
         method = parse_render_method(a.method);
@@ -42,7 +50,7 @@ void run_render(const RenderArgs& a) {
     if (!(a.discontinuity >= 0 || a.discontinuity == -1) || !std::isfinite(a.discontinuity))
         throw UsageError("--discontinuity: expected a threshold >= 0, found " + std::to_string(a.discontinuity));
     if (a.repeat < 1) throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
-    if (a.relief.empty()) throw UsageError("render needs --relief M");
+    if (a.relief.empty()) throw UsageError("render needs --relief M or --object O");
     if (!a.camera.has_eye()) throw UsageError("render needs --eye X,Y,Z or --orbit AZ,EL,D");
     // Validate the camera's syntax before any file is read.
     (void)a.camera.resolve(Bounds{glm::dvec3(-1), glm::dvec3(1)});
@@ -128,6 +136,7 @@ void add_render_command(CLI::App& app) {
     auto a = std::make_shared<RenderArgs>();
     CLI::App* sub = app.add_subcommand("render", "Render a relief texture to an image");
     sub->add_option("--relief", a->relief, "Relief texture manifest (NAME.relief.json)");
+    sub->add_option("--object", a->object, "Six-face object manifest (NAME.object.json)");
     a->camera.add_to(*sub);
     sub->add_option("--method", a->method, "flat, two-pass, pipelined, micromesh or raycast")->capture_default_str();
     sub->add_flag("--exact", a->exact, "Pre-warp with unquantized displacement and double-precision coordinates");

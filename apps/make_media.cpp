@@ -1,7 +1,8 @@
 // rtm-make-media: writes the procedural relief textures (procedural/procedural_media.h) as NAME.relief.json plus
-// NAME_color.png and NAME_disp.png, for the shipped media/ folder and for tests.
+// NAME_color.png and NAME_disp.png, and the synthetic six-face objects (procedural/synthetic_object.h) as
+// NAME.object.json plus twelve images each, for the shipped media/ folder and for tests.
 //
-//   rtm-make-media --out DIR [--size N]
+//   rtm-make-media --out DIR [--size N] [--object-size N]
 //
 // Exit status: 0 success, 1 a runtime failure (one line on stderr naming the file), 2 a usage error.
 #include <CLI/CLI.hpp>
@@ -11,7 +12,9 @@
 #include <string>
 
 #include "procedural/procedural_media.h"
+#include "formats/object_manifest.h"
 #include "formats/relief_manifest.h"
+#include "procedural/synthetic_object.h"
 #include "formats/image_io.h"
 
 int main(int argc, char** argv) {
@@ -19,9 +22,11 @@ int main(int argc, char** argv) {
         "Writes the procedural relief textures (bricks, facade, bumps, ridges) as DIR/NAME.relief.json "
         "plus colour and displacement images."};
     std::string out;
-    int size = 256;
+    int size = 256, object_size = 64;
     app.add_option("--out", out, "Output folder (created if missing)")->required();
     app.add_option("--size", size, "Texels per side (8..8192)")->check(CLI::Range(8, 8192));
+    app.add_option("--object-size", object_size, "Texels per side of each object face (8..4096)")
+        ->check(CLI::Range(8, 4096));
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -43,6 +48,25 @@ int main(int argc, char** argv) {
             const std::string path = (std::filesystem::path(out) / (name + ".relief.json")).string();
             rtm::write_relief(path, m, p.color, p.displacement);
             std::printf("wrote %s (%dx%d)\n", path.c_str(), p.color.width, p.color.height);
+        }
+        for (const rtm::SyntheticShape shape :
+             {rtm::SyntheticShape::sphere, rtm::SyntheticShape::cross_box, rtm::SyntheticShape::rounded_cube}) {
+            const std::string name = rtm::to_string(shape);
+            const auto faces = rtm::synthetic_faces(shape, object_size);
+            std::array<rtm::ObjectFaceImages, rtm::kFaceCount> images;
+            for (int f = 0; f < rtm::kFaceCount; ++f) {
+                const double depth = rtm::kSyntheticBox.extent()[rtm::face_axis(f)];
+                rtm::ObjectFaceImages& fi = images[size_t(f)];
+                fi.color = faces[size_t(f)].color;
+                fi.displacement_normalized = faces[size_t(f)].displacement;
+                for (float& v : fi.displacement_normalized.pixels) v = float((v + depth) / depth);
+                fi.range_min = -depth;
+                fi.range_max = 0.0;
+                fi.discontinuity = rtm::synthetic_discontinuity(object_size);
+            }
+            const std::string path = (std::filesystem::path(out) / (name + ".object.json")).string();
+            rtm::write_object_manifest(path, name, rtm::kSyntheticBox, images);
+            std::printf("wrote %s (6 faces of %dx%d)\n", path.c_str(), object_size, object_size);
         }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "rtm-make-media: %s\n", e.what());

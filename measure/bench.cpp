@@ -16,6 +16,9 @@
 #include <sstream>
 #include <thread>
 
+#include "procedural/synthetic_object.h"
+#include "objects/relief_object.h"
+#include <glm/trigonometric.hpp>
 #include "procedural/procedural_media.h"
 #include "objects/relief_quad.h"
 #include "warp/timing.h"
@@ -166,6 +169,95 @@ BenchConfig default_bench_config(bool full) {
     return c;
 }
 
+namespace {
+
+// Six-face objects next to Table 1 (docs/OBJECTS.md): every frame pre-warps every visible face and its adjacent
+// faces and uploads them (no skips).
+template <class Progress>
+void bench_objects(const BenchConfig& c, Renderer& renderer, int threads, BenchResult& res, Progress&& progress) {
+    double single = 0.0;
+    for (const Table1Row& t : res.table1)
+        if (t.method == "two-pass") {
+            single = t.total_ms;
+            break;
+        }
+    struct View {
+        const char* name;
+        double az, el;
+    };
+    const View views[] = {{"one face", 0, 0}, {"two faces", 45, 0}, {"three faces", 45, 35}};
+    for (SyntheticShape shape : {SyntheticShape::sphere, SyntheticShape::cross_box}) {
+        ReliefObject object(make_synthetic_object(shape, c.table1_size));
+        for (const View& v : views) {
+            Camera cam;
+            const Bounds b = object.bounds();
+            const double az = glm::radians(v.az), el = glm::radians(v.el), d = 2.5 * b.radius();
+            cam.look_at = b.centre();
+            cam.eye = b.centre() + d * glm::dvec3(std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el));
+            cam.width = c.view_width;
+            cam.height = c.view_height;
+            cam.fit_clip_planes(b.centre(), b.radius());
+            PrewarpOptions o;
+            o.threads = threads;
+            DrawOptions dr;
+            dr.skips = false;
+            std::vector<double> pre, up, map, total;
+            std::vector<std::vector<double>> per_face(kFaceCount);
+            std::vector<int> drawn;
+            auto frame = [&] {
+                StageTimes st;
+                ObjectReport rep;
+                render_object_frame(object, renderer, cam, RenderMethod::two_pass, o, dr, st, &rep);
+                pre.push_back(st.prewarp_ms);
+                up.push_back(st.upload_ms);
+                map.push_back(st.texture_map_ms);
+                total.push_back(st.total_ms);
+                drawn.clear();
+                for (const ObjectFaceReport& f : rep.faces) {
+                    per_face[size_t(f.face)].push_back(f.prewarp_ms);
+                    drawn.push_back(f.face);
+                }
+                return st.total_ms;
+            };
+            for (int i = 0; i < 2; ++i) frame();  // warm-up
+            pre.clear();
+            up.clear();
+            map.clear();
+            total.clear();
+            for (auto& f : per_face) f.clear();
+            BenchConfig fc = c;
+            fc.min_repeats = std::max(c.min_repeats, 10);
+            fc.max_repeats = std::max(c.min_repeats, 200);
+            fc.min_seconds = std::max(c.min_seconds, 0.5);
+            repeat_timed(fc, frame);
+            ObjectFrameRow r;
+            r.object = to_string(shape);
+            r.view = v.name;
+            r.az = v.az;
+            r.el = v.el;
+            r.distance = 2.5;
+            r.size = c.table1_size;
+            r.faces = int(drawn.size());
+            r.frames = int(total.size());
+            for (int f : drawn) r.face_prewarp_ms.emplace_back(kFaceKeys[size_t(f)], median(per_face[size_t(f)]));
+            r.prewarp_ms = median(pre);
+            r.upload_ms = median(up);
+            r.texture_map_ms = median(map);
+            r.total_ms = median(total);
+            r.fps = 1000.0 / r.total_ms;
+            r.single_ratio = single > 0 ? r.total_ms / single : 0.0;
+            res.objects.push_back(r);
+            char buf[256];
+            std::snprintf(buf, sizeof buf, "object: %s 6x%d^2, %s, in %dx%d: %.3f ms a frame (%.0f fps, %.1fx the relief)",
+                          r.object.c_str(), r.size, r.view.c_str(), c.view_width, c.view_height, r.total_ms, r.fps,
+                          r.single_ratio);
+            progress(buf);
+        }
+    }
+}
+
+}  // namespace
+
 BenchResult run_bench(const BenchConfig& c) {
     BenchResult res;
     res.machine = machine_description();
@@ -309,6 +401,7 @@ BenchResult run_bench(const BenchConfig& c) {
                     progress(buf);
                 }
             }
+            if (c.objects) bench_objects(c, renderer, max_threads, res, progress);
         } catch (const std::exception& e) {
             res.gl_renderer = std::string("no OpenGL context: ") + e.what();
             progress("table 1 skipped: " + res.gl_renderer);
@@ -429,6 +522,28 @@ std::string bench_markdown(const BenchResult& r) {
             s << buf;
         }
     }
+    if (!r.objects.empty()) {
+        s << "\n### Six-face objects in a 512x512 view, next to Table 1\n\n";
+        s << "Median milliseconds per frame of a synthetic object with 6 faces of the Table 1 size (every frame "
+             "pre-warps each visible face after its adjacent faces, and uploads; two-pass), from one-, two- and "
+             "three-face views (orbit AZ,EL,2.5 about the box's bounding sphere); x relief: the frame against "
+             "Table 1's two-pass frame of the first relief, measured in this run.\n\n";
+        s << "| object | faces | view | pre-warp (per face) | upload | texture mapping | frame | frames/s | "
+             "x relief |\n";
+        s << "|---|---:|---|---|---:|---:|---:|---:|---:|\n";
+        for (const ObjectFrameRow& o : r.objects) {
+            std::string per;
+            for (const auto& [face, ms] : o.face_prewarp_ms) {
+                char b[64];
+                std::snprintf(b, sizeof b, "%s%s %.2f", per.empty() ? "" : ", ", face.c_str(), ms);
+                per += b;
+            }
+            std::snprintf(buf, sizeof buf, "| %s | 6x%d^2 | %s (%g,%g) | %.3f (%s) | %.3f | %.3f | %.3f | %.0f | %.1f |\n",
+                          o.object.c_str(), o.size, o.view.c_str(), o.az, o.el, o.prewarp_ms, per.c_str(),
+                          o.upload_ms, o.texture_map_ms, o.total_ms, o.fps, o.single_ratio);
+            s << buf;
+        }
+    }
     return s.str();
 }
 
@@ -480,9 +595,28 @@ nlohmann::json bench_json(const BenchResult& r) {
                       {"total_ms", t.total_ms},
                       {"readback_ms", t.readback_ms},
                       {"fps", t.fps}});
+    nlohmann::json objs = nlohmann::json::array();
+    for (const ObjectFrameRow& o : r.objects) {
+        nlohmann::json faces = nlohmann::json::array();
+        for (const auto& [face, ms] : o.face_prewarp_ms) faces.push_back({{"face", face}, {"prewarp_ms", ms}});
+        objs.push_back({{"object", o.object},
+                        {"view", o.view},
+                        {"orbit", {o.az, o.el, o.distance}},
+                        {"size", o.size},
+                        {"faces_drawn", o.faces},
+                        {"frames", o.frames},
+                        {"faces", faces},
+                        {"prewarp_ms", o.prewarp_ms},
+                        {"upload_ms", o.upload_ms},
+                        {"texture_map_ms", o.texture_map_ms},
+                        {"total_ms", o.total_ms},
+                        {"fps", o.fps},
+                        {"relief_frame_ratio", o.single_ratio}});
+    }
     return {{"command", "bench"}, {"machine", r.machine},       {"gl_renderer", r.gl_renderer},
             {"load_before", r.load_before}, {"load_after", r.load_after}, {"view", r.view},
-            {"rows", rows},             {"pipelined_vs_two_pass", ratios}, {"table1", t1}};
+            {"rows", rows},             {"pipelined_vs_two_pass", ratios}, {"table1", t1},
+            {"objects", objs}};
 }
 
 }  // namespace rtm

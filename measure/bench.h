@@ -33,6 +33,7 @@ struct BenchConfig {
     CompareView view{"az30_el20", 30.0, 20.0, 2.2};  // the eye (orbit convention, about the relief's bounds)
     bool table1 = true;
     int table1_size = 256;
+    bool objects = true;  // with table1: six-face objects of table1_size^2 faces from one-, two- and three-face views
     int view_width = 512, view_height = 512;
     std::function<void(const std::string&)> progress;  // one line per finished measurement; may be empty
 };
@@ -85,6 +86,20 @@ struct Table1Row {
     double fps = 0;          // 1000 / total_ms
 };
 
+// A frame of a six-face object (paper section 4.1) in the same view size as Table 1, next to the single relief frame
+// of Table 1 (two-pass, the first relief) measured in the same run.
+struct ObjectFrameRow {
+    std::string object;  // synthetic object (procedural/synthetic_object.h)
+    std::string view;    // "one face", "two faces", "three faces"
+    double az = 0, el = 0, distance = 0;  // orbit about the box's bounding sphere
+    int size = 0;        // texels per face side
+    int faces = 0;       // faces drawn
+    int frames = 0;
+    std::vector<std::pair<std::string, double>> face_prewarp_ms;  // per face drawn: median pre-warp time
+    double prewarp_ms = 0, upload_ms = 0, texture_map_ms = 0, total_ms = 0, fps = 0;
+    double single_ratio = 0;  // total_ms / the single relief frame's total_ms (0 when there is none)
+};
+
 struct BenchResult {
     std::string machine;        // CPU model, cores, memory
     std::string gl_renderer;    // the OpenGL context of Table 1, or why there is none
@@ -92,6 +107,7 @@ struct BenchResult {
     std::string view;           // the eye used
     std::vector<BenchRow> rows;
     std::vector<Table1Row> table1;
+    std::vector<ObjectFrameRow> objects;
 };
 
 BenchResult run_bench(const BenchConfig& config);

@@ -1,0 +1,207 @@
+#include "objects/face_swap.h"
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "warp/line_warp.h"
+
+namespace rtm {
+
+namespace {
+
+// Carried along G's rows: F's final row coordinate, F's displacement d' and G's own displacement.
+struct SwapAttr {
+    double v = 0, d = 0, g = 0;
+};
+inline SwapAttr attr_lerp(const SwapAttr& a, const SwapAttr& b, double t) {
+    return {a.v * (1 - t) + b.v * t, a.d * (1 - t) + b.d * t, a.g * (1 - t) + b.g * t};
+}
+// Carried along the intermediate columns: d' and G's displacement.
+struct ColAttr {
+    double d = 0, g = 0;
+};
+inline ColAttr attr_lerp(const ColAttr& a, const ColAttr& b, double t) {
+    return {a.d * (1 - t) + b.d * t, a.g * (1 - t) + b.g * t};
+}
+
+template <class Body>
+void run_parallel(int n, int threads, const Body& body) {
+    auto loop = [&] { tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const auto& r) { body(r.begin(), r.end()); }); };
+    if (threads > 0) {
+        tbb::task_arena arena(threads);
+        arena.execute(loop);
+    } else {
+        loop();
+    }
+}
+
+}  // namespace
+
+int FaceSwap::source_of(int target) const {
+    int src = -1;
+    for (int i = 0; i < 3; ++i) {
+        // glm is column-major: m[column][row]; row `target` of the matrix.
+        if (std::abs(m[i][target]) > 1e-12 * (std::abs(m[0][target]) + std::abs(m[1][target]) + std::abs(m[2][target]))) {
+            if (src >= 0) return -1;
+            src = i;
+        }
+    }
+    return src;
+}
+
+std::string FaceSwap::to_string() const {
+    std::ostringstream o;
+    o << "FaceSwap{";
+    static const char* names[3] = {"u'", "v'", "d'"};
+    static const char* src[3] = {"u_s", "v_s", "d"};
+    for (int t = 0; t < 3; ++t) {
+        o << (t ? ", " : "") << names[t] << " = " << offset[t];
+        for (int i = 0; i < 3; ++i)
+            if (m[i][t] != 0.0) o << " + " << m[i][t] << "*" << src[i];
+    }
+    return o.str() + "}";
+}
+
+FaceSwap make_face_swap(const ReliefGeometry& src, const ReliefGeometry& dst) {
+    // X = o_s + a_s u + b_s v + f_s d = o_d + a_d u' + b_d v' + f_d d'  =>  (u', v', d') = B^-1 (X - o_d).
+    const glm::dmat3 b_dst(dst.a, dst.b, dst.f());
+    const glm::dmat3 inv = glm::inverse(b_dst);
+    FaceSwap s;
+    s.offset = inv * (src.origin - dst.origin);
+    s.m = inv * glm::dmat3(src.a, src.b, src.f());
+    return s;
+}
+
+void AdjacentBuffer::reset(int width, int height) {
+    if (color.width != width || color.height != height) {
+        color = ImageRGBA8(width, height);
+        depth = ImageF(width, height);
+    }
+    std::fill(color.pixels.begin(), color.pixels.end(), Rgba8{});
+    std::fill(depth.pixels.begin(), depth.pixels.end(), -std::numeric_limits<float>::infinity());
+}
+
+int first_pass_coordinate(const FaceSwap& s) {
+    // Column 0 of m is where G's u_s goes (glm: m[column][row]).
+    int t = -1;
+    for (int i = 0; i < 3; ++i)
+        if (s.m[0][i] != 0.0 && (t < 0 || std::abs(s.m[0][i]) > std::abs(s.m[0][t]))) t = i;
+    if (t == 0 || t == 1) return t;
+    // G's rows run along F's displacement: the row pass computes the coordinate G's displacement feeds.
+    return std::abs(s.m[2][0]) >= std::abs(s.m[2][1]) ? 0 : 1;
+}
+
+long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geom, int width, int height,
+                             const PrewarpCoefficients& kf, bool exact, AdjacentWorkspace& ws, AdjacentBuffer& out,
+                             int threads) {
+    const int gw = g.width, gh = g.height;
+    const FaceSwap swap = make_face_swap(g.geometry, f_geom);
+    // Which of F's final coordinates the pass along G's rows computes: the one G's rows spread along (u_i for a
+    // row that runs along F's u or whose displacement does; else v_i), so that no row collapses onto one pixel.
+    const int first = first_pass_coordinate(swap);
+    const int n1 = first == 0 ? width : height;   // pass 1's output length (F's columns, or F's rows from the bottom)
+    const int n2 = first == 0 ? height : width;   // pass 2's
+    // The eye's foot on G's plane, in G's texel units: where G's occlusion-compatible order converges.
+    const glm::dvec3 rel = kf.eye - g.geometry.origin;
+    const double foot_u = glm::dot(rel, g.geometry.a) / glm::dot(g.geometry.a, g.geometry.a);
+    const double foot_v = glm::dot(rel, g.geometry.b) / glm::dot(g.geometry.b, g.geometry.b);
+    const int split_u = split_index(foot_u, gw), split_v = split_index(foot_v, gh);
+    if (ws.mid_color.width != n1 || ws.mid_color.height != gh) {
+        ws.mid_color = ImageRGBA8(n1, gh);
+        ws.mid_v = Image2D<double>(n1, gh);
+        ws.mid_d = Image2D<double>(n1, gh);
+        ws.mid_g = Image2D<double>(n1, gh);
+    }
+    std::vector<long long> dropped_rows(size_t(gh), 0);
+
+    // Pass 1: along G's rows to F's final coordinate `first`, carrying the other.
+    run_parallel(gh, threads, [&](int r0, int r1) {
+        std::vector<double> pos(static_cast<size_t>(gw));
+        std::vector<SwapAttr> attr(static_cast<size_t>(gw));
+        std::vector<Rgba8> color(static_cast<size_t>(gw));
+        std::vector<uint8_t> valid(static_cast<size_t>(gw));
+        for (int r = r0; r < r1; ++r) {
+            const double vs = (gh - 1 - r) + 0.5;
+            long long nd = 0;
+            for (int x = 0; x < gw; ++x) {
+                const ReliefTexel& t = g.texel(x, r);
+                color[size_t(x)] = {t.r, t.g, t.b, 255};
+                if (t.q == kEmptyIndex) {
+                    valid[size_t(x)] = 0;
+                    continue;
+                }
+                const double d = exact ? double(g.displ(x, r)) : g.quant.decode(t.q);
+                const glm::dvec3 p = swap.apply(x + 0.5, vs, d);
+                const double den = 1.0 + kf.k3 * p.z;
+                const bool ok = den > 0.0;
+                valid[size_t(x)] = ok;
+                nd += !ok;
+                const double ui = ok ? (p.x + kf.k1 * p.z) / den : 0.0, vi = ok ? (p.y + kf.k2 * p.z) / den : 0.0;
+                pos[size_t(x)] = first == 0 ? ui : vi;
+                attr[size_t(x)] = {first == 0 ? vi : ui, p.z, d};
+            }
+            dropped_rows[size_t(r)] = nd;
+            Rgba8* oc = ws.mid_color.row(r);
+            double* ov = ws.mid_v.row(r);
+            double* od = ws.mid_d.row(r);
+            double* og = ws.mid_g.row(r);
+            std::fill(oc, oc + n1, Rgba8{});
+            const uint8_t* brk = g.breaks.empty() ? nullptr : &g.breaks[size_t(r) * size_t(gw)];
+            auto connected = [&](int a, int b) { return !brk || !(brk[std::min(a, b)] & kBreakRight); };
+            auto put = [&](int x, Rgba8 c, const SwapAttr& a) {
+                oc[x] = c;
+                ov[x] = a.v;
+                od[x] = a.d;
+                og[x] = a.g;
+            };
+            LineInput<double, SwapAttr> in{gw, pos.data(), color.data(), attr.data(), valid.data()};
+            warp_line_to(in, split_u, n1, put, connected);
+        }
+    });
+
+    // Pass 2: along the intermediate columns (G's rows bottom first) to the other final coordinate, z-tested.
+    const double threshold = g.breaks.empty() ? 0.0 : g.discontinuity_threshold;
+    run_parallel(n1, threads, [&](int c0, int c1) {
+        std::vector<double> pos(static_cast<size_t>(gh));
+        std::vector<ColAttr> attr(static_cast<size_t>(gh));
+        std::vector<Rgba8> color(static_cast<size_t>(gh));
+        std::vector<uint8_t> valid(static_cast<size_t>(gh));
+        for (int c = c0; c < c1; ++c) {
+            for (int j = 0; j < gh; ++j) {
+                const int r = gh - 1 - j;
+                const Rgba8 col = ws.mid_color.at(c, r);
+                color[size_t(j)] = col;
+                valid[size_t(j)] = col.a != 0;
+                pos[size_t(j)] = ws.mid_v.at(c, r);
+                attr[size_t(j)] = {ws.mid_d.at(c, r), ws.mid_g.at(c, r)};
+            }
+            auto connected = [&](int a, int b) {
+                return !(threshold > 0.0) || std::abs(attr[size_t(a)].g - attr[size_t(b)].g) <= threshold;
+            };
+            auto put = [&](int j, Rgba8 col, const ColAttr& a) {
+                const int x = first == 0 ? c : j;
+                const int row = height - 1 - (first == 0 ? j : c);
+                float& z = out.depth.at(x, row);
+                if (float(a.d) > z) {
+                    z = float(a.d);
+                    out.color.at(x, row) = col;
+                }
+            };
+            LineInput<double, ColAttr> in{gh, pos.data(), color.data(), attr.data(), valid.data()};
+            warp_line_to(in, split_v, n2, put, connected);
+        }
+    });
+    long long dropped = 0;
+    for (long long n : dropped_rows) dropped += n;
+    return dropped;
+}
+
+}  // namespace rtm

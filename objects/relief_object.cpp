@@ -1,0 +1,262 @@
+#include "objects/relief_object.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "objects/view_analysis.h"
+#include "truth/micromesh.h"
+#include "warp/timing.h"
+
+namespace rtm {
+
+namespace {
+
+void add_skip(std::vector<std::string>& skips, const std::string& s) {
+    if (std::find(skips.begin(), skips.end(), s) == skips.end()) skips.push_back(s);
+}
+
+// Largest parallax (texels) of any point of the box behind face t (displacement in [-depth, 0]) for view k:
+// u_i - u_s = (u_s - e_u) (1 / (1 + k3 d) - 1) is linear in u_s and monotonic in d (max_parallax_texels's bound).
+double box_parallax_texels(const ReliefTexture& t, const PrewarpCoefficients& k, double depth) {
+    double m = 0.0;
+    for (double d : {-depth, 0.0}) {
+        const double den = 1.0 + k.k3 * d;
+        if (!(den > 0.0)) return std::numeric_limits<double>::infinity();
+        const double s = 1.0 / den - 1.0;
+        for (double u : {0.0, double(t.width)}) m = std::max(m, std::abs((u - k.epipole_u) * s));
+        for (double v : {0.0, double(t.height)}) m = std::max(m, std::abs((v - k.epipole_v) * s));
+    }
+    return m;
+}
+
+// Closes cracks one pixel wide in a face's composite texture. The line warp covers a surface only between its
+// samples' centres, so where two surfaces meet at a marked discontinuity (a step: the top of the step seen by the
+// face, its wall by an adjacent face) half a texel is missing on each side. An empty pixel whose two neighbours
+// along a row, or along a column, are both filled takes their average colour (and the nearer depth). Reads the
+// image as it was, so nothing spreads further than one pixel. Returns the pixels filled.
+long long close_cracks(ImageRGBA8& img, Image2D<uint8_t>* displ) {
+    const ImageRGBA8 src = img;
+    const Image2D<uint8_t> dsrc = displ ? *displ : Image2D<uint8_t>();
+    long long n = 0;
+    auto avg = [](const Rgba8& a, const Rgba8& b) {
+        return Rgba8{uint8_t((a.r + b.r + 1) / 2), uint8_t((a.g + b.g + 1) / 2), uint8_t((a.b + b.b + 1) / 2), 255};
+    };
+    for (int row = 0; row < img.height; ++row)
+        for (int x = 0; x < img.width; ++x) {
+            if (src.at(x, row).a != 0) continue;
+            int ax = -1, ar = -1, bx = -1, br = -1;
+            if (x > 0 && x + 1 < img.width && src.at(x - 1, row).a == 255 && src.at(x + 1, row).a == 255) {
+                ax = x - 1, ar = row, bx = x + 1, br = row;
+            } else if (row > 0 && row + 1 < img.height && src.at(x, row - 1).a == 255 && src.at(x, row + 1).a == 255) {
+                ax = x, ar = row - 1, bx = x, br = row + 1;
+            } else {
+                continue;
+            }
+            img.at(x, row) = avg(src.at(ax, ar), src.at(bx, br));
+            if (displ) {
+                const uint8_t qa = dsrc.at(ax, ar), qb = dsrc.at(bx, br);
+                displ->at(x, row) = qa == kEmptyIndex ? qb : qb == kEmptyIndex ? qa : std::max(qa, qb);
+            }
+            ++n;
+        }
+    return n;
+}
+
+}  // namespace
+
+ReliefObject::ReliefObject(SixFaceObject object) : name_(std::move(object.name)), box_(object.box) {
+    quads_.reserve(kFaceCount);
+    for (ReliefTexture& t : object.faces) quads_.emplace_back(std::move(t));
+}
+ReliefObject::~ReliefObject() = default;
+ReliefObject::ReliefObject(ReliefObject&&) noexcept = default;
+
+Bounds ReliefObject::bounds() const { return Bounds{box_.lo, box_.hi}; }
+
+long long ReliefObject::texels() const {
+    long long n = 0;
+    for (const ReliefQuad& q : quads_) n += (long long)q.relief().width * q.relief().height;
+    return n;
+}
+
+void ReliefObject::prewarp_face(int face, const glm::dvec3& eye, int level, const PrewarpOptions& options,
+                                bool with_displ, ObjectFacePrewarp& out) {
+    const ObjectRegion region = classify_region(box_, eye);
+    if (!region.visible(face))
+        throw std::invalid_argument(std::string("ReliefObject::prewarp_face: face ") + kFaceKeys[size_t(face)] +
+                                    " is not visible from " + region.to_string());
+    const auto t0 = Clock::now();
+    ReliefQuad& q = quads_[size_t(face)];
+    level = std::clamp(level, 0, q.levels() - 1);
+    const ReliefTexture& ft = q.level(level);
+    const int w = ft.width, h = ft.height;
+    const PrewarpCoefficients k = compute_coefficients(ft.geometry, eye);
+    out.face = face;
+    out.level = level;
+    out.k = k;
+    out.adjacent = faces_warped_onto(region, face);
+    out.texels = (long long)w * h;
+
+    // The adjacent faces first, onto F's plane, z-tested among themselves.
+    adjacent_.reset(w, h);
+    for (int g : out.adjacent) {
+        const ReliefTexture& gt = quads_[size_t(g)].level(level);
+        warp_adjacent_face(gt, ft.geometry, w, h, k, options.exact, adjacent_ws_, adjacent_, options.threads);
+        out.texels += (long long)gt.width * gt.height;
+    }
+    // Then the face itself over them, keeping the adjacent samples only where it left a hole.
+    PrewarpOptions o = options;
+    o.keep_outliers = false;
+    prewarp(ft, k, o, workspace_, out.image, with_displ ? &own_displ_ : nullptr);
+    const double depth = box_.extent()[face_axis(face)];
+    out.depth_quant = Quantizer::from_range(-depth, 0.0);
+    if (with_displ) out.displ = Image2D<uint8_t>(w, h);
+    long long filled = 0;
+    for (size_t i = 0; i < out.image.pixels.size(); ++i) {
+        Rgba8& p = out.image.pixels[i];
+        // A pixel the face covers less than half (the coverage filter's fractional alpha; the texture-mapping stage
+        // discards it) is a hole too.
+        bool own = p.a >= 128;
+        if (!own && adjacent_.color.pixels[i].a != 0) {
+            p = adjacent_.color.pixels[i];
+            if (o.filter == Filter::coverage) p = {p.r, p.g, p.b, 255};
+            ++filled;
+        } else if (!own && p.a != 0) {
+            own = true;  // the face's own partial coverage stays (no adjacent sample to prefer)
+        }
+        if (!with_displ) continue;
+        uint8_t& dq = out.displ.pixels[i];
+        if (own)
+            dq = own_displ_.pixels[i] == kEmptyIndex ? kEmptyIndex
+                                                     : out.depth_quant.encode(ft.quant.decode(own_displ_.pixels[i]));
+        else if (p.a != 0)
+            dq = out.depth_quant.encode(adjacent_.depth.pixels[i]);
+        else
+            dq = kEmptyIndex;
+    }
+    out.adjacent_pixels = filled;
+    if (!out.adjacent.empty()) out.crack_pixels = close_cracks(out.image, with_displ ? &out.displ : nullptr);
+    if (o.filter == Filter::coverage) premultiply_alpha(out.image);
+    out.prewarp_ms = ms_since(t0);
+}
+
+void ReliefObject::draw(Renderer& renderer, const Camera& cam, RenderMethod method, const PrewarpOptions& options,
+                        StageTimes& times, const DrawOptions& d, ObjectReport* report) {
+    const auto t_start = Clock::now();
+    ObjectReport rep;
+    rep.region = classify_region(box_, cam.eye);
+    auto done = [&] {
+        times.total_ms += ms_since(t_start);
+        if (report) *report = std::move(rep);
+    };
+    const bool warp_method = method == RenderMethod::two_pass || method == RenderMethod::pipelined;
+    if (!warp_method && method != RenderMethod::flat)
+        throw std::invalid_argument("ReliefObject::draw: method " + to_string(method) + " is not a texture method");
+    if (rep.region.inside()) {  // the eye inside the box: nothing can be pre-warped for it
+        add_skip(rep.skips, kSkipInsideSlab);
+        const auto t0 = Clock::now();
+        draw_micromesh(renderer, cam);
+        times.texture_map_ms += ms_since(t0);
+        return done();
+    }
+    if (rep.region.visible_faces().size() < size_t(kFaceCount)) add_skip(rep.skips, kSkipBackFacing);
+
+    for (int f : rep.region.visible_faces()) {
+        ReliefQuad& q = quads_[size_t(f)];
+        ObjectFaceReport fr;
+        fr.face = f;
+        const std::array<glm::dvec3, 4> corners = q.corners();
+        Bounds quad_bounds;
+        for (const glm::dvec3& c : corners) quad_bounds.extend(c);
+        if (d.skips && outside_frustum(cam, quad_bounds)) {
+            add_skip(rep.skips, kSkipOutsideFrustum);
+            continue;
+        }
+        fr.level = d.level < 0 ? q.auto_level(cam) : std::clamp(d.level, 0, q.levels() - 1);
+        const ReliefTexture& ft = q.level(fr.level);
+        ReliefSurface rs;
+        rs.origin = ft.geometry.origin;
+        rs.a = ft.geometry.a;
+        rs.b = ft.geometry.b;
+        rs.width = ft.width;
+        rs.height = ft.height;
+        ObjectFacePrewarp& warped = warped_[size_t(f)];
+        bool plain = !warp_method;
+        if (warp_method && d.skips) {
+            const double area = projected_area_pixels(cam, corners);
+            if (area >= 0) {
+                const PrewarpCoefficients k = compute_coefficients(ft.geometry, cam.eye);
+                const double pixels_per_texel = std::sqrt(area / (double(ft.width) * ft.height));
+                const double parallax = box_parallax_texels(ft, k, box_.extent()[face_axis(f)]);
+                if (parallax * pixels_per_texel < d.subpixel_parallax) {
+                    plain = true;
+                    fr.skips.push_back(kSkipSubpixelParallax);
+                    add_skip(rep.skips, kSkipSubpixelParallax);
+                }
+            }
+        }
+        if (plain) {
+            warped.image = flat_texture(ft);
+            warped.face = f;
+        } else {
+            PrewarpOptions o = options;
+            o.method = method == RenderMethod::two_pass ? Reconstruction::two_pass : Reconstruction::pipelined;
+            o.copy_still_runs = options.copy_still_runs && d.skips;
+            prewarp_face(f, cam.eye, fr.level, o, d.depth_correction, warped);
+            fr.adjacent = warped.adjacent;
+            fr.prewarp_ms = warped.prewarp_ms;
+            times.prewarp_ms += warped.prewarp_ms;
+        }
+        auto t0 = Clock::now();
+        if (!textures_[size_t(f)]) textures_[size_t(f)] = std::make_unique<GlTexture>();
+        textures_[size_t(f)]->upload(warped.image);
+        if (!plain && d.depth_correction) {
+            if (!displ_textures_[size_t(f)]) displ_textures_[size_t(f)] = std::make_unique<GlTexture>();
+            displ_textures_[size_t(f)]->upload_gray(warped.displ);
+            rs.displ = displ_textures_[size_t(f)].get();
+            rs.k3 = warped.k.k3;
+            rs.dmin = warped.depth_quant.min;
+            rs.dmax = warped.depth_quant.max;
+            rs.qs = warped.depth_quant.qs;
+        }
+        renderer.finish();
+        times.upload_ms += ms_since(t0);
+        t0 = Clock::now();
+        renderer.draw_relief(cam, rs, *textures_[size_t(f)]);
+        renderer.finish();
+        times.texture_map_ms += ms_since(t0);
+        rep.faces.push_back(std::move(fr));
+    }
+    done();
+}
+
+void ReliefObject::draw_micromesh(Renderer& renderer, const Camera& cam) {
+    for (ReliefQuad& q : quads_) renderer.draw_mesh(cam, q.micromesh().vertices, q.micromesh().indices);
+    renderer.finish();
+}
+
+ImageRGBA8 render_object_frame(ReliefObject& object, Renderer& renderer, const Camera& cam, RenderMethod method,
+                               const PrewarpOptions& options, const DrawOptions& draw, StageTimes& times,
+                               ObjectReport* report) {
+    const auto t0 = Clock::now();
+    renderer.begin_frame(cam);
+    if (method == RenderMethod::micromesh) {
+        object.draw_micromesh(renderer, cam);
+        times.texture_map_ms += ms_since(t0);
+        times.total_ms += ms_since(t0);
+        if (report) *report = ObjectReport{object.region(cam.eye), {}, {}};
+    } else {
+        StageTimes st;
+        object.draw(renderer, cam, method, options, st, draw, report);
+        times.prewarp_ms += st.prewarp_ms;
+        times.upload_ms += st.upload_ms;
+        times.texture_map_ms += st.texture_map_ms;
+        times.total_ms += ms_since(t0);
+    }
+    return renderer.read_pixels(cam.width, cam.height);
+}
+
+}  // namespace rtm

@@ -1,0 +1,109 @@
+// A six-face image-based object (paper section 4.1) drawn as at most three relief quads.
+//
+// For a view, classify_region (objects/object_region.h) says which faces are visible (one, two or three). For each
+// visible face F: the adjacent faces whose samples can land on F (faces_warped_onto) are pre-warped onto F's plane
+// with their axes swapped (objects/face_swap.h, Figure 15), then F itself is pre-warped over them with the single
+// relief's kernels (warp/prewarp.h), keeping the adjacent samples only where F left a hole (the paper's order). The
+// result is texture-mapped onto F's quad, after closing the cracks one pixel wide that the line warp leaves where a
+// surface seen by F meets one seen by an adjacent face (half a texel is missing on each side of a discontinuity). Samples of F that leave its quad are not lost: they land on the
+// neighbouring visible face when that face pre-warps F, so no side polygons are needed (nor drawn) for an object.
+//
+// Skips (names as for a single relief, objects/relief_quad.h): back-facing (the faces not visible: not pre-warped,
+// not drawn), outside-frustum (per visible face), subpixel-parallax (per visible face: when the box's whole depth
+// moves by less than the threshold the face is drawn as a plain texture), inside-slab-micromesh (the eye inside the
+// box: the six faces' micro-polygon meshes are drawn). Depth correction (section 4.2): the depth seen at each pixel
+// of F's pre-warped texture (F's own or an adjacent face's, along F's normal) is quantized over the box's depth
+// behind F and scales the fragment depth by 1 + k3*d, so the faces occlude each other and other geometry.
+//
+// Limitations: the adjacent faces are reconstructed two-pass with point sampling whatever the face's own method and
+// filter; the reuse and partial-upload skips of the single relief do not apply (every visible face is pre-warped
+// and uploaded whole every frame).
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "objects/bounds.h"
+#include "objects/face_swap.h"
+#include "objects/object_region.h"
+#include "objects/relief_quad.h"
+#include "warp/box_faces.h"
+
+namespace rtm {
+
+// One visible face's pre-warped texture (Figure 17), the same size as the face at its pyramid level.
+struct ObjectFacePrewarp {
+    int face = -1;
+    int level = 0;
+    std::vector<int> adjacent;  // the faces pre-warped onto it first
+    ImageRGBA8 image;           // alpha 0 where nothing landed
+    Image2D<uint8_t> displ;     // with depth correction: depth along F's normal, quantized by depth_quant (255 none)
+    Quantizer depth_quant;
+    PrewarpCoefficients k;
+    double prewarp_ms = 0.0;    // adjacent faces and the face itself
+    long long texels = 0;       // source texels visited (the face and its adjacent faces)
+    long long adjacent_pixels = 0;  // pixels filled by adjacent faces' samples
+    long long crack_pixels = 0;     // one-pixel cracks closed between the face's and the adjacent faces' samples
+};
+
+struct ObjectFaceReport {
+    int face = -1;
+    int level = 0;
+    std::vector<int> adjacent;
+    double prewarp_ms = 0.0;
+    std::vector<std::string> skips;
+};
+
+struct ObjectReport {
+    ObjectRegion region;
+    std::vector<ObjectFaceReport> faces;  // the faces drawn (visible and not skipped), in kFaceKeys order
+    std::vector<std::string> skips;       // every skip that fired, once
+};
+
+class ReliefObject {
+public:
+    explicit ReliefObject(SixFaceObject object);
+    ~ReliefObject();
+    ReliefObject(ReliefObject&&) noexcept;
+
+    const std::string& name() const { return name_; }
+    const Box& box() const { return box_; }
+    Bounds bounds() const;
+    ReliefQuad& face(int f) { return quads_[size_t(f)]; }
+    ObjectRegion region(const glm::dvec3& eye) const { return classify_region(box_, eye); }
+    // Texels at level 0 over the six faces.
+    long long texels() const;
+
+    // Pre-warps visible face `face` for `eye` at pyramid `level` (clamped): adjacent faces first, then the face
+    // over them. options.keep_outliers is ignored (no side polygons). Throws std::invalid_argument if the face is
+    // not visible from `eye`.
+    void prewarp_face(int face, const glm::dvec3& eye, int level, const PrewarpOptions& options, bool with_displ,
+                      ObjectFacePrewarp& out);
+
+    // Draws with `method` (flat, two_pass or pipelined) into the current frame; requires a current GL context.
+    void draw(Renderer& renderer, const Camera& cam, RenderMethod method, const PrewarpOptions& options,
+              StageTimes& times, const DrawOptions& draw = {}, ObjectReport* report = nullptr);
+    // The ground truth: the six faces' micro-polygon meshes.
+    void draw_micromesh(Renderer& renderer, const Camera& cam);
+
+private:
+    std::string name_;
+    Box box_;
+    std::vector<ReliefQuad> quads_;
+    PrewarpWorkspace workspace_;
+    AdjacentWorkspace adjacent_ws_;
+    AdjacentBuffer adjacent_;
+    Image2D<uint8_t> own_displ_;
+    std::array<ObjectFacePrewarp, kFaceCount> warped_;
+    std::array<std::unique_ptr<GlTexture>, kFaceCount> textures_, displ_textures_;
+};
+
+// One frame of an object with any method (flat, two-pass, pipelined, micromesh), begin_frame included; returns
+// the image read back. `times` accumulates the stage times.
+ImageRGBA8 render_object_frame(ReliefObject& object, Renderer& renderer, const Camera& cam, RenderMethod method,
+                               const PrewarpOptions& options, const DrawOptions& draw, StageTimes& times,
+                               ObjectReport* report = nullptr);
+
+}  // namespace rtm
