@@ -11,13 +11,14 @@
 #include <string>
 
 #include "procedural/procedural_media.h"
+#include "procedural/town.h"
 #include "formats/relief_manifest.h"
 #include "formats/image_io.h"
 
 int main(int argc, char** argv) {
     CLI::App app{
         "Writes the procedural relief textures (bricks, facade, bumps, ridges) as DIR/NAME.relief.json "
-        "plus colour and displacement images."};
+        "plus colour and displacement images, and the relief town DIR/town.scene.json."};
     std::string out;
     int size = 256;
     app.add_option("--out", out, "Output folder (created if missing)")->required();
@@ -44,6 +45,10 @@ int main(int argc, char** argv) {
             rtm::write_relief(path, m, p.color, p.displacement);
             std::printf("wrote %s (%dx%d)\n", path.c_str(), p.color.width, p.color.height);
         }
+        // The relief town (procedural/town.h): seven relief quads a house, sharing seven textures.
+        rtm::TownOptions town;
+        town.texels = size;
+        std::printf("wrote %s\n", rtm::write_town(out, town).c_str());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "rtm-make-media: %s\n", e.what());
         return 1;
