@@ -10,6 +10,7 @@
 
 #include "cli_common.h"
 #include "cmd_object.h"
+#include "cmd_render_scene.h"
 #include "objects/bounds.h"
 #include "objects/render_relief.h"
 #include "formats/relief_manifest.h"
@@ -23,21 +24,38 @@ namespace {
 
 
 struct RenderArgs {
-    std::string relief, object, out, json, method = "two-pass", level = "0", filter = "point";
+    std::string relief, object, scene, frames_dir, out, json, method = "two-pass", level = "0", filter = "point";
     CameraArgs camera;
     bool exact = false, progress = false, no_sidewalls = false, depth_correction = false, no_skips = false;
     double discontinuity = -1;
-    int repeat = 1, threads = 0;
+    int repeat = 1, threads = 0, path_frame = -1;
 };
 
 void run_render(const RenderArgs& a) {
     if (!a.object.empty()) {
-        if (!a.relief.empty()) throw UsageError("render takes one of --relief and --object, not both");
+        if (!a.relief.empty() || !a.scene.empty())
+            throw UsageError("render takes one of --relief, --object and --scene");
         if (!(a.discontinuity >= 0 || a.discontinuity == -1) || !std::isfinite(a.discontinuity))
             throw UsageError("--discontinuity: expected a threshold >= 0, found " + std::to_string(a.discontinuity));
         return run_render_object({a.object, a.out, a.json, a.method, a.level, a.filter, a.camera, a.exact,
                                   a.depth_correction, a.no_skips, a.repeat, a.threads, a.discontinuity});
     }
+    if (!a.scene.empty()) {
+        if (!a.relief.empty()) throw UsageError("give either --relief or --scene, not both");
+        SceneRenderArgs s;
+        s.scene = a.scene;
+        s.out = a.out;
+        s.json = a.json;
+        s.method = a.method;
+        s.frames_dir = a.frames_dir;
+        s.camera = a.camera;
+        s.path_frame = a.path_frame;
+        s.no_skips = a.no_skips;
+        s.no_sidewalls = a.no_sidewalls;
+        s.threads = a.threads;
+        return run_render_scene(s);
+    }
+    if (!a.frames_dir.empty() || a.path_frame >= 0) throw UsageError("--frames and --camera-path need --scene");
     RenderMethod method;
     try {
         method = parse_render_method(a.method);
@@ -50,7 +68,7 @@ void run_render(const RenderArgs& a) {
     if (!(a.discontinuity >= 0 || a.discontinuity == -1) || !std::isfinite(a.discontinuity))
         throw UsageError("--discontinuity: expected a threshold >= 0, found " + std::to_string(a.discontinuity));
     if (a.repeat < 1) throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
-    if (a.relief.empty()) throw UsageError("render needs --relief M or --object O");
+    if (a.relief.empty()) throw UsageError("render needs --relief M, --object O or --scene S");
     if (!a.camera.has_eye()) throw UsageError("render needs --eye X,Y,Z or --orbit AZ,EL,D");
     // Validate the camera's syntax before any file is read.
     (void)a.camera.resolve(Bounds{glm::dvec3(-1), glm::dvec3(1)});
@@ -137,6 +155,10 @@ void add_render_command(CLI::App& app) {
     CLI::App* sub = app.add_subcommand("render", "Render a relief texture to an image");
     sub->add_option("--relief", a->relief, "Relief texture manifest (NAME.relief.json)");
     sub->add_option("--object", a->object, "Six-face object manifest (NAME.object.json)");
+    sub->add_option("--scene", a->scene, "Scene manifest (NAME.scene.json): relief quads and polygons");
+    sub->add_option("--camera-path", a->path_frame, "Scene: render frame K of the scene's camera path")
+        ->check(CLI::NonNegativeNumber);
+    sub->add_option("--frames", a->frames_dir, "Scene: render every frame of its camera path into DIR");
     a->camera.add_to(*sub);
     sub->add_option("--method", a->method, "flat, two-pass, pipelined, micromesh or raycast")->capture_default_str();
     sub->add_flag("--exact", a->exact, "Pre-warp with unquantized displacement and double-precision coordinates");

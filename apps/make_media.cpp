@@ -13,6 +13,7 @@
 
 #include "procedural/procedural_media.h"
 #include "formats/object_manifest.h"
+#include "procedural/town.h"
 #include "formats/relief_manifest.h"
 #include "procedural/synthetic_object.h"
 #include "formats/image_io.h"
@@ -20,7 +21,7 @@
 int main(int argc, char** argv) {
     CLI::App app{
         "Writes the procedural relief textures (bricks, facade, bumps, ridges) as DIR/NAME.relief.json "
-        "plus colour and displacement images."};
+        "plus colour and displacement images, and the relief town DIR/town.scene.json."};
     std::string out;
     int size = 256, object_size = 64;
     app.add_option("--out", out, "Output folder (created if missing)")->required();
@@ -68,6 +69,10 @@ int main(int argc, char** argv) {
             rtm::write_object_manifest(path, name, rtm::kSyntheticBox, images);
             std::printf("wrote %s (6 faces of %dx%d)\n", path.c_str(), object_size, object_size);
         }
+        // The relief town (procedural/town.h): seven relief quads a house, sharing seven textures.
+        rtm::TownOptions town;
+        town.texels = size;
+        std::printf("wrote %s\n", rtm::write_town(out, town).c_str());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "rtm-make-media: %s\n", e.what());
         return 1;

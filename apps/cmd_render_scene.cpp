@@ -1,0 +1,142 @@
+#include "cmd_render_scene.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include <unistd.h>
+
+#include "formats/image_io.h"
+#include "objects/scene.h"
+#include "texmap/gl_context.h"
+#include "warp/timing.h"
+
+namespace rtm::cli {
+
+namespace {
+
+nlohmann::json report_json(const SceneFrameReport& r) {
+    return {{"quads", r.quads},
+            {"quads_drawn", r.drawn},
+            {"quads_prewarped", r.prewarped},
+            {"quads_skipped", r.skips},
+            {"texels_warped", r.texels_warped},
+            {"prewarp_ms", r.times.prewarp_ms},
+            {"upload_ms", r.times.upload_ms},
+            {"texture_map_ms", r.times.texture_map_ms},
+            {"total_ms", r.times.total_ms}};
+}
+
+Camera key_camera(const SceneCameraKey& k, const Camera& sized) {
+    Camera c = sized;
+    c.eye = k.eye;
+    c.look_at = k.look_at;
+    c.up = k.up;
+    c.fov_deg = k.fov_deg;
+    return c;
+}
+
+}  // namespace
+
+void run_render_scene(const SceneRenderArgs& a) {
+    const RenderMethod method = [&] {
+        try {
+            return parse_render_method(a.method);
+        } catch (const std::invalid_argument& e) {
+            throw UsageError(std::string("--method: ") + e.what());
+        }
+    }();
+    if (method == RenderMethod::raycast)
+        throw UsageError("--method raycast traces one relief, not a scene: use micromesh as the scene's truth");
+    if (!a.frames_dir.empty() && (a.camera.has_eye() || a.path_frame >= 0))
+        throw UsageError("--frames renders the scene's camera path: give no CAMERA and no --camera-path");
+    if (a.camera.has_eye() && a.path_frame >= 0) throw UsageError("give either a CAMERA or --camera-path, not both");
+    if (a.frames_dir.empty() && a.out.empty() && a.json.empty()) throw UsageError("render --scene needs --out or --json");
+    if (a.camera.has_eye()) (void)a.camera.resolve(Bounds{glm::dvec3(-1), glm::dvec3(1)});  // syntax, before reading
+    if (!a.json.empty()) check_output_file(a.json, "--json");
+
+    Scene scene = Scene::load(a.scene);
+    const SceneManifest& m = scene.manifest();
+    const Bounds bounds = scene.bounds();
+    // The image size and clip planes come from the CAMERA flags (orbit or eye) resolved on the scene's bounds.
+    CameraArgs sized_args = a.camera;
+    if (!sized_args.has_eye()) sized_args.orbit = "0,30,2";
+    const Camera sized = sized_args.resolve(bounds);
+
+    std::vector<Camera> cams;
+    if (!a.frames_dir.empty() || a.path_frame >= 0) {
+        if (m.path_keys.empty()) throw IoError(a.scene + ": the scene has no camera_path");
+        if (a.path_frame >= m.path_frames)
+            throw UsageError("--camera-path: frame " + std::to_string(a.path_frame) + " is outside the path's 0.." +
+                             std::to_string(m.path_frames - 1));
+        for (int k = a.path_frame >= 0 ? a.path_frame : 0; k < (a.path_frame >= 0 ? a.path_frame + 1 : m.path_frames);
+             ++k)
+            cams.push_back(key_camera(camera_path_frame(m.path_keys, k, m.path_frames), sized));
+    } else if (a.camera.has_eye()) {
+        cams.push_back(sized);
+    } else if (m.camera) {
+        cams.push_back(key_camera(*m.camera, sized));
+    } else {
+        throw UsageError(a.scene + " has no default camera: give --eye X,Y,Z or --orbit AZ,EL,D or --camera-path K");
+    }
+    for (Camera& c : cams) {
+        if (const std::string why = c.validate(); !why.empty()) throw IoError(a.scene + ": camera: " + why);
+        c.fit_clip_planes(bounds.centre(), bounds.radius());
+    }
+    if (!a.frames_dir.empty()) {
+        std::error_code ec;
+        std::filesystem::create_directories(a.frames_dir, ec);
+        if (ec) throw IoError(a.frames_dir + ": cannot create folder: " + ec.message());
+    }
+
+    PrewarpOptions opt;
+    opt.keep_outliers = !a.no_sidewalls;
+    opt.threads = a.threads;
+    DrawOptions draw;
+    draw.depth_correction = true;  // reliefs and polygons occlude each other where their perceived surfaces do
+    draw.skips = !a.no_skips;
+    auto ctx = GlContext::create_offscreen(sized.width, sized.height);
+    Renderer renderer;
+    nlohmann::json frames = nlohmann::json::array();
+    std::vector<double> t_pre, t_up, t_map, t_total;
+    const bool progress = cams.size() > 1 && isatty(2);
+    for (size_t k = 0; k < cams.size(); ++k) {
+        SceneFrameReport rep;
+        scene.draw(renderer, cams[k], method, opt, draw, rep);
+        t_pre.push_back(rep.times.prewarp_ms);
+        t_up.push_back(rep.times.upload_ms);
+        t_map.push_back(rep.times.texture_map_ms);
+        t_total.push_back(rep.times.total_ms);
+        const ImageRGBA8 img = renderer.read_pixels(sized.width, sized.height);
+        if (!a.frames_dir.empty()) {
+            char name[32];
+            std::snprintf(name, sizeof name, "frame_%04zu.png", k);
+            write_rgba8((std::filesystem::path(a.frames_dir) / name).string(), img);
+        } else if (!a.out.empty()) {
+            write_rgba8(a.out, img);
+        }
+        nlohmann::json f = report_json(rep);
+        f["eye"] = {cams[k].eye.x, cams[k].eye.y, cams[k].eye.z};
+        frames.push_back(f);
+        if (progress) std::fprintf(stderr, "\rrender: frame %zu of %zu", k + 1, cams.size());
+    }
+    if (progress) std::fprintf(stderr, "\n");
+    if (!a.json.empty()) {
+        nlohmann::json j = {{"command", "render"},
+                            {"scene", a.scene},
+                            {"method", a.method},
+                            {"size", {sized.width, sized.height}},
+                            {"frames", frames}};
+        if (frames.size() == 1)  // a single frame's counts also at the top level
+            for (const char* k : {"quads", "quads_drawn", "quads_prewarped", "quads_skipped", "texels_warped"})
+                j[k] = frames[0][k];
+        // Stage times over the frames (min, median, ...), as rtm render writes them for a relief.
+        j["prewarp_ms"] = timing_json(t_pre);
+        j["upload_ms"] = timing_json(t_up);
+        j["texture_map_ms"] = timing_json(t_map);
+        j["total_ms"] = timing_json(t_total);
+        write_json(a.json, j);
+    }
+}
+
+}  // namespace rtm::cli

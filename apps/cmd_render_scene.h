@@ -1,0 +1,21 @@
+// rtm render --scene: one frame of a scene (a CAMERA, a frame of its camera path, or its default camera), or every
+// frame of its camera path into a folder (--frames DIR).
+#pragma once
+
+#include <string>
+
+#include "cli_common.h"
+
+namespace rtm::cli {
+
+struct SceneRenderArgs {
+    std::string scene, out, json, method, frames_dir;
+    CameraArgs camera;
+    int path_frame = -1;  // --camera-path K
+    bool no_skips = false, no_sidewalls = false;
+    int threads = 0;
+};
+
+void run_render_scene(const SceneRenderArgs& a);
+
+}  // namespace rtm::cli

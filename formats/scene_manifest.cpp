@@ -1,0 +1,237 @@
+// NAME.scene.json reading and writing (docs/SCENES.md). Errors: one line, "<path>: item N: <what is wrong>".
+#include "formats/scene_manifest.h"
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <stdexcept>
+
+#include "formats/manifest_json.h"
+
+namespace rtm {
+
+using namespace manifest_json;
+
+namespace {
+
+// A scene is a list of placements; refuse absurd ones before allocating for them.
+constexpr size_t kMaxItems = 100000;
+constexpr int kMaxPathFrames = 1000000;
+constexpr size_t kMaxPathKeys = 10000;
+
+double get_number(const std::string& path, const json& j, const std::string& where, const char* key,
+                  const char* expected) {
+    const json& v = required(path, j, where, key, expected);
+    if (!v.is_number() || !std::isfinite(v.get<double>()))
+        fail(path, where + "field \"" + key + "\" must be " + expected + ", found " + describe(v));
+    return v.get<double>();
+}
+
+SceneTransform parse_transform(const std::string& path, const json& item, const std::string& where) {
+    SceneTransform t;
+    auto it = item.find("transform");
+    if (it == item.end()) return t;
+    const json& tj = *it;
+    if (!tj.is_object()) fail(path, where + "field \"transform\" must be an object, found " + describe(tj));
+    const std::string w = where + "transform: ";
+    if (tj.contains("translate")) t.translate = get_vec3(path, tj, w, "translate");
+    if (tj.contains("scale")) {
+        t.scale = get_number(path, tj, w, "scale", "a finite number > 0");
+        if (!(t.scale > 0)) fail(path, w + "field \"scale\" must be > 0, found " + fmt_double(t.scale));
+    }
+    if (auto r = tj.find("rotate"); r != tj.end()) {
+        // One rotation [ax, ay, az, deg] or a list of them.
+        const bool single = r->is_array() && !r->empty() && (*r)[0].is_number();
+        const json list = single ? json::array({*r}) : *r;
+        if (!list.is_array() || list.size() > 16)
+            fail(path, w + "field \"rotate\" must be [ax, ay, az, degrees] or a list of up to 16 of them, found " +
+                           describe(*r));
+        for (size_t i = 0; i < list.size(); ++i) {
+            const json holder = {{"rotate", list[i]}};
+            const std::vector<double> v = get_numbers(path, holder, w + "rotation " + std::to_string(i) + ": ",
+                                                      "rotate", 4, "[ax, ay, az, degrees], 4 finite numbers");
+            const glm::dvec3 axis(v[0], v[1], v[2]);
+            if (!(glm::length(axis) > 1e-12))
+                fail(path, w + "rotation " + std::to_string(i) + ": the axis " + fmt_vec(axis) + " has no direction");
+            t.rotate.emplace_back(v[0], v[1], v[2], v[3]);
+        }
+    }
+    return t;
+}
+
+SceneCameraKey parse_camera(const std::string& path, const json& j, const std::string& where) {
+    if (!j.is_object()) fail(path, where + "must be an object, found " + describe(j));
+    SceneCameraKey c;
+    c.eye = get_vec3(path, j, where, "eye");
+    c.look_at = get_vec3(path, j, where, "look_at");
+    if (j.contains("up")) c.up = get_vec3(path, j, where, "up");
+    if (j.contains("fov")) c.fov_deg = get_number(path, j, where, "fov", "degrees in (0, 180)");
+    if (!(c.fov_deg > 0 && c.fov_deg < 180))
+        fail(path, where + "field \"fov\" must be in (0, 180) degrees, found " + fmt_double(c.fov_deg));
+    const glm::dvec3 d = c.look_at - c.eye;
+    if (!(glm::length(d) > 1e-12)) fail(path, where + "\"eye\" and \"look_at\" are the same point " + fmt_vec(c.eye));
+    if (!(glm::length(glm::cross(d, c.up)) > 1e-12 * glm::length(d) * glm::length(c.up)))
+        fail(path, where + "\"up\" " + fmt_vec(c.up) + " is parallel to the view direction");
+    return c;
+}
+
+SceneItem parse_item(const std::string& path, const json& j, size_t index) {
+    const std::string where = "item " + std::to_string(index) + ": ";
+    if (!j.is_object()) fail(path, where + "must be an object, found " + describe(j));
+    const json& type = required(path, j, where, "type", "\"relief\" or \"polygon\"");
+    if (!type.is_string()) fail(path, where + "field \"type\" must be \"relief\" or \"polygon\", found " + describe(type));
+    const std::string& kind = type.get_ref<const std::string&>();
+    SceneItem item;
+    item.transform = parse_transform(path, j, where);
+    if (kind == "relief") {
+        item.kind = SceneItem::Kind::relief;
+        item.relief_path = resolve(path, get_file_name(path, j, where, "relief"));
+    } else if (kind == "polygon") {
+        item.kind = SceneItem::Kind::polygon;
+        const json& vs = required(path, j, where, "vertices", "3 or 4 points [x, y, z]");
+        if (!vs.is_array() || vs.size() < 3 || vs.size() > 4)
+            fail(path, where + "field \"vertices\" must be 3 or 4 points [x, y, z], found " + describe(vs));
+        const glm::dmat4 m = item.transform.matrix();
+        for (size_t i = 0; i < vs.size(); ++i) {
+            const json holder = {{"vertex", vs[i]}};
+            const glm::dvec3 p = get_vec3(path, holder, where + "vertices[" + std::to_string(i) + "]: ", "vertex");
+            item.vertices.push_back(glm::dvec3(m * glm::dvec4(p, 1.0)));
+        }
+        const glm::dvec3 n = glm::cross(item.vertices[1] - item.vertices[0], item.vertices[2] - item.vertices[0]);
+        if (!(glm::length(n) > 0)) fail(path, where + "the polygon's first three vertices are collinear");
+        if (item.vertices.size() == 4) {
+            const glm::dvec3 un = glm::normalize(n);
+            const double off = std::abs(glm::dot(item.vertices[3] - item.vertices[0], un));
+            const double size = glm::length(item.vertices[2] - item.vertices[0]);
+            if (off > 1e-6 * size) fail(path, where + "the polygon's fourth vertex is off the plane of the others");
+        }
+        if (j.contains("color")) {
+            const std::vector<double> c = get_numbers(path, j, where, "color", 3, "[r, g, b], each in 0..1");
+            for (double v : c)
+                if (v < 0 || v > 1) fail(path, where + "field \"color\" must be [r, g, b], each in 0..1, found " +
+                                                   describe(j["color"]));
+            item.color = {c[0], c[1], c[2]};
+        }
+    } else {
+        fail(path, where + "field \"type\" must be \"relief\" or \"polygon\", found " + describe(type));
+    }
+    return item;
+}
+
+json vec_json(const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); }
+
+json camera_json(const SceneCameraKey& c) {
+    return {{"eye", vec_json(c.eye)}, {"look_at", vec_json(c.look_at)}, {"up", vec_json(c.up)}, {"fov", c.fov_deg}};
+}
+
+}  // namespace
+
+glm::dmat4 SceneTransform::matrix() const {
+    glm::dmat4 r(1.0);
+    for (const glm::dvec4& q : rotate)
+        r = glm::rotate(glm::dmat4(1.0), glm::radians(q.w), glm::normalize(glm::dvec3(q))) * r;
+    return glm::translate(glm::dmat4(1.0), translate) * r * glm::scale(glm::dmat4(1.0), glm::dvec3(scale));
+}
+
+SceneManifest parse_scene_manifest(const std::string& path) {
+    const json j = parse(path, read_text(path, "scene manifest"));
+    if (!j.is_object()) fail(path, "a scene manifest must be a JSON object, found " + describe(j));
+    SceneManifest m;
+    m.path = path;
+    if (auto n = j.find("name"); n != j.end()) {
+        if (!n->is_string()) fail(path, "field \"name\" must be a string, found " + describe(*n));
+        m.name = n->get<std::string>();
+    } else {
+        std::string stem = std::filesystem::path(path).filename().string();
+        for (const char* suffix : {".json", ".scene"})
+            if (stem.size() > std::string(suffix).size() && stem.ends_with(suffix))
+                stem.resize(stem.size() - std::string(suffix).size());
+        m.name = stem;
+    }
+    const json& items = required(path, j, "", "items", "a list of items");
+    if (!items.is_array() || items.empty() || items.size() > kMaxItems)
+        fail(path, "field \"items\" must be a list of 1 to " + std::to_string(kMaxItems) + " items, found " +
+                       describe(items));
+    for (size_t i = 0; i < items.size(); ++i) m.items.push_back(parse_item(path, items[i], i));
+    if (auto c = j.find("camera"); c != j.end()) m.camera = parse_camera(path, *c, "camera: ");
+    if (auto p = j.find("camera_path"); p != j.end()) {
+        if (!p->is_object()) fail(path, "field \"camera_path\" must be an object, found " + describe(*p));
+        const double frames = get_number(path, *p, "camera_path: ", "frames", "an integer >= 2");
+        if (!(frames >= 2 && frames <= kMaxPathFrames && frames == std::floor(frames)))
+            fail(path, "camera_path: field \"frames\" must be an integer in 2.." + std::to_string(kMaxPathFrames) +
+                           ", found " + fmt_double(frames));
+        m.path_frames = int(frames);
+        const json& keys = required(path, *p, "camera_path: ", "keys", "a list of at least 2 camera keys");
+        if (!keys.is_array() || keys.size() < 2 || keys.size() > kMaxPathKeys)
+            fail(path, "camera_path: field \"keys\" must be a list of 2 to " + std::to_string(kMaxPathKeys) +
+                           " camera keys, found " + describe(keys));
+        for (size_t i = 0; i < keys.size(); ++i)
+            m.path_keys.push_back(parse_camera(path, keys[i], "camera_path: key " + std::to_string(i) + ": "));
+    }
+    return m;
+}
+
+void write_scene_manifest(const std::string& path, const SceneManifest& m) {
+    json items = json::array();
+    for (const SceneItem& it : m.items) {
+        json j;
+        if (it.kind == SceneItem::Kind::relief) {
+            j["type"] = "relief";
+            j["relief"] = relative_to_manifest(path, it.relief_path);
+            json t;
+            if (it.transform.translate != glm::dvec3(0.0)) t["translate"] = vec_json(it.transform.translate);
+            if (!it.transform.rotate.empty()) {
+                json r = json::array();
+                for (const glm::dvec4& q : it.transform.rotate) r.push_back(json::array({q.x, q.y, q.z, q.w}));
+                t["rotate"] = r;
+            }
+            if (it.transform.scale != 1.0) t["scale"] = it.transform.scale;
+            if (!t.empty()) j["transform"] = t;
+        } else {
+            j["type"] = "polygon";
+            json vs = json::array();
+            for (const glm::dvec3& v : it.vertices) vs.push_back(vec_json(v));
+            j["vertices"] = vs;
+            j["color"] = vec_json(it.color);
+        }
+        items.push_back(j);
+    }
+    json out = {{"name", m.name}, {"items", items}};
+    if (m.camera) out["camera"] = camera_json(*m.camera);
+    if (!m.path_keys.empty()) {
+        json keys = json::array();
+        for (const SceneCameraKey& k : m.path_keys) keys.push_back(camera_json(k));
+        out["camera_path"] = {{"frames", m.path_frames}, {"keys", keys}};
+    }
+    write_text_atomic(path, out.dump(2) + "\n");
+}
+
+SceneCameraKey camera_path_frame(const std::vector<SceneCameraKey>& keys, int k, int n) {
+    if (keys.size() < 2) throw std::invalid_argument("a camera path needs at least 2 keys");
+    if (n < 2) throw std::invalid_argument("a camera path needs at least 2 frames, found " + std::to_string(n));
+    if (k < 0 || k >= n)
+        throw std::invalid_argument("frame " + std::to_string(k) + " is outside the path's 0.." + std::to_string(n - 1));
+    const double t = double(k) * double(keys.size() - 1) / double(n - 1);
+    const size_t i = std::min(size_t(t), keys.size() - 2);
+    const double s = t - double(i);
+    auto key = [&](long j) -> const SceneCameraKey& {
+        return keys[size_t(std::clamp(j, 0L, long(keys.size()) - 1))];
+    };
+    // Uniform Catmull-Rom through p1 and p2 with tangents from their neighbours.
+    auto spline = [&](const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p2, const glm::dvec3& p3) {
+        const double s2 = s * s, s3 = s2 * s;
+        return 0.5 * ((2.0 * p1) + (-p0 + p2) * s + (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) * s2 +
+                      (-p0 + 3.0 * p1 - 3.0 * p2 + p3) * s3);
+    };
+    const long li = long(i);
+    SceneCameraKey c;
+    c.eye = spline(key(li - 1).eye, key(li).eye, key(li + 1).eye, key(li + 2).eye);
+    c.look_at = spline(key(li - 1).look_at, key(li).look_at, key(li + 1).look_at, key(li + 2).look_at);
+    c.up = glm::normalize(glm::mix(key(li).up, key(li + 1).up, s));
+    c.fov_deg = key(li).fov_deg + (key(li + 1).fov_deg - key(li).fov_deg) * s;
+    return c;
+}
+
+}  // namespace rtm

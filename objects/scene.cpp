@@ -1,0 +1,121 @@
+#include "objects/scene.h"
+
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "formats/image_io.h"
+#include "formats/relief_manifest.h"
+#include "truth/micromesh.h"
+#include "warp/timing.h"
+
+namespace rtm {
+
+ReliefTexture transform_relief(ReliefTexture t, const glm::dmat4& m) {
+    const glm::dmat3 l(m);
+    const double s = glm::length(l[0]);
+    // A similarity keeps the relief's shape: orthogonal columns of one length, no mirror (which would turn the
+    // displacement direction f against the transformed quad).
+    const double tol = 1e-9 * s;
+    const bool similar = s > 0 && std::abs(glm::length(l[1]) - s) <= tol && std::abs(glm::length(l[2]) - s) <= tol &&
+                         std::abs(glm::dot(l[0], l[1])) <= tol * s && std::abs(glm::dot(l[0], l[2])) <= tol * s &&
+                         std::abs(glm::dot(l[1], l[2])) <= tol * s && glm::determinant(l) > 0;
+    if (!similar)
+        throw std::invalid_argument("a relief's transform must be a rotation, a translation and a uniform scale > 0");
+    t.geometry.origin = glm::dvec3(m * glm::dvec4(t.geometry.origin, 1.0));
+    t.geometry.a = l * t.geometry.a;
+    t.geometry.b = l * t.geometry.b;
+    if (s != 1.0) {
+        t.quant = Quantizer::from_range(t.quant.min * s, t.quant.max * s);
+        for (float& d : t.displacement) d = float(double(d) * s);
+        t.discontinuity_threshold *= s;
+    }
+    return t;
+}
+
+Scene Scene::load(const std::string& manifest_path) { return Scene(parse_scene_manifest(manifest_path)); }
+
+Scene::Scene(SceneManifest manifest) : manifest_(std::move(manifest)) {
+    std::map<std::string, ReliefTexture> loaded;  // each relief file read once
+    for (size_t i = 0; i < manifest_.items.size(); ++i) {
+        const SceneItem& item = manifest_.items[i];
+        if (item.kind == SceneItem::Kind::polygon) {
+            polygons_.push_back({item.vertices, item.color});
+            continue;
+        }
+        auto it = loaded.find(item.relief_path);
+        if (it == loaded.end()) it = loaded.emplace(item.relief_path, load_relief(item.relief_path)).first;
+        try {
+            quads_.emplace_back(transform_relief(it->second, item.transform.matrix()));
+        } catch (const std::invalid_argument& e) {
+            throw IoError(manifest_.path + ": item " + std::to_string(i) + ": " + e.what());
+        }
+    }
+    for (const ScenePolygon& p : polygons_) {
+        const auto base = uint32_t(polygon_vertices_.size());
+        const glm::u8vec4 c(glm::u8vec4(glm::round(glm::clamp(p.color, 0.0, 1.0) * 255.0), 255));
+        for (const glm::dvec3& v : p.vertices) polygon_vertices_.push_back({glm::vec3(v), c});
+        for (uint32_t k = 1; k + 1 < p.vertices.size(); ++k)
+            polygon_indices_.insert(polygon_indices_.end(), {base, base + k, base + k + 1});
+    }
+}
+
+Bounds Scene::bounds() const {
+    Bounds b;
+    for (const ReliefQuad& q : quads_) b.extend(relief_bounds(q.relief()));
+    for (const ScenePolygon& p : polygons_)
+        for (const glm::dvec3& v : p.vertices) b.extend(v);
+    return b;
+}
+
+void Scene::draw(Renderer& renderer, const Camera& cam, RenderMethod method, const PrewarpOptions& options,
+                 const DrawOptions& draw, SceneFrameReport& report) {
+    if (method == RenderMethod::raycast)
+        throw std::invalid_argument("method raycast traces one relief, not a scene: use micromesh as the truth");
+    const auto t0 = Clock::now();
+    report.quads = int(quads_.size());
+    report.quad_skips.assign(quads_.size(), {});
+    renderer.begin_frame(cam);
+    if (!polygon_indices_.empty()) {
+        const auto tp = Clock::now();
+        renderer.draw_mesh(cam, polygon_vertices_, polygon_indices_);
+        report.times.texture_map_ms += ms_since(tp);
+    }
+    for (size_t qi = 0; qi < quads_.size(); ++qi) {
+        ReliefQuad& quad = quads_[qi];
+        if (method == RenderMethod::micromesh) {
+            const auto tm = Clock::now();
+            const MicroMesh& mesh = quad.micromesh();
+            renderer.draw_mesh(cam, mesh.vertices, mesh.indices);
+            report.times.texture_map_ms += ms_since(tm);
+            ++report.drawn;
+            continue;
+        }
+        StageTimes st;
+        DrawReport dr;
+        quad.draw(renderer, cam, method, options, st, draw, &dr);
+        report.times.prewarp_ms += st.prewarp_ms;
+        report.times.upload_ms += st.upload_ms;
+        report.times.texture_map_ms += st.texture_map_ms;
+        report.quad_skips[qi] = dr.skips;
+        bool hidden = false, not_warped = method == RenderMethod::flat;
+        for (const std::string& s : dr.skips) {
+            ++report.skips[s];
+            if (s == kSkipBackFacing || s == kSkipOutsideFrustum) hidden = true;
+            if (s == kSkipSubpixelParallax || s == kSkipReuse || s == kSkipInsideSlab) not_warped = true;
+        }
+        if (hidden) continue;
+        ++report.drawn;
+        if (!not_warped) {
+            ++report.prewarped;
+            const ReliefTexture& lv = quad.level(dr.level);
+            report.texels_warped += (long long)lv.width * lv.height;
+        }
+    }
+    renderer.finish();
+    report.times.total_ms += ms_since(t0);
+}
+
+}  // namespace rtm

@@ -1,0 +1,63 @@
+// A scene: relief quads and plain polygons in one world and one depth buffer (paper sections 1 and 4.4). Each
+// relief quad is drawn by ReliefQuad::draw with its own skips (back-facing, outside the frustum, sub-pixel
+// parallax, reuse of the last pre-warp, ...), so a frame costs what the view needs; depth correction (section 4.2)
+// is on by default, so reliefs and polygons occlude each other where their perceived surfaces do.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "formats/scene_manifest.h"
+#include "objects/bounds.h"
+#include "objects/relief_quad.h"
+#include "texmap/renderer.h"
+
+namespace rtm {
+
+// A relief texture placed by a similarity transform: origin, a and b move with it, displacements scale with it.
+// Throws std::invalid_argument when the transform does not keep the relief's shape (shear or unequal scale).
+ReliefTexture transform_relief(ReliefTexture t, const glm::dmat4& m);
+
+struct ScenePolygon {
+    std::vector<glm::dvec3> vertices;  // 3 or 4, convex, planar
+    glm::dvec3 color{0.5};
+};
+
+// What one frame of a scene did, for --json and the benchmarks.
+struct SceneFrameReport {
+    int quads = 0;       // relief quads in the scene
+    int drawn = 0;       // relief quads drawn (as relief or as a plain texture)
+    int prewarped = 0;   // relief quads pre-warped this frame
+    long long texels_warped = 0;           // texels of the levels pre-warped this frame
+    std::map<std::string, int> skips;      // skip name -> quads it fired for
+    std::vector<std::vector<std::string>> quad_skips;  // per relief quad, in manifest order: the skips that fired
+    StageTimes times;
+};
+
+class Scene {
+public:
+    // Reads the manifest and every relief it names (each relief file read once, however many items share it).
+    static Scene load(const std::string& manifest_path);
+    explicit Scene(SceneManifest manifest);
+
+    const SceneManifest& manifest() const { return manifest_; }
+    Bounds bounds() const;
+    std::vector<ReliefQuad>& quads() { return quads_; }
+    const std::vector<ScenePolygon>& polygons() const { return polygons_; }
+
+    // One frame into the current framebuffer (begin_frame included). `method`: flat, two_pass, pipelined or
+    // micromesh (every relief replaced by its micro-polygon mesh: the ground truth). raycast is refused
+    // (std::invalid_argument): the ray caster traces one height field, not a scene.
+    void draw(Renderer& renderer, const Camera& cam, RenderMethod method, const PrewarpOptions& options,
+              const DrawOptions& draw, SceneFrameReport& report);
+
+private:
+    SceneManifest manifest_;
+    std::vector<ReliefQuad> quads_;
+    std::vector<ScenePolygon> polygons_;
+    std::vector<MeshVertex> polygon_vertices_;
+    std::vector<uint32_t> polygon_indices_;
+};
+
+}  // namespace rtm

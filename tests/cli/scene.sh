@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# rtm render --scene: the default camera, a CAMERA, a frame of the camera path, every frame into a folder, the
+# --json counts, and the errors (one line, exit 1 for bad files, 2 for bad usage, no partial output).
+. "$(dirname "$0")/lib.bash"
+cat >"$T/s.scene.json" <<JSON
+{ "name": "s",
+  "items": [ { "type": "relief", "relief": "$SRC/media/bumps.relief.json" },
+             { "type": "relief", "relief": "$SRC/media/bricks.relief.json",
+               "transform": { "translate": [1.2, 0, 0], "rotate": [0, 1, 0, -30], "scale": 0.8 } },
+             { "type": "polygon", "vertices": [[-1, -0.6, 1], [2, -0.6, 1], [2, -0.6, -1], [-1, -0.6, -1]],
+               "color": [0.4, 0.4, 0.4] } ],
+  "camera": { "eye": [0.5, 0.4, 2.5], "look_at": [0.5, 0, 0] },
+  "camera_path": { "frames": 3, "keys": [ { "eye": [0, 0.3, 2], "look_at": [0, 0, 0] },
+                                          { "eye": [1.5, 0.3, 2], "look_at": [1, 0, 0], "fov": 50 } ] } }
+JSON
+S=$T/s.scene.json
+expect_ok render --scene "$S" --size 96x64 --out "$T/default.png" --json "$T/default.json"
+expect_ok render --scene "$S" --orbit 20,10,2 --size 96x64 --method flat --out "$T/flat.png"
+expect_ok render --scene "$S" --camera-path 1 --size 96x64 --method micromesh --out "$T/truth.png"
+expect_ok render --scene "$S" --size 96x64 --frames "$T/frames" --json "$T/frames.json"
+for k in 0 1 2; do
+  [ -s "$T/frames/frame_000$k.png" ] && passes=$((passes + 1)) || { echo "FAIL: frame $k missing"; fails=$((fails + 1)); }
+done
+# The JSON: counts per frame, stage times over the frames.
+if python3 - "$T/default.json" "$T/frames.json" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1])); f = json.load(open(sys.argv[2]))
+assert d["quads"] == 2 and d["quads_drawn"] <= 2 and d["quads_prewarped"] <= d["quads_drawn"], d
+assert d["texels_warped"] in (0, 256 * 256, 2 * 256 * 256), d["texels_warped"]
+for k in ("prewarp_ms", "upload_ms", "texture_map_ms", "total_ms"):
+    assert d[k]["count"] == 1 and f[k]["count"] == 3, k
+assert len(f["frames"]) == 3 and all(x["quads"] == 2 for x in f["frames"])
+PY
+then passes=$((passes + 1)); else echo "FAIL: scene JSON"; fails=$((fails + 1)); fi
+
+expect_fail 2 "raycast" -- render --scene "$S" --method raycast --out "$T/x.png"
+expect_fail 2 "camera-path" -- render --scene "$S" --camera-path 3 --out "$T/x.png"
+expect_fail 2 "frames" -- render --scene "$S" --frames "$T/f2" --eye 0,0,3
+expect_fail 2 "scene" -- render --relief "$SRC/media/bumps.relief.json" --camera-path 0 --out "$T/x.png"
+expect_fail 1 "missing.scene.json" -- render --scene "$T/missing.scene.json" --out "$T/x.png"
+printf '{"items": [{"type": "polygon", "vertices": [[0,0,0],[1,0,0]]}]}' >"$T/bad.scene.json"
+expect_fail 1 "bad.scene.json: item 0: .*vertices" -- render --scene "$T/bad.scene.json" --out "$T/x.png"
+printf '{"items": [{"type": "relief", "relief": "nope.relief.json"}]}' >"$T/nofile.scene.json"
+expect_fail 1 "nope.relief.json" -- render --scene "$T/nofile.scene.json" --out "$T/x.png"
+printf '{"items": [{"type": "polygon", "vertices": [[0,0,0],[1,0,0],[1,1,0]]}]}' >"$T/nocam.scene.json"
+expect_fail 2 "no default camera" -- render --scene "$T/nocam.scene.json" --out "$T/x.png"
+[ ! -e "$T/x.png" ] && passes=$((passes + 1)) || { echo "FAIL: partial output left"; fails=$((fails + 1)); }
+finish

@@ -1,0 +1,157 @@
+// NAME.scene.json: the write -> parse round trip, the camera path's interpolation, and hostile scenes: one IoError
+// line that starts with the manifest's path and names the item and the field.
+#include "formats/scene_manifest.h"
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "common/temp_dir.h"
+#include "formats/image_io.h"
+
+namespace rtm {
+namespace {
+
+using objects_testing::TempDir;
+using objects_testing::write_file;
+
+SceneManifest sample(const std::string& dir) {
+    SceneManifest m;
+    m.path = dir + "/s.scene.json";
+    m.name = "s";
+    SceneItem r;
+    r.kind = SceneItem::Kind::relief;
+    r.relief_path = dir + "/media/wall.relief.json";
+    r.transform.translate = {1, 2, 3};
+    r.transform.rotate = {{0, 1, 0, 90}, {1, 0, 0, -30}};
+    r.transform.scale = 0.5;
+    m.items.push_back(r);
+    SceneItem p;
+    p.kind = SceneItem::Kind::polygon;
+    p.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 0, -1}, {0, 0, -1}};
+    p.color = {0.25, 0.5, 1.0};
+    m.items.push_back(p);
+    m.camera = SceneCameraKey{{0, 1, 5}, {0, 0, 0}, {0, 1, 0}, 50};
+    m.path_keys = {{{0, 1, 5}, {0, 0, 0}, {0, 1, 0}, 40}, {{5, 1, 5}, {5, 0, 0}, {0, 1, 0}, 60}};
+    m.path_frames = 30;
+    return m;
+}
+
+TEST(SceneManifest, RoundTrip) {
+    TempDir dir;
+    const SceneManifest m = sample(dir.path().string());
+    write_scene_manifest(m.path, m);
+    const SceneManifest r = parse_scene_manifest(m.path);
+    EXPECT_EQ(r.name, "s");
+    ASSERT_EQ(r.items.size(), 2u);
+    EXPECT_EQ(r.items[0].relief_path, m.items[0].relief_path);
+    EXPECT_EQ(r.items[0].transform.translate, m.items[0].transform.translate);
+    ASSERT_EQ(r.items[0].transform.rotate.size(), 2u);
+    EXPECT_EQ(r.items[0].transform.rotate[1], m.items[0].transform.rotate[1]);
+    EXPECT_EQ(r.items[0].transform.scale, 0.5);
+    EXPECT_EQ(r.items[1].vertices, m.items[1].vertices);
+    EXPECT_EQ(r.items[1].color, m.items[1].color);
+    ASSERT_TRUE(r.camera.has_value());
+    EXPECT_EQ(r.camera->eye, m.camera->eye);
+    EXPECT_EQ(r.path_frames, 30);
+    ASSERT_EQ(r.path_keys.size(), 2u);
+    EXPECT_EQ(r.path_keys[1].fov_deg, 60.0);
+}
+
+TEST(SceneManifest, TransformIsTranslateRotateScale) {
+    SceneTransform t;
+    t.translate = {1, 2, 3};
+    t.rotate = {{0, 1, 0, 90}, {1, 0, 0, 90}};  // about y first, then about x
+    t.scale = 2;
+    const glm::dvec3 p = glm::dvec3(t.matrix() * glm::dvec4(1, 0, 0, 1));
+    // scale: (2,0,0); about y by 90: (0,0,-2); about x by 90: (0,2,0); translate: (1,4,3).
+    EXPECT_NEAR(p.x, 1, 1e-12);
+    EXPECT_NEAR(p.y, 4, 1e-12);
+    EXPECT_NEAR(p.z, 3, 1e-12);
+}
+
+TEST(SceneManifest, CameraPathPassesThroughItsKeys) {
+    std::vector<SceneCameraKey> keys = {{{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 40},
+                                        {{1, 0, 0}, {1, 0, -1}, {0, 1, 0}, 50},
+                                        {{2, 1, 0}, {2, 1, -1}, {0, 1, 0}, 60}};
+    // 5 frames over 3 keys: frames 0, 2 and 4 are the keys themselves (Catmull-Rom interpolates).
+    for (int k : {0, 2, 4}) {
+        const SceneCameraKey c = camera_path_frame(keys, k, 5);
+        EXPECT_NEAR(glm::length(c.eye - keys[size_t(k / 2)].eye), 0.0, 1e-12) << "frame " << k;
+        EXPECT_NEAR(c.fov_deg, keys[size_t(k / 2)].fov_deg, 1e-12);
+    }
+    const SceneCameraKey mid = camera_path_frame(keys, 1, 5);
+    EXPECT_NEAR(mid.fov_deg, 45.0, 1e-12);  // linear in fov
+    EXPECT_GT(mid.eye.x, 0.0);
+    EXPECT_LT(mid.eye.x, 1.0);
+    EXPECT_THROW(camera_path_frame(keys, 5, 5), std::invalid_argument);
+    EXPECT_THROW(camera_path_frame(keys, 0, 1), std::invalid_argument);
+    EXPECT_THROW(camera_path_frame({keys[0]}, 0, 2), std::invalid_argument);
+}
+
+struct Hostile {
+    const char* label;
+    const char* json;
+    std::vector<std::string> parts;  // what the message must name
+};
+
+TEST(SceneManifest, HostileScenesGiveOneLineNamingTheField) {
+    const std::vector<Hostile> cases = {
+        {"not an object", "[1, 2]", {"JSON object"}},
+        {"truncated", R"({"items": [)", {"truncated"}},
+        {"no items", R"({"name": "x"})", {"\"items\"", "missing"}},
+        {"empty items", R"({"items": []})", {"\"items\""}},
+        {"unknown type", R"({"items": [{"type": "teapot"}]})", {"item 0", "\"type\"", "teapot"}},
+        {"relief without file", R"({"items": [{"type": "relief"}]})", {"item 0", "\"relief\""}},
+        {"nan translate",
+         R"({"items": [{"type": "relief", "relief": "a.relief.json", "transform": {"translate": [0, "x", 0]}}]})",
+         {"item 0", "translate"}},
+        {"zero scale", R"({"items": [{"type": "relief", "relief": "a.json", "transform": {"scale": 0}}]})",
+         {"item 0", "scale"}},
+        {"zero axis", R"({"items": [{"type": "relief", "relief": "a.json", "transform": {"rotate": [0, 0, 0, 30]}}]})",
+         {"item 0", "axis"}},
+        {"two vertices", R"({"items": [{"type": "polygon", "vertices": [[0,0,0],[1,0,0]]}]})", {"item 0", "vertices"}},
+        {"collinear", R"({"items": [{"type": "polygon", "vertices": [[0,0,0],[1,0,0],[2,0,0]]}]})",
+         {"item 0", "collinear"}},
+        {"off plane", R"({"items": [{"type": "polygon", "vertices": [[0,0,0],[1,0,0],[1,1,0],[0,1,1]]}]})",
+         {"item 0", "off the plane"}},
+        {"colour range", R"({"items": [{"type": "polygon", "vertices": [[0,0,0],[1,0,0],[1,1,0]], "color": [2,0,0]}]})",
+         {"item 0", "color"}},
+        {"second item bad", R"({"items": [{"type": "polygon", "vertices": [[0,0,0],[1,0,0],[1,1,0]]}, 7]})",
+         {"item 1"}},
+        {"camera eye at look_at",
+         R"({"items": [{"type": "relief", "relief": "a.json"}], "camera": {"eye": [1,1,1], "look_at": [1,1,1]}})",
+         {"camera", "same point"}},
+        {"camera fov", R"({"items": [{"type": "relief", "relief": "a.json"}],
+                          "camera": {"eye": [0,0,1], "look_at": [0,0,0], "fov": 190}})",
+         {"camera", "fov"}},
+        {"path one frame", R"({"items": [{"type": "relief", "relief": "a.json"}], "camera_path": {"frames": 1,
+                              "keys": [{"eye": [0,0,1], "look_at": [0,0,0]}, {"eye": [1,0,1], "look_at": [0,0,0]}]}})",
+         {"camera_path", "frames"}},
+        {"path one key", R"({"items": [{"type": "relief", "relief": "a.json"}], "camera_path": {"frames": 10,
+                             "keys": [{"eye": [0,0,1], "look_at": [0,0,0]}]}})",
+         {"camera_path", "keys"}},
+    };
+    TempDir dir;
+    for (const Hostile& h : cases) {
+        SCOPED_TRACE(h.label);
+        const std::string path = (dir.path() / "bad.scene.json").string();
+        write_file(path, h.json);
+        try {
+            parse_scene_manifest(path);
+            ADD_FAILURE() << "no exception";
+        } catch (const IoError& e) {
+            const std::string msg = e.what();
+            EXPECT_EQ(msg.rfind(path + ": ", 0), 0u) << msg;
+            EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+            for (const std::string& p : h.parts) EXPECT_NE(msg.find(p), std::string::npos) << p << " not in: " << msg;
+        }
+    }
+    EXPECT_THROW(parse_scene_manifest((dir.path() / "missing.scene.json").string()), IoError);
+}
+
+}  // namespace
+}  // namespace rtm
