@@ -4,6 +4,7 @@
 #include <string>
 
 #include "cli_common.h"
+#include "formats/image_io.h"
 
 namespace {
 
@@ -19,6 +20,8 @@ std::string one_line(const char* what) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    // One line on stderr per failure: libpng's own copy of a read error must not reach it.
+    rtm::set_quiet_image_library_stderr(true);
     CLI::App app{"rtm: relief texture mapping (Oliveira, Bishop, McAllister 2000)", "rtm"};
     app.require_subcommand(1);
     rtm::cli::add_prewarp_command(app);
