@@ -15,9 +15,8 @@
 #include "formats/image_io.h"
 
 int main(int argc, char** argv) {
-    CLI::App app{
-        "Writes the procedural relief textures (bricks, facade, bumps, ridges) as DIR/NAME.relief.json "
-        "plus colour and displacement images."};
+    CLI::App app{"Writes the procedural relief textures (" + rtm::procedural_names_list() +
+                 ") as DIR/NAME.relief.json plus colour and displacement images."};
     std::string out;
     int size = 256;
     app.add_option("--out", out, "Output folder (created if missing)")->required();
