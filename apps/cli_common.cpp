@@ -10,7 +10,9 @@
 #include <fstream>
 #include <sstream>
 
+#include "formats/atomic_file.h"
 #include "procedural/procedural_media.h"
+#include "texmap/camera_rig.h"
 #include "warp/timing.h"
 #include "formats/image_io.h"
 
@@ -65,7 +67,7 @@ std::vector<std::string> parse_relief_names(const std::string& text, const std::
     std::stringstream ss(text);
     for (std::string item; std::getline(ss, item, ',');) {
         if (std::find(known.begin(), known.end(), item) == known.end())
-            throw UsageError(flag + ": unknown relief \"" + item + "\"; known: bricks, facade, bumps, ridges");
+            throw UsageError(flag + ": unknown relief \"" + item + "\"; known: " + procedural_names_list());
         out.push_back(item);
     }
     if (out.empty()) throw UsageError(flag + ": expected at least one relief name");
@@ -110,9 +112,7 @@ Camera CameraArgs::resolve(const Bounds& bounds) const {
     } else if (!orbit.empty()) {
         const glm::dvec3 o = parse_vec3(orbit, "--orbit");
         if (!(o.z > 0.0)) throw UsageError("--orbit: distance D must be > 0, found \"" + orbit + "\"");
-        const double az = glm::radians(o.x), el = glm::radians(o.y);
-        const double r = std::max(bounds.radius(), 1e-12) * o.z;
-        cam.eye = centre + r * glm::dvec3(std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el));
+        cam.eye = orbit_eye(centre, bounds.radius(), {o.x, o.y, o.z});
     } else {
         throw UsageError("a camera needs --eye X,Y,Z or --orbit AZ,EL,D");
     }
@@ -135,21 +135,21 @@ Camera CameraArgs::resolve(const Bounds& bounds) const {
             "--look-at: " + std::string(look_at.empty() ? "the default, the centre of what is rendered, " : "") +
             fmt(cam.look_at) + " has a coordinate beyond +-1e30");
     if (too_far(cam.up)) throw UsageError("--up: " + fmt(cam.up) + " has a coordinate beyond +-1e30");
-    // Camera::validate() is the one judge of a usable camera; its message is prefixed with the flag to change.
-    if (std::string why = cam.validate(); !why.empty()) {
+    // Camera::check() is the one judge of a usable camera; it names the setting, which names the flag.
+    if (const CameraProblem p = cam.check(); p.field != CameraField::none) {
         const std::string eye_flag = eye.empty() ? "--orbit" : "--eye";
         std::string flag = "camera";
-        if (why.rfind("up ", 0) == 0)
-            flag = "--up";
-        else if (why.find("equals look-at") != std::string::npos)
-            flag = eye_flag + (look_at.empty() ? "" : " and --look-at");
-        else if (why.rfind("eye ", 0) == 0)
-            flag = eye_flag;
-        else if (why.rfind("look-at ", 0) == 0)
-            flag = "--look-at";
-        else if (why.rfind("fov ", 0) == 0)
-            flag = "--fov";
-        throw UsageError(flag + ": " + why);
+        switch (p.field) {
+            case CameraField::eye: flag = eye_flag; break;
+            case CameraField::look_at: flag = "--look-at"; break;
+            case CameraField::eye_and_look_at: flag = eye_flag + (look_at.empty() ? "" : " and --look-at"); break;
+            case CameraField::up: flag = "--up"; break;
+            case CameraField::fov: flag = "--fov"; break;
+            case CameraField::none:
+            case CameraField::size:
+            case CameraField::clip_planes: break;
+        }
+        throw UsageError(flag + ": " + p.message);
     }
     cam.fit_clip_planes(centre, std::max(bounds.radius(), 1e-12));
     return cam;
@@ -163,34 +163,13 @@ void check_output_file(const std::string& path, const std::string& flag) {
     if (!fs::is_directory(dir, ec))
         throw IoError(flag + " " + path + ": cannot write: folder " + dir.string() + " does not exist");
     if (fs::is_directory(p, ec)) throw IoError(flag + " " + path + ": cannot write: it is a folder");
-    // The temporary file write_json uses, created and removed: the folder takes new files.
-    const std::string probe = path + ".tmp";
-    const bool existed = fs::exists(probe, ec);
-    {
-        std::ofstream f(probe, std::ios::app);
-        if (!f) throw IoError(flag + " " + path + ": cannot write in folder " + dir.string());
-    }
-    if (!existed) fs::remove(probe, ec);
+    // A temporary file as write_json makes one, created and removed: the folder takes new files.
+    const AtomicFile probe(path);
+    if (!std::ofstream(probe.temp_path()))
+        throw IoError(flag + " " + path + ": cannot write in folder " + dir.string());
 }
 
-void write_json(const std::string& path, const nlohmann::json& j) {
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream f(tmp);
-        if (!f) throw IoError(path + ": cannot write");
-        f << j.dump(2) << "\n";
-        if (!f) {
-            std::filesystem::remove(tmp);
-            throw IoError(path + ": write failed");
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::filesystem::remove(tmp);
-        throw IoError(path + ": cannot write: " + ec.message());
-    }
-}
+void write_json(const std::string& path, const nlohmann::json& j) { write_text_atomically(path, j.dump(2) + "\n"); }
 
 nlohmann::json timing_json(std::vector<double> ms) {
     if (ms.empty()) return {{"min", 0.0}, {"median", 0.0}, {"mean", 0.0}, {"count", 0}};

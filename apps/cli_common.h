@@ -41,7 +41,7 @@ struct CameraArgs {
     bool has_eye() const { return !eye.empty() || !orbit.empty(); }
 };
 
-// Writes JSON atomically (temporary file + rename).
+// Writes JSON atomically (write_text_atomically, formats/atomic_file.h).
 void write_json(const std::string& path, const nlohmann::json& j);
 // For a long job that writes `path` at its end: throws IoError naming the file (given by `flag`) if its folder does
 // not exist or cannot be written, so that the job does not run for nothing.

@@ -3,9 +3,11 @@
 #include <cstdio>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 
 #include "cli_common.h"
 #include "measure/bench.h"
+#include "objects/render_method.h"
 
 namespace rtm::cli {
 
@@ -42,12 +44,11 @@ void run_bench_command(const BenchArgs& a) {
         c.methods.clear();
         std::stringstream ss(a.methods);
         for (std::string item; std::getline(ss, item, ',');) {
-            if (item == "two-pass")
-                c.methods.push_back(Reconstruction::two_pass);
-            else if (item == "pipelined")
-                c.methods.push_back(Reconstruction::pipelined);
-            else
-                throw UsageError("--methods: unknown reconstruction \"" + item + "\"; known: two-pass, pipelined");
+            try {
+                c.methods.push_back(parse_reconstruction(item));
+            } catch (const std::invalid_argument& e) {
+                throw UsageError(std::string("--methods: ") + e.what());
+            }
         }
     }
     if (a.min_time_given) {

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "cli_common.h"
+#include "formats/atomic_file.h"
 #include "measure/compare.h"
 #include "formats/relief_manifest.h"
 #include "formats/image_io.h"
@@ -60,13 +61,7 @@ void run_compare(const CompareArgs& a) {
                       std::isfinite(r.vs_micromesh.psnr) ? nlohmann::json(r.vs_micromesh.psnr) : nlohmann::json(nullptr)},
                      {"iou_vs_micromesh", r.vs_micromesh.iou}});
     write_json(a.out + "/compare.json", {{"relief", a.relief}, {"rows", j}});
-    const std::string mdpath = a.out + "/compare.md";
-    {
-        std::ofstream f(mdpath + ".tmp");
-        f << md;
-        if (!f) throw IoError(mdpath + ": write failed");
-    }
-    std::filesystem::rename(mdpath + ".tmp", mdpath);
+    write_text_atomically(a.out + "/compare.md", md);
     std::printf("%s", md.c_str());
 }
 

@@ -3,13 +3,16 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <stdexcept>
 
 #include "cli_common.h"
 #include "cmd_object.h"
 #include "objects/bounds.h"
 #include "formats/relief_manifest.h"
 #include "objects/relief_quad.h"
+#include "objects/render_method.h"
 #include "formats/image_io.h"
+#include "texmap/camera_rig.h"
 #include "warp/prewarp.h"
 
 namespace rtm::cli {
@@ -29,12 +32,12 @@ void run_prewarp(const PrewarpArgs& a) {
                                    a.threads});
     const glm::dvec3 eye = parse_vec3(a.eye, "--eye");
     PrewarpOptions opt;
-    if (a.method == "two-pass")
-        opt.method = Reconstruction::two_pass;
-    else if (a.method == "pipelined")
-        opt.method = Reconstruction::pipelined;
-    else
-        throw UsageError("--method: unknown method \"" + a.method + "\" for prewarp; known: two-pass, pipelined");
+    try {
+        opt.method = parse_reconstruction(a.method);
+    } catch (const std::invalid_argument&) {
+        throw UsageError("--method: unknown method \"" + a.method + "\" for prewarp; known: " +
+                         reconstruction_names_list());
+    }
     const int level_arg = parse_level(a.level);
     if (a.repeat < 1) throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
     if (a.threads < 0) throw UsageError("--threads: expected N >= 0, found " + std::to_string(a.threads));
@@ -45,10 +48,8 @@ void run_prewarp(const PrewarpArgs& a) {
     ReliefQuad quad(load_relief(a.relief));
     int level = level_arg;
     if (level < 0) {  // auto: the level for a 512x512, 45-degree view from the eye towards the relief's centre
-        Camera cam;
-        cam.eye = eye;
-        cam.look_at = relief_bounds(quad.relief()).centre();
-        if (!cam.validate().empty()) cam.look_at = eye - quad.relief().geometry.f();
+        Camera cam = aimed_camera(eye, relief_bounds(quad.relief()).centre(), 512, 512);
+        if (!cam.validate().empty()) cam = aimed_camera(eye, eye - quad.relief().geometry.f(), 512, 512);
         level = quad.auto_level(cam);
     }
     level = std::min(level, quad.levels() - 1);
@@ -65,12 +66,13 @@ void run_prewarp(const PrewarpArgs& a) {
     }
     write_rgba8(a.out, out);
     if (!a.json.empty()) {
-        // Texels at zero displacement do not move and are copied without the warp arithmetic (skip
-        // "zero-displacement-runs"); the generic kernels count them, the fast kernels copy without counting.
-        const bool copies = opt.copy_still_runs && opt.filter == Filter::point;
-        const long long still = copies ? count_still_texels(relief, opt.exact) : 0;
+        // Texels at zero displacement do not move and are copied without the warp arithmetic: the skip
+        // "zero-displacement-runs", by the rule ReliefQuad::draw reports it with (objects/frame_plan.h).
+        const long long all_still = opt.copy_still_runs ? count_still_texels(relief, opt.exact) : 0;
+        const bool fired = zero_runs_fired(relief, k, opt, stats, all_still, nullptr);
+        const long long still = fired ? all_still : 0;
         nlohmann::json skips = nlohmann::json::array();
-        if (still > 0) skips.push_back("zero-displacement-runs");
+        if (fired) skips.push_back(kSkipZeroRuns);
         static const char* sides[] = {"front", "on_plane", "behind"};
         nlohmann::json j = {
             {"command", "prewarp"},

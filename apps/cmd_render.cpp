@@ -99,7 +99,7 @@ void run_render(const RenderArgs& a) {
     std::unique_ptr<GlContext> ctx;
     std::unique_ptr<Renderer> renderer;
     if (method != RenderMethod::raycast) {
-        ctx = GlContext::create_offscreen(cam.width, cam.height);
+        ctx = GlContext::create_offscreen(cam.width, cam.height, {.pin_llvmpipe_threads = true});
         renderer = std::make_unique<Renderer>();
     }
     // One warm-up frame when repeating (not for raycast, which is slow and has no state to warm).

@@ -14,10 +14,9 @@
 #include "objects/bounds.h"
 #include "formats/relief_manifest.h"
 #include "objects/render_relief.h"
+#include "texmap/camera_rig.h"
 #include "texmap/gl_context.h"
 #include "formats/image_io.h"
-
-#include <glm/trigonometric.hpp>
 
 namespace rtm::cli {
 
@@ -52,7 +51,8 @@ void run_view(const ViewArgs& a) {
     }
     const bool use_orbit = ca.eye.empty();
 
-    auto ctx = GlContext::create_window(cam.width, cam.height, "rtm view: " + a.relief, a.frames == 0);
+    auto ctx = GlContext::create_window(cam.width, cam.height, "rtm view: " + a.relief, a.frames == 0,
+                                        {.pin_llvmpipe_threads = true});
     Renderer renderer;
     GLFWwindow* win = static_cast<GLFWwindow*>(ctx->native_window());
     glfwSetWindowUserPointer(win, &orbit);
@@ -105,10 +105,7 @@ void run_view(const ViewArgs& a) {
         // The coverage filter exists for the two-pass reconstruction only.
         rs.prewarp.filter = coverage && rs.method == RenderMethod::two_pass ? Filter::coverage : Filter::point;
         if (use_orbit) {
-            const double az = glm::radians(orbit.az), el = glm::radians(orbit.el);
-            cam.eye = bounds.centre() + std::max(bounds.radius(), 1e-12) * orbit.dist *
-                                            glm::dvec3(std::sin(az) * std::cos(el), std::sin(el),
-                                                       std::cos(az) * std::cos(el));
+            cam.eye = orbit_eye(bounds.centre(), bounds.radius(), {orbit.az, orbit.el, orbit.dist});
             cam.fit_clip_planes(bounds.centre(), std::max(bounds.radius(), 1e-12));
         }
         cam.width = ctx->width();

@@ -19,9 +19,9 @@
 #include "formats/image_io.h"
 
 int main(int argc, char** argv) {
-    CLI::App app{
-        "Writes the procedural relief textures (bricks, facade, bumps, ridges) as DIR/NAME.relief.json "
-        "plus colour and displacement images, and the relief town DIR/town.scene.json."};
+    CLI::App app{"Writes the procedural relief textures (" + rtm::procedural_names_list() +
+                 ") as DIR/NAME.relief.json plus colour and displacement images, the six-face objects "
+                 "DIR/NAME.object.json and the relief town DIR/town.scene.json."};
     std::string out;
     int size = 256, object_size = 64;
     app.add_option("--out", out, "Output folder (created if missing)")->required();

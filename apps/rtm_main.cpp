@@ -5,6 +5,7 @@
 
 #include "cli_common.h"
 #include "rtm_version.h"
+#include "formats/image_io.h"
 
 namespace {
 
@@ -20,6 +21,8 @@ std::string one_line(const char* what) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    // One line on stderr per failure: libpng's own copy of a read error must not reach it.
+    rtm::set_quiet_image_library_stderr(true);
     CLI::App app{"rtm: relief texture mapping (Oliveira, Bishop, McAllister 2000)", "rtm"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "rtm " RTM_VERSION, "Print the version (rtm X.Y.Z) and exit");

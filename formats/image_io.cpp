@@ -29,6 +29,8 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include "formats/atomic_file.h"
+
 namespace rtm {
 namespace {
 
@@ -60,13 +62,18 @@ std::string one_line(const std::string& s) {
     return out;
 }
 
+std::atomic<bool> g_quiet_stderr{false};
+
 // libpng reports a corrupt file through OpenImageIO's error handler (which we turn into the IoError message) and
-// then prints the same text as "libpng error: ..." on stderr itself, because OpenImageIO's handler returns. The
-// command line promises one line on stderr per failure, so file reads and writes run with stderr pointed at
-// /dev/null. The mutex keeps concurrent readers from restoring each other's descriptor out of order.
+// then prints the same text as "libpng error: ..." on stderr itself, because OpenImageIO's handler returns. When the
+// program opted in (set_quiet_image_library_stderr), an OpenImageIO call runs inside one of these, with stderr
+// pointed at /dev/null; else it does nothing. The mutex keeps concurrent readers from restoring each other's
+// descriptor out of order.
 class QuietStderr {
 public:
-    QuietStderr() : lock_(mutex()) {
+    QuietStderr() {
+        if (!g_quiet_stderr.load()) return;
+        lock_ = std::unique_lock<std::mutex>(mutex());
         std::fflush(stderr);
         saved_ = ::dup(STDERR_FILENO);
         int devnull = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
@@ -74,6 +81,7 @@ public:
         if (devnull >= 0) ::close(devnull);
     }
     ~QuietStderr() {
+        if (!lock_.owns_lock()) return;
         std::fflush(stderr);
         if (saved_ >= 0) {
             ::dup2(saved_, STDERR_FILENO);
@@ -88,7 +96,7 @@ private:
         static std::mutex m;
         return m;
     }
-    std::lock_guard<std::mutex> lock_;
+    std::unique_lock<std::mutex> lock_;
     int saved_ = -1;
 };
 
@@ -291,21 +299,6 @@ void read_channels(const std::string& path, OpenedImage& im, int nch, int out_nc
     if (im.in->has_error()) fail(path, "cannot read pixels: " + one_line(im.in->geterror()));
 }
 
-// Temporary file beside `path`, unique per process and call.
-std::string temp_name_for(const std::string& path) {
-    static std::atomic<unsigned> counter{0};
-    fs::path p(path);
-    fs::path dir = p.parent_path();
-    // Built with += : GCC 12 gives a false -Wrestrict warning for "." + std::string&&.
-    std::string name = ".";
-    name += p.filename().string();
-    name += ".tmp";
-    name += std::to_string(::getpid());
-    name += "-";
-    name += std::to_string(counter.fetch_add(1));
-    return (dir / name).string();
-}
-
 // Writes `nch` channels of `type` from `data` with the format given by `path`'s extension, atomically.
 void write_atomic(const std::string& path, int width, int height, int nch, OIIO::TypeDesc file_type,
                   OIIO::TypeDesc data_type, const void* data, bool has_alpha) {
@@ -332,16 +325,12 @@ void write_atomic(const std::string& path, int width, int height, int nch, OIIO:
         spec.alpha_channel = 3;
         spec.attribute("oiio:UnassociatedAlpha", 1);  // our data is not premultiplied; write it as is
     }
-    const std::string tmp = temp_name_for(path);
-    auto remove_tmp = [&] {
-        std::error_code ignore;
-        fs::remove(tmp, ignore);
-    };
+    AtomicFile file(path);  // the temporary file is removed on every failure
     bool ok = false;
     std::string msg;
     {
         QuietStderr quiet;
-        if (!out->open(tmp, spec)) {
+        if (!out->open(file.temp_path(), spec)) {
             msg = one_line(out->geterror());
         } else {
             ok = out->write_image(data_type, data, xstride);
@@ -353,18 +342,14 @@ void write_atomic(const std::string& path, int width, int height, int nch, OIIO:
         }
         out.reset();
     }
-    if (!ok) {
-        remove_tmp();
-        fail(path, "cannot write: " + msg);
-    }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-        int err = errno;
-        remove_tmp();
-        fail(path, std::string("cannot write: rename from temporary file failed: ") + std::strerror(err));
-    }
+    if (!ok) fail(path, "cannot write: " + msg);
+    file.commit();
 }
 
 }  // namespace
+
+void set_quiet_image_library_stderr(bool on) { g_quiet_stderr = on; }
+bool quiet_image_library_stderr() { return g_quiet_stderr.load(); }
 
 ImageRGBA8 read_rgba8(const std::string& path) {
     OpenedImage im = open_checked(path);

@@ -27,4 +27,12 @@ ImageF read_gray(const std::string& path);
 void write_rgba8(const std::string& path, const ImageRGBA8& img);
 void write_gray(const std::string& path, const ImageF& img);  // values 0..1, 16-bit PNG where supported
 
+// Opt-in, off by default: libpng reports a corrupt file through OpenImageIO (the IoError message says it) and then
+// prints the same text as "libpng error: ..." on stderr itself. On, the reads and writes above run with file
+// descriptor 2 pointed at /dev/null for the length of each OpenImageIO call: that silences the WHOLE PROCESS's stderr
+// meanwhile (other threads' messages are lost), and concurrent calls take turns. For programs that promise one line
+// on stderr per failure (the rtm command line turns it on at start).
+void set_quiet_image_library_stderr(bool on);
+bool quiet_image_library_stderr();
+
 }  // namespace rtm

@@ -23,6 +23,7 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "formats/atomic_file.h"
 #include "formats/image_io.h"
 
 namespace rtm {
@@ -258,36 +259,6 @@ std::string resolve(const std::string& manifest_path, const std::string& file) {
     return (fs::path(manifest_path).parent_path() / p).lexically_normal().string();
 }
 
-void write_text_atomic(const std::string& path, const std::string& text) {
-    static std::atomic<unsigned> counter{0};
-    const fs::path p(path);
-    std::string tmp_name(1, '.');
-    tmp_name += p.filename().string();
-    tmp_name += ".tmp" + std::to_string(::getpid()) + "-" + std::to_string(counter.fetch_add(1));
-    const std::string tmp = (p.parent_path() / tmp_name).string();
-    auto remove_tmp = [&] {
-        std::error_code ignore;
-        fs::remove(tmp, ignore);
-    };
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) fail(path, std::string("cannot write: ") + std::strerror(errno));
-        out << text;
-        out.flush();
-        if (!out) {
-            const int err = errno;
-            out.close();
-            remove_tmp();
-            fail(path, std::string("cannot write: ") + std::strerror(err));
-        }
-    }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-        const int err = errno;
-        remove_tmp();
-        fail(path, std::string("cannot write: rename from temporary file failed: ") + std::strerror(err));
-    }
-}
-
 std::string size_str(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
 
 }  // namespace
@@ -445,7 +416,7 @@ void write_relief(const std::string& manifest_path, const ReliefManifest& m, con
     o << "  \"b\": " << vec(m.geometry.b);
     if (m.discontinuity_threshold) o << ",\n  \"discontinuity_threshold\": " << num(*m.discontinuity_threshold);
     o << "\n}\n";
-    write_text_atomic(manifest_path, o.str());
+    write_text_atomically(manifest_path, o.str());
 }
 
 }  // namespace rtm

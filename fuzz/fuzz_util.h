@@ -14,9 +14,9 @@
 
 namespace rtm::fuzz {
 
-// Once per process: points sanitizer reports at a duplicate of the original stderr. The image reader sends stderr
-// to /dev/null while OpenImageIO runs (formats/image_io.cpp, QuietStderr), which would otherwise swallow a report
-// from inside it.
+// Once per process: points sanitizer reports at a duplicate of the original stderr. A program that opts in to
+// set_quiet_image_library_stderr (formats/image_io.h) sends stderr to /dev/null while OpenImageIO runs, which would
+// otherwise swallow a report from inside it.
 void init_reports();
 
 // A folder of its own under $TMPDIR, created on first use and removed at exit.

@@ -59,7 +59,12 @@ std::string machine_description() {
     return buf;
 }
 
-const char* method_name(Reconstruction m) { return m == Reconstruction::two_pass ? "two-pass" : "pipelined"; }
+}  // namespace
+
+std::string to_string(CoordinatePath p) { return p == CoordinatePath::exact ? "exact" : "lut"; }
+std::string to_string(BenchKernel k) { return k == BenchKernel::fast ? "fast" : "reference"; }
+
+namespace {
 
 // Runs `once` (returning milliseconds) after one warm-up until min_seconds and min_repeats are reached.
 template <class Fn>
@@ -177,7 +182,7 @@ template <class Progress>
 void bench_objects(const BenchConfig& c, Renderer& renderer, int threads, BenchResult& res, Progress&& progress) {
     double single = 0.0;
     for (const Table1Row& t : res.table1)
-        if (t.method == "two-pass") {
+        if (t.method == Reconstruction::two_pass) {
             single = t.total_ms;
             break;
         }
@@ -304,9 +309,10 @@ BenchResult run_bench(const BenchConfig& c) {
                     BenchRow row;
                     row.relief = name;
                     row.size = size;
-                    row.method = method_name(method);
-                    row.path = v.exact ? "exact" : "lut";
-                    row.kernel = v.fast && !v.exact && fast_prewarp_available() ? "fast" : "reference";
+                    row.method = method;
+                    row.path = v.exact ? CoordinatePath::exact : CoordinatePath::lut;
+                    row.kernel =
+                        v.fast && !v.exact && fast_prewarp_available() ? BenchKernel::fast : BenchKernel::reference;
                     row.threads = v.threads;
                     row.texels = st.texels;
                     row.out_width = out.width;
@@ -316,8 +322,8 @@ BenchResult run_bench(const BenchConfig& c) {
                     row.ms_median = median(ms);
                     row.mtexels_per_s = double(row.texels) / (row.ms_median * 1e3);
                     row.prewarps_per_s = 1000.0 / row.ms_median;
-                    prewarp_traffic(method, v.exact, row.kernel == "fast", t.width, t.height, out.width, out.height,
-                                    row.bytes_read, row.bytes_written);
+                    prewarp_traffic(method, v.exact, row.kernel == BenchKernel::fast, t.width, t.height, out.width,
+                                    out.height, row.bytes_read, row.bytes_written);
                     const auto key = std::make_tuple(row.bytes_read, row.bytes_written, v.threads);
                     auto it = bounds.find(key);
                     if (it == bounds.end())
@@ -332,7 +338,8 @@ BenchResult run_bench(const BenchConfig& c) {
                     res.rows.push_back(row);
                     char buf[256];
                     std::snprintf(buf, sizeof buf, "%s %d^2 %s %s %s %d thread%s: %.3f ms, %.0f Mtexel/s (%.1fx bound)",
-                                  name.c_str(), size, row.method.c_str(), row.path.c_str(), row.kernel.c_str(),
+                                  name.c_str(), size, to_string(row.method).c_str(), to_string(row.path).c_str(),
+                                  to_string(row.kernel).c_str(),
                                   v.threads, v.threads == 1 ? "" : "s", row.ms_median, row.mtexels_per_s,
                                   row.bound_ratio);
                     progress(buf);
@@ -343,7 +350,7 @@ BenchResult run_bench(const BenchConfig& c) {
 
     if (c.table1) {
         try {
-            auto ctx = GlContext::create_offscreen(c.view_width, c.view_height);
+            auto ctx = GlContext::create_offscreen(c.view_width, c.view_height, {.pin_llvmpipe_threads = true});
             res.gl_renderer = ctx->describe();
             Renderer renderer;
             for (const std::string& name : c.reliefs) {
@@ -382,7 +389,7 @@ BenchResult run_bench(const BenchConfig& c) {
                     repeat_timed(fc, frame);
                     Table1Row r;
                     r.relief = name;
-                    r.method = method_name(method);
+                    r.method = method;
                     r.size = c.table1_size;
                     r.threads = max_threads;
                     r.frames = int(total.size());
@@ -396,7 +403,7 @@ BenchResult run_bench(const BenchConfig& c) {
                     res.table1.push_back(r);
                     char buf[256];
                     std::snprintf(buf, sizeof buf, "table 1: %s %d^2 %s in %dx%d: %.3f ms a frame (%.0f fps)",
-                                  name.c_str(), c.table1_size, r.method.c_str(), c.view_width, c.view_height,
+                                  name.c_str(), c.table1_size, to_string(r.method).c_str(), c.view_width, c.view_height,
                                   r.total_ms, r.fps);
                     progress(buf);
                 }
@@ -414,41 +421,44 @@ BenchResult run_bench(const BenchConfig& c) {
 std::vector<PipelinedRatio> pipelined_ratios(const BenchResult& r) {
     std::vector<PipelinedRatio> out;
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    auto find = [&](const std::string& relief, int size, const char* method, const char* kernel, int threads) {
+    auto find = [&](const std::string& relief, int size, Reconstruction method, BenchKernel kernel, int threads) {
         for (const BenchRow& x : r.rows)
-            if (x.relief == relief && x.size == size && x.method == method && x.path == "lut" && x.kernel == kernel &&
+            if (x.relief == relief && x.size == size && x.method == method && x.path == CoordinatePath::lut &&
+                x.kernel == kernel &&
                 (threads == 0 || x.threads == threads))
                 return &x;
         return static_cast<const BenchRow*>(nullptr);
     };
     bool any_fast = false;
-    for (const BenchRow& x : r.rows) any_fast = any_fast || x.kernel == "fast";
-    const char* timed_kernel = any_fast ? "fast" : "reference";
+    for (const BenchRow& x : r.rows) any_fast = any_fast || x.kernel == BenchKernel::fast;
+    const BenchKernel timed_kernel = any_fast ? BenchKernel::fast : BenchKernel::reference;
+    constexpr Reconstruction two_pass = Reconstruction::two_pass, pipelined = Reconstruction::pipelined;
+    constexpr BenchKernel fast = BenchKernel::fast, reference = BenchKernel::reference;
     for (const BenchRow& x : r.rows) {
-        if (x.method != "two-pass" || x.path != "lut") continue;
+        if (x.method != two_pass || x.path != CoordinatePath::lut) continue;
         bool seen = false;
         for (const PipelinedRatio& p : out) seen = seen || (p.relief == x.relief && p.size == x.size);
         const bool pipelined_too =
-            find(x.relief, x.size, "pipelined", "fast", 0) || find(x.relief, x.size, "pipelined", "reference", 0);
+            find(x.relief, x.size, pipelined, fast, 0) || find(x.relief, x.size, pipelined, reference, 0);
         if (seen || !pipelined_too) continue;
         PipelinedRatio p;
         p.relief = x.relief;
         p.size = x.size;
-        const BenchRow* rt = find(x.relief, x.size, "two-pass", "reference", 1);
-        const BenchRow* rp = find(x.relief, x.size, "pipelined", "reference", 1);
+        const BenchRow* rt = find(x.relief, x.size, two_pass, reference, 1);
+        const BenchRow* rp = find(x.relief, x.size, pipelined, reference, 1);
         const bool counted = rt && rp && rt->texels > 0 && rp->row_pixels > 0;
         p.row_pixels_per_texel = counted ? double(rt->row_pixels) / double(rt->texels) : nan;
         p.two_pass_samples_per_texel = counted ? double(rt->column_samples) / double(rt->texels) : nan;
         p.pipelined_samples_per_texel = counted ? double(rp->column_samples) / double(rp->texels) : nan;
         // The fast kernels' times; on a CPU without them, the generic kernels' (the first row per thread count).
         for (const BenchRow& t : r.rows) {
-            if (t.relief != x.relief || t.size != x.size || t.method != "two-pass" || t.path != "lut" ||
+            if (t.relief != x.relief || t.size != x.size || t.method != two_pass || t.path != CoordinatePath::lut ||
                 t.kernel != timed_kernel)
                 continue;
             bool have = false;
             for (const auto& [threads, ratio] : p.time_ratio) have = have || threads == t.threads;
             if (have) continue;
-            if (const BenchRow* q = find(x.relief, x.size, "pipelined", timed_kernel, t.threads))
+            if (const BenchRow* q = find(x.relief, x.size, pipelined, timed_kernel, t.threads))
                 p.time_ratio.emplace_back(t.threads, q->ms_median / t.ms_median);
         }
         out.push_back(p);
@@ -470,7 +480,8 @@ std::string bench_markdown(const BenchResult& r) {
     s << "|---|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const BenchRow& x : r.rows) {
         std::snprintf(buf, sizeof buf, "| %s | %d^2 | %s | %s | %s | %d | %.3f | %.3f | %.1f | %.1f | %.3f | %.2f |\n",
-                      x.relief.c_str(), x.size, x.method.c_str(), x.path.c_str(), x.kernel.c_str(), x.threads,
+                      x.relief.c_str(), x.size, to_string(x.method).c_str(), to_string(x.path).c_str(),
+                      to_string(x.kernel).c_str(), x.threads,
                       x.ms_median, x.ms_min, x.mtexels_per_s, x.prewarps_per_s, x.bound_ms, x.bound_ratio);
         s << buf;
     }
@@ -516,7 +527,8 @@ std::string bench_markdown(const BenchResult& r) {
             std::snprintf(buf, sizeof buf,
                           "| %s | %d^2 | %s | %d | %.3f (%.1f%%) | %.3f (%.1f%%) | %.3f (%.1f%%) | %.3f (%.1f%%) | "
                           "%.3f | %.0f | %.3f |\n",
-                          t.relief.c_str(), t.size, t.method.c_str(), t.threads, t.prewarp_ms, pct(t.prewarp_ms),
+                          t.relief.c_str(), t.size, to_string(t.method).c_str(), t.threads, t.prewarp_ms,
+                          pct(t.prewarp_ms),
                           t.upload_ms, pct(t.upload_ms), t.texture_map_ms, pct(t.texture_map_ms), t.other_ms,
                           pct(t.other_ms), t.total_ms, t.fps, t.readback_ms);
             s << buf;
@@ -552,9 +564,9 @@ nlohmann::json bench_json(const BenchResult& r) {
     for (const BenchRow& x : r.rows)
         rows.push_back({{"relief", x.relief},
                         {"size", x.size},
-                        {"method", x.method},
-                        {"path", x.path},
-                        {"kernel", x.kernel},
+                        {"method", to_string(x.method)},
+                        {"path", to_string(x.path)},
+                        {"kernel", to_string(x.kernel)},
                         {"threads", x.threads},
                         {"texels", x.texels},
                         {"out_size", {x.out_width, x.out_height}},
@@ -585,7 +597,7 @@ nlohmann::json bench_json(const BenchResult& r) {
     for (const Table1Row& t : r.table1)
         t1.push_back({{"relief", t.relief},
                       {"size", t.size},
-                      {"method", t.method},
+                      {"method", to_string(t.method)},
                       {"threads", t.threads},
                       {"frames", t.frames},
                       {"prewarp_ms", t.prewarp_ms},

@@ -30,7 +30,7 @@ struct BenchConfig {
     double min_seconds = 0.25;          // per configuration: repeat at least this long ...
     int min_repeats = 3;                // ... and at least this often (after one warm-up), at most max_repeats
     int max_repeats = 400;
-    CompareView view{"az30_el20", 30.0, 20.0, 2.2};  // the eye (orbit convention, about the relief's bounds)
+    CompareView view = orbit_view(30.0, 20.0);  // the eye (orbit convention, about the relief's bounds)
     bool table1 = true;
     int table1_size = 256;
     bool objects = true;  // with table1: six-face objects of table1_size^2 faces from one-, two- and three-face views
@@ -41,12 +41,19 @@ struct BenchConfig {
 // The default run (about a minute on two cores: sizes 128 to 1024) or the full one (128 to 4096).
 BenchConfig default_bench_config(bool full);
 
+// The coordinate path of a pre-warp: the lookup tables, or --exact (double precision).
+enum class CoordinatePath { lut, exact };
+// The kernels that ran: the fast ones (warp/fast_prewarp.h) or the generic reference kernels.
+enum class BenchKernel { fast, reference };
+std::string to_string(CoordinatePath p);  // "lut", "exact"
+std::string to_string(BenchKernel k);     // "fast", "reference"
+
 struct BenchRow {
     std::string relief;
     int size = 0;
-    std::string method;  // "two-pass" or "pipelined"
-    std::string path;    // "lut" (lookup tables) or "exact"
-    std::string kernel;  // "fast" or "reference"
+    Reconstruction method = Reconstruction::two_pass;
+    CoordinatePath path = CoordinatePath::lut;
+    BenchKernel kernel = BenchKernel::fast;
     int threads = 0;
     long long texels = 0;
     int out_width = 0, out_height = 0;
@@ -75,7 +82,7 @@ struct PipelinedRatio {
 
 struct Table1Row {
     std::string relief;
-    std::string method;
+    Reconstruction method = Reconstruction::two_pass;
     int size = 0;
     int threads = 0;
     int frames = 0;

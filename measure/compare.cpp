@@ -1,7 +1,6 @@
 #include "measure/compare.h"
 
 #include <glm/geometric.hpp>
-#include <glm/trigonometric.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -10,18 +9,21 @@
 
 #include "objects/bounds.h"
 #include "objects/render_relief.h"
+#include "texmap/camera_rig.h"
 #include "texmap/gl_context.h"
 
 namespace rtm {
 
+CompareView orbit_view(double azimuth, double elevation, double distance) {
+    char name[64];
+    std::snprintf(name, sizeof name, "az%02d_el%02d", int(azimuth), int(elevation));
+    return {name, azimuth, elevation, distance};
+}
+
 std::vector<CompareView> default_compare_views() {
     const double views[][2] = {{0, 0}, {15, 10}, {30, 15}, {45, 20}, {60, 10}, {70, 30}, {80, 5}, {85, 15}};
     std::vector<CompareView> out;
-    for (const auto& v : views) {
-        char name[64];
-        std::snprintf(name, sizeof name, "az%02d_el%02d", int(v[0]), int(v[1]));
-        out.push_back({name, v[0], v[1], 2.2});
-    }
+    for (const auto& v : views) out.push_back(orbit_view(v[0], v[1]));
     return out;
 }
 
@@ -44,21 +46,11 @@ std::vector<CompareMethod> default_compare_methods() {
 
 Camera compare_camera(const ReliefQuad& quad, const CompareView& v, int width, int height) {
     const Bounds b = relief_bounds(quad.relief());
-    Camera cam;
-    cam.width = width;
-    cam.height = height;
-    cam.fov_deg = 45.0;
-    cam.look_at = b.centre();
-    const double az = glm::radians(v.azimuth), el = glm::radians(v.elevation);
-    const double r = std::max(b.radius(), 1e-12) * v.distance;
-    cam.eye = b.centre() + r * glm::dvec3(std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el));
-    cam.up = {0, 1, 0};
-    cam.fit_clip_planes(b.centre(), std::max(b.radius(), 1e-12));
-    return cam;
+    return orbit_camera(b.centre(), b.radius(), {v.azimuth, v.elevation, v.distance}, width, height);
 }
 
 std::vector<CompareRow> run_comparison(ReliefQuad& quad, const CompareOptions& o) {
-    auto ctx = GlContext::create_offscreen(o.width, o.height);
+    auto ctx = GlContext::create_offscreen(o.width, o.height, {.pin_llvmpipe_threads = true});
     Renderer renderer;
     std::vector<CompareRow> rows;
     for (const CompareView& v : o.views) {

@@ -17,6 +17,9 @@ struct CompareView {
     double azimuth = 0, elevation = 0, distance = 2.2;  // the --orbit convention
 };
 
+// A view of the --orbit convention named from its angles, as the reports name views: "az30_el20" (whole degrees).
+CompareView orbit_view(double azimuth, double elevation, double distance = 2.2);
+
 // Eight views from frontal to grazing (azimuth 85 degrees: 5 degrees above the relief plane).
 std::vector<CompareView> default_compare_views();
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "procedural/procedural_media.h"
 #include "truth/prewarp_truth.h"
 #include "warp/prewarp.h"
 
@@ -20,7 +21,7 @@ struct FilterMeasurement {
 };
 
 struct FilterMeasureOptions {
-    std::vector<std::string> reliefs = {"bricks", "facade", "bumps", "ridges"};
+    std::vector<std::string> reliefs = procedural_names();
     int size = 256;          // procedural relief size
     int samples = 8;         // truth rays per pixel side
     int repeat = 5;          // timed pre-warps per measurement (median)

@@ -87,7 +87,7 @@ std::vector<SkipMeasurement> measure_skips(int frames, const std::function<void(
     sc.push_back({"pyramid level auto", "bumps 12 radii away, level auto vs 0", to_relief(make_bumps(256)),
                   [](const ReliefQuad& q, int, int) { return orbit(q, 30, 20, 12); }, -1});
 
-    auto ctx = GlContext::create_offscreen(512, 512);
+    auto ctx = GlContext::create_offscreen(512, 512, {.pin_llvmpipe_threads = true});
     Renderer renderer;
     std::vector<SkipMeasurement> out;
     for (Scenario& s : sc) {

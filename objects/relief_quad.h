@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "objects/frame_plan.h"
 #include "objects/view_analysis.h"
 #include "texmap/camera.h"
 #include "texmap/renderer.h"
@@ -19,36 +20,12 @@ namespace rtm {
 
 struct MicroMesh;
 
-enum class RenderMethod { flat, two_pass, pipelined, micromesh, raycast };
-
-RenderMethod parse_render_method(const std::string& s);  // throws std::invalid_argument naming s
-std::string to_string(RenderMethod m);
-
 struct StageTimes {
     double prewarp_ms = 0.0;      // pre-warping and resampling
     double upload_ms = 0.0;       // loading the pre-warped texture into texture memory
     double texture_map_ms = 0.0;  // the texture-mapping draw (glFinish-bounded)
     double total_ms = 0.0;
 };
-
-// How draw() chooses what to do for a frame. Each "skip" keeps the cost proportional to what the viewer sees;
-// `skips` in the report lists those that fired (names as in kSkipNames).
-struct DrawOptions {
-    bool depth_correction = false;  // section 4.2
-    int level = 0;                  // relief texture pyramid level; -1 = auto (texel density ~ pixel density)
-    bool skips = true;              // enable the skips below (off: always pre-warp and upload everything)
-    double subpixel_parallax = 0.25;  // pixels: below this largest parallax, draw as a plain texture (far away)
-    double reuse_tolerance = 0.05;    // texels: below this largest motion since the last pre-warp, reuse it
-};
-
-// Skip names, reported in --json "skips".
-inline constexpr const char* kSkipBackFacing = "back-facing";
-inline constexpr const char* kSkipOutsideFrustum = "outside-frustum";
-inline constexpr const char* kSkipSubpixelParallax = "subpixel-parallax";
-inline constexpr const char* kSkipReuse = "reuse-prewarp";
-inline constexpr const char* kSkipPartialUpload = "partial-upload";
-inline constexpr const char* kSkipInsideSlab = "inside-slab-micromesh";
-inline constexpr const char* kSkipZeroRuns = "zero-displacement-runs";
 
 struct DrawReport {
     int level = 0;
@@ -85,7 +62,8 @@ public:
 
     // Draws with `method` (flat, two_pass or pipelined) into the current frame. Requires a current GL context,
     // the same one for the life of the quad. options.keep_outliers draws the side polygons (paper section 4,
-    // Figure 12).
+    // Figure 12). What the frame does (skips, level, pre-warp or reuse, which pixels to upload) is decided by
+    // plan_frame and plan_upload (objects/frame_plan.h); draw() carries the plan out.
     void draw(Renderer& renderer, const Camera& cam, RenderMethod method, const PrewarpOptions& options,
               StageTimes& times, const DrawOptions& draw = {}, DrawReport* report = nullptr);
 
@@ -102,24 +80,8 @@ private:
     ImageRGBA8 flat_;  // source colours of level flat_level_ as an ordinary texture (alpha 0 where empty)
     int flat_level_ = -1;
     std::unique_ptr<MicroMesh> micromesh_;
-    // What the current pre-warp was made for (reuse when the eye barely moved).
-    struct Cached {
-        bool valid = false;
-        int level = -1;
-        RenderMethod method = RenderMethod::flat;
-        bool exact = false, keep_outliers = false, displ = false;
-        Filter filter = Filter::point;
-        PrewarpCoefficients k;
-    } cached_;
-    // What texture_ holds (partial upload): which image, made for what, and where its moving texels wrote.
-    struct Uploaded {
-        int kind = -1;  // -1 nothing, 1 pre-warp, 2 + level the flat texture of a level
-        long long version = -1;
-        int width = 0, height = 0;
-        Cached setup;
-        PrewarpExtent extent;
-        PixelRect moving;
-    } uploaded_;
+    LastPrewarp last_prewarp_;   // what prewarped_ was made for (reuse when the eye barely moved)
+    UploadedTexture uploaded_;  // what texture_ holds (partial upload)
     // count_still_texels per pyramid level, [level][exact]; -1 = not counted yet (they do not depend on the view).
     std::vector<std::array<long long, 2>> still_texels_;
     std::vector<std::optional<MovingTexels>> moving_;  // moving_texels per pyramid level, computed on first use

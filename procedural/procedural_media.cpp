@@ -539,14 +539,38 @@ ProceduralRelief make_ridges(int size) {
 
 // ---- Dispatch ------------------------------------------------------------------------------------------------------
 
-std::vector<std::string> procedural_names() { return {"bricks", "facade", "bumps", "ridges"}; }
+namespace {
+
+// The procedural reliefs by name: the one table of their names.
+struct NamedRelief {
+    const char* name;
+    ProceduralRelief (*make)(int size);
+};
+constexpr NamedRelief kProcedural[] = {
+    {"bricks", make_brick_wall},
+    {"facade", make_facade},
+    {"bumps", make_bumps},
+    {"ridges", make_ridges},
+};
+
+}  // namespace
+
+std::vector<std::string> procedural_names() {
+    std::vector<std::string> out;
+    for (const NamedRelief& r : kProcedural) out.push_back(r.name);
+    return out;
+}
+
+std::string procedural_names_list() {
+    std::string out;
+    for (const NamedRelief& r : kProcedural) out += (out.empty() ? "" : ", ") + std::string(r.name);
+    return out;
+}
 
 ProceduralRelief make_procedural(const std::string& name, int size) {
-    if (name == "bricks") return make_brick_wall(size);
-    if (name == "facade") return make_facade(size);
-    if (name == "bumps") return make_bumps(size);
-    if (name == "ridges") return make_ridges(size);
-    throw std::invalid_argument("unknown procedural relief \"" + name + "\"; known: bricks, facade, bumps, ridges");
+    for (const NamedRelief& r : kProcedural)
+        if (name == r.name) return r.make(size);
+    throw std::invalid_argument("unknown procedural relief \"" + name + "\"; known: " + procedural_names_list());
 }
 
 ReliefTexture to_relief(const ProceduralRelief& p) {

@@ -67,27 +67,28 @@ void Camera::fit_clip_planes(const glm::dvec3& centre, double radius) {
     z_near = std::max((d - radius) * 0.99, z_far * 1e-4);
 }
 
-std::string Camera::validate() const {
-    if (!finite(eye)) return "eye " + str(eye) + " is not finite";
-    if (!finite(look_at)) return "look-at " + str(look_at) + " is not finite";
-    if (!finite(up)) return "up " + str(up) + " is not finite";
+CameraProblem Camera::check() const {
+    using F = CameraField;
+    if (!finite(eye)) return {F::eye, "eye " + str(eye) + " is not finite"};
+    if (!finite(look_at)) return {F::look_at, "look-at " + str(look_at) + " is not finite"};
+    if (!finite(up)) return {F::up, "up " + str(up) + " is not finite"};
     if (!std::isfinite(fov_deg) || !(fov_deg > 0.0 && fov_deg < 180.0))
-        return "fov " + str(fov_deg) + " degrees is outside (0, 180)";
+        return {F::fov, "fov " + str(fov_deg) + " degrees is outside (0, 180)"};
     if (width <= 0 || height <= 0)
-        return "image size " + std::to_string(width) + "x" + std::to_string(height) + " is not positive";
+        return {F::size, "image size " + std::to_string(width) + "x" + std::to_string(height) + " is not positive"};
     const glm::dvec3 view_dir = look_at - eye;
     const double dist = glm::length(view_dir);
     const double scale = std::max({glm::length(eye), glm::length(look_at), 1.0});
-    if (!(dist > 1e-12 * scale)) return "eye " + str(eye) + " equals look-at " + str(look_at);
+    if (!(dist > 1e-12 * scale)) return {F::eye_and_look_at, "eye " + str(eye) + " equals look-at " + str(look_at)};
     const double up_len = glm::length(up);
-    if (!(up_len > 0.0)) return "up " + str(up) + " is the zero vector";
+    if (!(up_len > 0.0)) return {F::up, "up " + str(up) + " is the zero vector"};
     const double sin_angle = glm::length(glm::cross(view_dir / dist, up / up_len));
     if (!(sin_angle > 1e-9))
-        return "up " + str(up) + " is parallel to the view direction " + str(view_dir / dist);
-    if (!std::isfinite(z_near) || !std::isfinite(z_far)) return "clip planes are not finite";
-    if (z_near < 0.0) return "near plane " + str(z_near) + " is negative";
+        return {F::up, "up " + str(up) + " is parallel to the view direction " + str(view_dir / dist)};
+    if (!std::isfinite(z_near) || !std::isfinite(z_far)) return {F::clip_planes, "clip planes are not finite"};
+    if (z_near < 0.0) return {F::clip_planes, "near plane " + str(z_near) + " is negative"};
     if (z_near > 0.0 && !(z_far > z_near))
-        return "far plane " + str(z_far) + " is not beyond the near plane " + str(z_near);
+        return {F::clip_planes, "far plane " + str(z_far) + " is not beyond the near plane " + str(z_near)};
     return {};
 }
 

@@ -9,6 +9,14 @@
 
 namespace rtm {
 
+// Which setting makes a camera unusable (Camera::check): the one a user changes to fix it.
+enum class CameraField { none, eye, look_at, eye_and_look_at, up, fov, size, clip_planes };
+
+struct CameraProblem {
+    CameraField field = CameraField::none;  // none: usable
+    std::string message;                    // empty when usable, else what is wrong, naming the values
+};
+
 struct Camera {
     glm::dvec3 eye{0.0, 0.0, 1.0};
     glm::dvec3 look_at{0.0};
@@ -25,8 +33,11 @@ struct Camera {
     void ray(double px, double py, glm::dvec3& origin, glm::dvec3& dir) const;
     // Chooses near/far planes that enclose a bounding sphere (centre, radius) seen from the eye.
     void fit_clip_planes(const glm::dvec3& centre, double radius);
-    // Returns an empty string when usable, else what is wrong (eye == look_at, up parallel to view, fov range).
-    std::string validate() const;
+    // Whether the camera is usable, else which setting is wrong and how (eye == look_at, up parallel to view, fov
+    // range, ...).
+    CameraProblem check() const;
+    // check().message: an empty string when usable, else what is wrong.
+    std::string validate() const { return check().message; }
     std::string to_string() const;
 };
 

@@ -67,7 +67,7 @@ void check_size(const char* backend, int width, int height) {
 
 class OsMesaContext final : public GlContext {
 public:
-    OsMesaContext(int width, int height) : width_(width), height_(height) {
+    OsMesaContext(int width, int height, const ContextOptions& options) : width_(width), height_(height) {
         check_size("OSMesa", width, height);
         const int attribs[] = {OSMESA_FORMAT,
                                OSMESA_RGBA,
@@ -84,7 +84,8 @@ public:
                                OSMESA_CONTEXT_MINOR_VERSION,
                                3,
                                0};
-        const std::vector<int> threads_before = process_threads();
+        const std::vector<int> threads_before =
+            options.pin_llvmpipe_threads ? process_threads() : std::vector<int>{};
         ctx_ = OSMesaCreateContextAttribs(attribs, nullptr);
         if (!ctx_)
             throw GlError("OSMesa: cannot create an OpenGL 3.3 core context (OSMesaCreateContextAttribs failed; is "
@@ -97,7 +98,7 @@ public:
             if (g_loaded_for == this) g_loaded_for = nullptr;
             throw;
         }
-        spread_llvmpipe_threads(threads_before);
+        if (options.pin_llvmpipe_threads) spread_llvmpipe_threads(threads_before);
     }
     ~OsMesaContext() override {
         if (OSMesaGetCurrentContext() == ctx_) OSMesaMakeCurrent(nullptr, nullptr, GL_UNSIGNED_BYTE, 0, 0);
@@ -148,7 +149,7 @@ bool have_display() {
 
 class GlfwContext final : public GlContext {
 public:
-    GlfwContext(int width, int height, const std::string& title, bool visible) {
+    GlfwContext(int width, int height, const std::string& title, bool visible, const ContextOptions& options) {
         check_size("GLFW", width, height);
         {
             std::lock_guard<std::mutex> lock(g_glfw_mutex);
@@ -168,7 +169,8 @@ public:
         glfwWindowHint(GLFW_VISIBLE, visible ? GLFW_TRUE : GLFW_FALSE);
         glfwWindowHint(GLFW_DEPTH_BITS, 24);
         glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
-        const std::vector<int> threads_before = process_threads();
+        const std::vector<int> threads_before =
+            options.pin_llvmpipe_threads ? process_threads() : std::vector<int>{};
         window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
         if (!window_) {
             std::string e = take_glfw_error();
@@ -184,7 +186,7 @@ public:
             throw;
         }
         glfwSwapInterval(0);
-        spread_llvmpipe_threads(threads_before);
+        if (options.pin_llvmpipe_threads) spread_llvmpipe_threads(threads_before);
     }
     ~GlfwContext() override {
         if (glfwGetCurrentContext() == window_) glfwMakeContextCurrent(nullptr);
@@ -239,12 +241,13 @@ const char* gl_error_name(GLenum e) {
 
 }  // namespace
 
-std::unique_ptr<GlContext> GlContext::create_offscreen(int width, int height) {
-    return std::make_unique<OsMesaContext>(width, height);
+std::unique_ptr<GlContext> GlContext::create_offscreen(int width, int height, const ContextOptions& options) {
+    return std::make_unique<OsMesaContext>(width, height, options);
 }
 
-std::unique_ptr<GlContext> GlContext::create_window(int width, int height, const std::string& title, bool visible) {
-    return std::make_unique<GlfwContext>(width, height, title, visible);
+std::unique_ptr<GlContext> GlContext::create_window(int width, int height, const std::string& title, bool visible,
+                                                    const ContextOptions& options) {
+    return std::make_unique<GlfwContext>(width, height, title, visible, options);
 }
 
 void check_gl(const char* what) {

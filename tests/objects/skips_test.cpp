@@ -19,12 +19,6 @@
 namespace rtm {
 namespace {
 
-// RTM_SEED overrides the fixed seeds of the random sweeps (printed on failure).
-uint64_t seed_or(uint64_t fallback) {
-    const char* s = std::getenv("RTM_SEED");
-    return s ? std::strtoull(s, nullptr, 10) : fallback;
-}
-
 bool fired(const DrawReport& r, const char* name) {
     return std::find(r.skips.begin(), r.skips.end(), std::string(name)) != r.skips.end();
 }
@@ -147,7 +141,7 @@ TEST(Skips, PartialUploadOfWhatMovingTexelsReach) {
 // The footprint bound itself, on the CPU over random reliefs and pairs of views: pixels outside the union of the
 // two views' moving footprints are the same in both pre-warps (both reconstructions, both paths, margins, marks).
 TEST(ViewAnalysis, MovingFootprintHoldsEveryChange) {
-    const uint64_t seed = seed_or(91001);
+    const uint64_t seed = test::test_seed(91001);
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> U(0.0, 1.0);
     int compared = 0, small = 0;

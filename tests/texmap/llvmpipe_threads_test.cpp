@@ -1,4 +1,5 @@
-// llvmpipe's rasterizer threads pinned one per CPU (texmap/llvmpipe_threads.h), read back from /proc.
+// llvmpipe's rasterizer threads pinned one per CPU (texmap/llvmpipe_threads.h) when a context asks for it
+// (ContextOptions), read back from /proc.
 #include <gtest/gtest.h>
 
 #include <dirent.h>
@@ -63,10 +64,10 @@ std::vector<int> process_cpus() {
     return cpus_of(s);
 }
 
-TEST(LlvmpipeThreads, OnePerCpuAfterAnOffscreenContextIsCreated) {
+TEST(LlvmpipeThreads, OnePerCpuAfterAnOffscreenContextAskingForIt) {
     const std::vector<int> cpus = process_cpus();
     if (cpus.size() < 2) GTEST_SKIP() << "the process may use one CPU only";
-    auto ctx = GlContext::create_offscreen(64, 64);
+    auto ctx = GlContext::create_offscreen(64, 64, {.pin_llvmpipe_threads = true});
     const auto masks = llvmpipe_masks();
     if (masks.empty()) GTEST_SKIP() << "no llvmpipe threads: " << ctx->describe();
     for (const auto& [k, m] : masks) {
@@ -76,6 +77,25 @@ TEST(LlvmpipeThreads, OnePerCpuAfterAnOffscreenContextIsCreated) {
     // Pinning again finds and pins the same threads.
     EXPECT_EQ(spread_llvmpipe_threads(), int(masks.size()));
     EXPECT_EQ(llvmpipe_masks(), masks);
+}
+
+// Pinning changes the whole process: a context pins only when asked to (ContextOptions).
+TEST(LlvmpipeThreads, NotPinnedByAContextThatDoesNotAsk) {
+    const std::vector<int> cpus = process_cpus();
+    if (cpus.size() < 2) GTEST_SKIP() << "the process may use one CPU only";
+    auto first = GlContext::create_offscreen(64, 64);
+    if (llvmpipe_masks().empty()) GTEST_SKIP() << "no llvmpipe threads: " << first->describe();
+    // Unpin them by hand (an earlier test's context may have pinned them), then make contexts of both kinds.
+    cpu_set_t all;
+    ASSERT_EQ(sched_getaffinity(0, sizeof all, &all), 0);
+    for (const auto& [tid, k] : llvmpipe_threads()) ASSERT_EQ(sched_setaffinity(tid, sizeof all, &all), 0) << k;
+    first.reset();
+    auto plain = GlContext::create_offscreen(32, 32);
+    for (const auto& [k, m] : llvmpipe_masks()) EXPECT_EQ(m, cpus) << "llvmpipe-" << k;
+    plain.reset();
+    auto pinned = GlContext::create_offscreen(32, 32, {.pin_llvmpipe_threads = true});
+    for (const auto& [k, m] : llvmpipe_masks())
+        EXPECT_EQ(m, std::vector<int>{cpus[size_t(k) % cpus.size()]}) << "llvmpipe-" << k;
 }
 
 TEST(LlvmpipeThreads, EnvironmentTurnsPinningOff) {

@@ -19,6 +19,7 @@
 #include <memory>
 #include <random>
 
+#include "common/seed.h"
 #include "texmap/gl_context.h"
 #include "texmap/test_util.h"
 
@@ -231,8 +232,7 @@ glm::dvec2 plane_point(const Camera& cam, const ReliefSurface& rs, int px, int r
 }
 
 TEST_F(RendererTest, WallsCutToTheMarginContentDrawTheSamePixels) {
-    uint64_t seed = 20261204;
-    if (const char* e = std::getenv("RTM_SEED")) seed = std::strtoull(e, nullptr, 10);
+    const uint64_t seed = test::test_seed(20261204);
     SCOPED_TRACE("seed " + std::to_string(seed));
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> U(-1.0, 1.0), S(0.0, 1.0);

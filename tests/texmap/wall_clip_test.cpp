@@ -20,13 +20,10 @@
 #include <utility>
 #include <vector>
 
+#include "common/seed.h"
+
 namespace rtm {
 namespace {
-
-uint64_t seed_or(uint64_t fallback) {
-    if (const char* s = std::getenv("RTM_SEED")) return std::strtoull(s, nullptr, 10);
-    return fallback;
-}
 
 TEST(ClipToHalfSpace, SquareCutThroughTheMiddleIsExact) {
     const Polygon3 square = {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
@@ -64,7 +61,7 @@ bool inside_convex(const Polygon3& poly, const glm::dvec3& normal, const glm::dv
 // meets the plane (ahead of the eye) outside the quad (the shader's test), some piece holds the point; a point
 // inside the cone by twice the margin is in no piece.
 TEST(OutsideViewCone, PiecesKeepWhatMissesTheQuadAndDropWhatMeetsIt) {
-    const uint64_t seed = seed_or(20261201);
+    const uint64_t seed = test::test_seed(20261201);
     SCOPED_TRACE("seed " + std::to_string(seed));
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> U(-1.0, 1.0), S(0.0, 1.0);
@@ -171,7 +168,7 @@ double filtered_alpha(const ImageRGBA8& img, int ml, int mb, double u, double v)
 }
 
 TEST(MarginContent, HoldsEveryPlanePointOutsideTheQuadThatFilteringGivesAlpha) {
-    const uint64_t seed = seed_or(20261202);
+    const uint64_t seed = test::test_seed(20261202);
     SCOPED_TRACE("seed " + std::to_string(seed));
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> S(0.0, 1.0);
@@ -210,7 +207,7 @@ TEST(MarginContent, HoldsEveryPlanePointOutsideTheQuadThatFilteringGivesAlpha) {
 }
 
 TEST(InsidePlaneRects, KeepsWhatMeetsARectangleAndDropsTheRest) {
-    const uint64_t seed = seed_or(20261203);
+    const uint64_t seed = test::test_seed(20261203);
     SCOPED_TRACE("seed " + std::to_string(seed));
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> U(-1.0, 1.0), S(0.0, 1.0);

@@ -11,14 +11,12 @@
 #include <glm/matrix.hpp>
 #include <random>
 
+#include "common/seed.h"
 #include "warp/relief_texture.h"
 
 namespace rtm::truth_test {
 
-inline uint64_t seed(uint64_t fallback) {
-    if (const char* s = std::getenv("RTM_SEED")) return std::strtoull(s, nullptr, 10);
-    return fallback;
-}
+inline uint64_t seed(uint64_t fallback) { return test::test_seed(fallback); }
 
 // A w x h relief: displacement disp(x, row) (world units), colour col(x, row), texel empty where empty(x, row).
 template <class Disp, class Col, class Empty>

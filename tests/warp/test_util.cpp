@@ -4,11 +4,6 @@
 
 namespace rtm::test {
 
-uint64_t test_seed(uint64_t fallback) {
-    if (const char* s = std::getenv("RTM_SEED")) return std::strtoull(s, nullptr, 10);
-    return fallback;
-}
-
 ReliefGeometry random_geometry(std::mt19937_64& rng) {
     std::uniform_real_distribution<double> U(-1.0, 1.0);
     std::uniform_real_distribution<double> S(0.2, 3.0);

@@ -7,12 +7,12 @@
 #include <random>
 #include <string>
 
+#include "common/seed.h"
 #include "warp/relief_texture.h"
 
 namespace rtm::test {
 
-// Seed from RTM_SEED if set, else a fixed default; tests print it on failure via SCOPED_TRACE.
-uint64_t test_seed(uint64_t fallback);
+// test_seed: RTM_SEED if set, else a fixed default (common/seed.h); tests print it on failure via SCOPED_TRACE.
 
 // A w x h relief with displacement from `fn(x, row)` (world units) in [lo, hi], colours from a hash.
 template <class Fn>

@@ -1,0 +1,37 @@
+// Writing a file atomically: the content goes to a temporary file in the destination's folder, under a name no other
+// writer uses (the file's name, this process's id and a per-process counter), which is then renamed onto the
+// destination. Readers see the old file or the new one, never a part; concurrent writers of one path do not collide
+// (the last rename wins); a failed write removes its temporary file and leaves the destination as it was.
+#pragma once
+
+#include <string>
+
+#include "formats/image_io.h"  // IoError
+
+namespace rtm {
+
+class AtomicFile {
+public:
+    // Chooses the temporary name beside `path`; creates nothing.
+    explicit AtomicFile(std::string path);
+    // Removes the temporary file unless commit() succeeded.
+    ~AtomicFile();
+    AtomicFile(const AtomicFile&) = delete;
+    AtomicFile& operator=(const AtomicFile&) = delete;
+
+    const std::string& path() const { return path_; }
+    // Where to write the content: ".NAME.tmpPID-N" in the destination's folder.
+    const std::string& temp_path() const { return temp_; }
+    // Renames the temporary file onto path(). Throws IoError "PATH: cannot write: rename from temporary file
+    // failed: REASON" (the temporary file is removed).
+    void commit();
+
+private:
+    std::string path_, temp_;
+    bool committed_ = false;
+};
+
+// Writes `text` to `path` atomically. Throws IoError "PATH: cannot write: REASON"; the destination is untouched then.
+void write_text_atomically(const std::string& path, const std::string& text);
+
+}  // namespace rtm

@@ -1,0 +1,23 @@
+// How a relief is rendered, and the names of the methods and reconstructions as the command line and the reports
+// write them: one table each (the reconstructions' is warp's to_string(Reconstruction)).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "warp/prewarp.h"
+
+namespace rtm {
+
+enum class RenderMethod { flat, two_pass, pipelined, micromesh, raycast };
+
+RenderMethod parse_render_method(const std::string& s);  // throws std::invalid_argument naming s and the known ones
+std::string to_string(RenderMethod m);
+std::vector<RenderMethod> render_methods();  // all of them, in the order of the table
+
+// "two-pass" or "pipelined" (to_string(Reconstruction)); throws std::invalid_argument naming s and the known ones.
+Reconstruction parse_reconstruction(const std::string& s);
+// "two-pass, pipelined", for messages.
+std::string reconstruction_names_list();
+
+}  // namespace rtm
