@@ -11,6 +11,7 @@
 #include "cli_common.h"
 #include "objects/bounds.h"
 #include "objects/render_relief.h"
+#include "render_mesh.h"
 #include "formats/relief_manifest.h"
 #include "objects/relief_quad.h"
 #include "texmap/gl_context.h"
@@ -22,7 +23,7 @@ namespace {
 
 
 struct RenderArgs {
-    std::string relief, out, json, method = "two-pass", level = "0", filter = "point";
+    std::string relief, mesh, out, json, method = "two-pass", level = "0", filter = "point";
     CameraArgs camera;
     bool exact = false, progress = false, no_sidewalls = false, depth_correction = false, no_skips = false;
     double discontinuity = -1;
@@ -42,6 +43,11 @@ void run_render(const RenderArgs& a) {
     if (!(a.discontinuity >= 0 || a.discontinuity == -1) || !std::isfinite(a.discontinuity))
         throw UsageError("--discontinuity: expected a threshold >= 0, found " + std::to_string(a.discontinuity));
     if (a.repeat < 1) throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
+    if (!a.mesh.empty()) {
+        if (!a.relief.empty()) throw UsageError("render takes one of --relief M and --mesh FILE, not both");
+        run_render_mesh(a.mesh, a.camera, a.out, a.json);
+        return;
+    }
     if (a.relief.empty()) throw UsageError("render needs --relief M");
     if (!a.camera.has_eye()) throw UsageError("render needs --eye X,Y,Z or --orbit AZ,EL,D");
     // Validate the camera's syntax before any file is read.
@@ -128,6 +134,7 @@ void add_render_command(CLI::App& app) {
     auto a = std::make_shared<RenderArgs>();
     CLI::App* sub = app.add_subcommand("render", "Render a relief texture (or object, scene) to an image");
     sub->add_option("--relief", a->relief, "Relief texture manifest (NAME.relief.json)");
+    sub->add_option("--mesh", a->mesh, "A mesh (any file assimp reads), rendered with conventional OpenGL");
     a->camera.add_to(*sub);
     sub->add_option("--method", a->method, "flat, two-pass, pipelined, micromesh or raycast")->capture_default_str();
     sub->add_flag("--exact", a->exact, "Pre-warp with unquantized displacement and double-precision coordinates");
