@@ -53,6 +53,7 @@ void bake_mesh(const BakeArgs& a) {
         throw UsageError("--size: expected N texels along the longest side, 1..16384, found " +
                          std::to_string(a.size));
     if (!a.planes.empty()) throw UsageError("--planes: not implemented yet (docs/BAKE.md)");
+    const auto start = Clock::now();
     const TriangleMesh mesh = load_mesh(a.mesh);
     for (const std::string& w : mesh.warnings) std::fprintf(stderr, "rtm: warning: %s\n", w.c_str());
     std::vector<std::string> box_warnings;
@@ -61,7 +62,6 @@ void bake_mesh(const BakeArgs& a) {
     } catch (const std::invalid_argument& e) {
         throw IoError(a.mesh + ": cannot bake: " + e.what());
     }
-    const auto start = Clock::now();
     bool shown = false;
     auto ctx = GlContext::create_offscreen(16, 16);
     const BakedObject obj = bake_object(mesh, a.size, [&](int done, int total) {
