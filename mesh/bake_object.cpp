@@ -60,26 +60,6 @@ std::string fmt(double v) {
     return os.str();
 }
 
-// Clip space of the orthographic view into the box through face `s`: x_ndc = 2u/w - 1, y_ndc = 2v/h - 1 (so GL's
-// pixel centres fall on the texel centres u = i + 0.5, v = j + 0.5), and depth increasing inwards from a margin in
-// front of the face to a margin behind the opposite face.
-glm::dmat4 face_clip(const ReliefGeometry& g, const glm::dvec3& ext_a_b_n) {
-    const glm::dvec3 ua = glm::normalize(g.a), ub = glm::normalize(g.b), f = g.f();
-    const double ea = ext_a_b_n.x, eb = ext_a_b_n.y, en = ext_a_b_n.z;
-    const double margin = 1e-3 * std::max({ea, eb, en});
-    glm::dmat4 m(0.0);  // m[column][row]
-    auto set_row = [&](int row, const glm::dvec3& dir, double scale, double offset) {
-        for (int c = 0; c < 3; ++c) m[c][row] = dir[c] * scale;
-        m[3][row] = offset;
-    };
-    set_row(0, ua, 2.0 / ea, -2.0 * glm::dot(g.origin, ua) / ea - 1.0);
-    set_row(1, ub, 2.0 / eb, -2.0 * glm::dot(g.origin, ub) / eb - 1.0);
-    const double depth = en + 2.0 * margin;
-    set_row(2, f, -2.0 / depth, -1.0 + 2.0 * (margin + glm::dot(g.origin, f)) / depth);
-    m[3][3] = 1.0;
-    return m;
-}
-
 }  // namespace
 
 BakeBox bake_box(const glm::dvec3& lo, const glm::dvec3& hi, int n, std::vector<std::string>* warnings) {
@@ -124,6 +104,57 @@ ReliefGeometry face_geometry(const BakeBox& box, const std::string& key, int* wi
     return g;
 }
 
+glm::dmat4 relief_view_clip(const ReliefGeometry& g, int width, int height, double d_lo, double d_hi) {
+    // Dual basis of (a, b, f): u = dot(X - origin, da), v = dot(X - origin, db), d = dot(X - origin, f).
+    const glm::dvec3 f = g.f();
+    const glm::dvec3 da = glm::cross(g.b, f) / glm::dot(g.a, glm::cross(g.b, f));
+    const glm::dvec3 db = glm::cross(f, g.a) / glm::dot(g.b, glm::cross(f, g.a));
+    const double margin =
+        1e-3 * std::max({glm::length(g.a) * width, glm::length(g.b) * height, d_hi - d_lo});
+    const double depth = (d_hi - d_lo) + 2.0 * margin;
+    glm::dmat4 m(0.0);  // m[column][row]
+    auto set_row = [&](int row, const glm::dvec3& dir, double scale, double offset) {
+        for (int c = 0; c < 3; ++c) m[c][row] = dir[c] * scale;
+        m[3][row] = offset;
+    };
+    set_row(0, da, 2.0 / width, -2.0 * glm::dot(g.origin, da) / width - 1.0);
+    set_row(1, db, 2.0 / height, -2.0 * glm::dot(g.origin, db) / height - 1.0);
+    // z_ndc = -1 at d = d_hi + margin, +1 at d = d_lo - margin.
+    set_row(2, f, -2.0 / depth, -1.0 + 2.0 * (d_hi + margin + glm::dot(g.origin, f)) / depth);
+    m[3][3] = 1.0;
+    return m;
+}
+
+BakedFace bake_view(MeshRenderer& renderer, const ReliefGeometry& g, int width, int height, double d_lo,
+                    double d_hi) {
+    const glm::dvec3 f = g.f();
+    const glm::dvec4 plane(f, -glm::dot(f, g.origin));
+    MeshFrame frame = renderer.render(relief_view_clip(g, width, height, d_lo, d_hi), width, height,
+                                      Rgba8{0, 0, 0, 0}, plane);
+    BakedFace face;
+    face.geometry = g;
+    face.color = std::move(frame.color);
+    face.displacement = std::move(frame.distance);
+    double lo = 0.0, hi = 0.0;
+    bool any = false;
+    for (size_t p = 0; p < face.color.pixels.size(); ++p) {
+        float& d = face.displacement.pixels[p];
+        if (face.color.pixels[p].a == 0) {
+            d = 0.0f;
+            continue;
+        }
+        face.color.pixels[p].a = 255;
+        // The surface lies in the slab; rounding may put it a hair outside.
+        d = float(std::clamp(double(d), d_lo, d_hi));
+        lo = any ? std::min(lo, double(d)) : double(d);
+        hi = any ? std::max(hi, double(d)) : double(d);
+        any = true;
+    }
+    face.range_lo = lo;
+    face.range_hi = hi;
+    return face;
+}
+
 BakedObject bake_object(const TriangleMesh& mesh, int n, const std::function<void(int, int)>& progress) {
     BakedObject obj;
     obj.box = bake_box(mesh.lo, mesh.hi, n, &obj.warnings);
@@ -135,30 +166,11 @@ BakedObject bake_object(const TriangleMesh& mesh, int n, const std::function<voi
         face.key = s.key;
         int w = 0, h = 0;
         face.geometry = face_geometry(obj.box, s.key, &w, &h);
-        const glm::dvec3 f = face.geometry.f();
-        const double depth = e[s.normal_axis];
-        const glm::dmat4 clip = face_clip(face.geometry, {e[s.a_axis], e[s.b_axis], depth});
-        const glm::dvec4 plane(f, -glm::dot(f, face.geometry.origin));
-        MeshFrame frame = renderer.render(clip, w, h, Rgba8{0, 0, 0, 0}, plane);
-        face.color = std::move(frame.color);
-        face.displacement = std::move(frame.distance);
-        double lo = 0.0, hi = 0.0;
-        bool any = false;
-        for (size_t p = 0; p < face.color.pixels.size(); ++p) {
-            float& d = face.displacement.pixels[p];
-            if (face.color.pixels[p].a == 0) {
-                d = 0.0f;
-                continue;
-            }
-            face.color.pixels[p].a = 255;
-            // The surface lies in the box; rounding may put it a hair outside.
-            d = float(std::clamp(double(d), -depth, 0.0));
-            lo = any ? std::min(lo, double(d)) : double(d);
-            hi = any ? std::max(hi, double(d)) : double(d);
-            any = true;
-        }
-        face.range_lo = lo;
-        face.range_hi = hi;
+        BakedFace view = bake_view(renderer, face.geometry, w, h, -e[s.normal_axis], 0.0);
+        face.color = std::move(view.color);
+        face.displacement = std::move(view.displacement);
+        face.range_lo = view.range_lo;
+        face.range_hi = view.range_hi;
         if (progress) progress(int(i) + 1, int(kFaces.size()));
     }
     return obj;

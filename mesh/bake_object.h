@@ -11,6 +11,7 @@
 // seen have alpha 0 and displacement 0.
 #pragma once
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
 #include <array>
@@ -54,6 +55,17 @@ struct BakedObject {
     std::array<BakedFace, 6> faces;  // in kFaceKeys order
     std::vector<std::string> warnings;
 };
+
+class MeshRenderer;
+
+// The orthographic view of a relief frame: clip space maps texel coordinates (u, v) of g onto the viewport of
+// width x height pixels (x_ndc = 2u/width - 1, y_ndc = 2v/height - 1, so pixel centres are texel centres) and the
+// displacement slab [d_lo, d_hi] along f, widened by a small margin, onto depth, nearer +f first.
+glm::dmat4 relief_view_clip(const ReliefGeometry& g, int width, int height, double d_lo, double d_hi);
+// One view along -f of what lies in the slab [d_lo, d_hi]: colour (alpha 255 seen, 0 empty), displacement clamped
+// to the slab (0 where empty) and the range seen ([0, 0] when nothing). key is left empty.
+BakedFace bake_view(MeshRenderer& renderer, const ReliefGeometry& g, int width, int height, double d_lo,
+                    double d_hi);
 
 // Renders the six views through MeshRenderer; needs a current GlContext. `progress(done, 6)` after each face.
 BakedObject bake_object(const TriangleMesh& mesh, int n, const std::function<void(int, int)>& progress = {});
