@@ -14,6 +14,7 @@
 #include "formats/height_map.h"
 #include "formats/image_io.h"
 #include "mesh/bake_object.h"
+#include "mesh/bake_planes.h"
 #include "mesh/triangle_mesh.h"
 #include "texmap/gl_context.h"
 #include "warp/timing.h"
@@ -52,10 +53,18 @@ void bake_mesh(const BakeArgs& a) {
     if (a.size < 1 || a.size > 16384)
         throw UsageError("--size: expected N texels along the longest side, 1..16384, found " +
                          std::to_string(a.size));
-    if (!a.planes.empty()) throw UsageError("--planes: not implemented yet (docs/BAKE.md)");
+    if (!a.planes.empty() && a.size_given)
+        throw UsageError("--size applies to the six-face bake; with --planes each plane gives its size");
     const auto start = Clock::now();
+    const std::vector<BakePlane> planes = a.planes.empty() ? std::vector<BakePlane>{} : parse_bake_planes(a.planes);
     const TriangleMesh mesh = load_mesh(a.mesh);
     for (const std::string& w : mesh.warnings) std::fprintf(stderr, "rtm: warning: %s\n", w.c_str());
+    const std::string name = std::filesystem::path(a.mesh).stem().string();
+    if (!planes.empty()) {
+        auto ctx = GlContext::create_offscreen(16, 16);
+        for (const std::string& m : bake_planes(mesh, planes, a.out, name)) std::printf("%s\n", m.c_str());
+        return;
+    }
     std::vector<std::string> box_warnings;
     try {
         (void)bake_box(mesh.lo, mesh.hi, a.size, &box_warnings);  // refuse a point-sized mesh before any GL work
@@ -71,7 +80,6 @@ void bake_mesh(const BakeArgs& a) {
         std::fprintf(stderr, "\rbake: %d of %d faces", done, total);
     });
     for (const std::string& w : obj.warnings) std::fprintf(stderr, "rtm: warning: %s: %s\n", a.mesh.c_str(), w.c_str());
-    const std::string name = std::filesystem::path(a.mesh).stem().string();
     const std::string manifest =
         write_object(a.out, name, obj, std::filesystem::path(a.mesh).filename().string());
     if (shown) std::fprintf(stderr, "\n");
@@ -116,7 +124,8 @@ void add_bake_command(CLI::App& app) {
     CLI::App* sub = app.add_subcommand(
         "bake", "Bake a mesh into a six-face relief object, or a height map into a relief texture");
     sub->add_option("--mesh", a->mesh, "A mesh (any file assimp reads): writes DIR/NAME.object.json");
-    sub->add_option("--planes", a->planes, "(not implemented yet) one relief texture per rectangle of P.json");
+    sub->add_option("--planes", a->planes,
+                    "Bake one relief texture per rectangle of P.json (docs/BAKE.md) instead of six faces");
     sub->add_option("--height", a->height, "A height map image: writes DIR/NAME.relief.json");
     sub->add_option("--color", a->color, "Colour image for --height (default: grey levels of the height)");
     sub->add_option("--range", a->range, "MIN,MAX world units the height's 0..1 map onto (default 0, width/10)");

@@ -77,6 +77,18 @@ expect_fail 2 'one of --mesh' -- bake --mesh "$T/m/bump.obj" --height "$T/h.png"
 expect_fail 2 'range' -- bake --height "$T/h.png" --range 1,0 --out "$T/o_range"
 expect_fail 2 'relief.*mesh|mesh.*relief' -- render --mesh "$T/m/bump.obj" --relief x.relief.json --orbit 0,0,3
 
+# bake --planes: one relief per rectangle, readable by render --relief; malformed planes exit 1; --size exit 2.
+cat >"$T/planes.json" <<'JSON'
+{ "planes": [ { "name": "top", "origin": [0, 0, 0.75], "a": [0.125, 0, 0], "b": [0, 0.125, 0], "size": [8, 8] } ] }
+JSON
+expect_ok bake --mesh "$T/m/bump.obj" --planes "$T/planes.json" --out "$T/pl"
+[ -f "$T/pl/bump_top.relief.json" ] || { echo "FAIL: no bump_top.relief.json: $(ls "$T/pl")"; fails=$((fails + 1)); }
+expect_ok render --relief "$T/pl/bump_top.relief.json" --orbit 0,60,3 --size 32x32 --out "$T/pl.png"
+echo '{ "planes": [ { "name": "top", "origin": [0, 0], "a": [1, 0, 0], "b": [0, 1, 0], "size": [8, 8] } ] }' >"$T/bad_planes.json"
+expect_fail 1 'bad_planes\.json.*origin' -- bake --mesh "$T/m/bump.obj" --planes "$T/bad_planes.json" --out "$T/o_pl"
+[ -e "$T/o_pl" ] && { echo "FAIL: o_pl left behind"; fails=$((fails + 1)); }
+expect_fail 2 'size' -- bake --mesh "$T/m/bump.obj" --planes "$T/planes.json" --size 8 --out "$T/o_pl2"
+
 # bake --height: a 4x2 grey PGM and a colour; the manifest the relief reader takes.
 printf 'P2\n4 2\n255\n0 51 102 255\n255 102 51 0\n' >"$T/h.pgm"
 printf 'P3\n4 2\n255\n' >"$T/c.ppm"; for i in $(seq 8); do printf '10 20 30\n' >>"$T/c.ppm"; done
