@@ -175,7 +175,9 @@ struct Builder {
             if (has_uv) v.uv = glm::vec2(src.mTextureCoords[0][i].x, src.mTextureCoords[0][i].y);
             if (part.use_vertex_color) {
                 const aiColor4D& c = src.mColors[0][i];
-                auto byte = [](float x) { return uint8_t(std::lround(std::isfinite(x) ? std::clamp(x, 0.f, 1.f) * 255.f : 255.f)); };
+                auto byte = [](float x) {
+                    return uint8_t(std::lround(std::isfinite(x) ? std::clamp(x, 0.f, 1.f) * 255.f : 255.f));
+                };
                 v.color = glm::u8vec4(byte(c.r), byte(c.g), byte(c.b), 255);
             }
             mesh.vertices.push_back(v);

@@ -25,7 +25,9 @@ OBJ
 
 # render --mesh: from +z the bump's colour in the middle, black in the corner.
 expect_ok render --mesh "$T/m/bump.obj" --orbit 0,0,3 --size 64x64 --out "$T/bump.png" --json "$T/bump.json"
-if ! grep -q '"triangles": 4' "$T/bump.json"; then echo "FAIL: render --mesh json: $(cat "$T/bump.json")"; fails=$((fails + 1)); fi
+if ! grep -q '"triangles": 4' "$T/bump.json"; then
+  echo "FAIL: render --mesh json: $(cat "$T/bump.json")"; fails=$((fails + 1))
+fi
 if command -v oiiotool >/dev/null; then
   centre=$(oiiotool "$T/bump.png" --cut 1x1+32+32 --printstats 2>/dev/null | grep -i "stats max" | head -1)
   case "$centre" in *"1.000000 0.800000 0.000000"*) passes=$((passes + 1)) ;;
@@ -35,7 +37,9 @@ fi
 # bake --mesh: the object manifest and twelve images, nothing else.
 expect_ok bake --mesh "$T/m/bump.obj" --size 8 --out "$T/b"
 n=$(ls "$T/b" | wc -l)
-if [ "$n" != 13 ] || [ ! -f "$T/b/bump.object.json" ]; then echo "FAIL: bake wrote $n files: $(ls "$T/b")"; fails=$((fails + 1)); fi
+if [ "$n" != 13 ] || [ ! -f "$T/b/bump.object.json" ]; then
+  echo "FAIL: bake wrote $n files: $(ls "$T/b")"; fails=$((fails + 1))
+fi
 for key in '"+x"' '"-x"' '"+y"' '"-y"' '"+z"' '"-z"' '"box"'; do
   grep -q -- "$key" "$T/b/bump.object.json" || { echo "FAIL: bump.object.json lacks $key"; fails=$((fails + 1)); }
 done
@@ -56,7 +60,8 @@ expect_ok bake --mesh "$T/m/flat.obj" --size 16 --out "$T/flat"
 grep -q 'warning:.*flat along z' "$T/stderr" || { echo "FAIL: flat mesh: $(cat "$T/stderr")"; fails=$((fails + 1)); }
 # A missing texture: the material colour, a warning.
 printf 'newmtl m\nKd 1 0 0\nmap_Kd gone.png\n' >"$T/m/notex.mtl"
-printf 'mtllib notex.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 1\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl m\nf 1/1 2/2 3/3\n' >"$T/m/notex.obj"
+printf 'mtllib notex.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 1\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl m\nf 1/1 2/2 3/3\n' \
+  >"$T/m/notex.obj"
 expect_ok bake --mesh "$T/m/notex.obj" --size 16 --out "$T/notex"
 grep -q 'warning:.*gone\.png' "$T/stderr" || { echo "FAIL: missing texture: $(cat "$T/stderr")"; fails=$((fails + 1)); }
 
@@ -84,7 +89,8 @@ JSON
 expect_ok bake --mesh "$T/m/bump.obj" --planes "$T/planes.json" --out "$T/pl"
 [ -f "$T/pl/bump_top.relief.json" ] || { echo "FAIL: no bump_top.relief.json: $(ls "$T/pl")"; fails=$((fails + 1)); }
 expect_ok render --relief "$T/pl/bump_top.relief.json" --orbit 0,60,3 --size 32x32 --out "$T/pl.png"
-echo '{ "planes": [ { "name": "top", "origin": [0, 0], "a": [1, 0, 0], "b": [0, 1, 0], "size": [8, 8] } ] }' >"$T/bad_planes.json"
+echo '{ "planes": [ { "name": "top", "origin": [0, 0], "a": [1, 0, 0], "b": [0, 1, 0], "size": [8, 8] } ] }' \
+  >"$T/bad_planes.json"
 expect_fail 1 'bad_planes\.json.*origin' -- bake --mesh "$T/m/bump.obj" --planes "$T/bad_planes.json" --out "$T/o_pl"
 [ -e "$T/o_pl" ] && { echo "FAIL: o_pl left behind"; fails=$((fails + 1)); }
 expect_fail 2 'size' -- bake --mesh "$T/m/bump.obj" --planes "$T/planes.json" --size 8 --out "$T/o_pl2"
