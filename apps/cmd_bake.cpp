@@ -107,6 +107,9 @@ void bake_height(const BakeArgs& a) {
 
 void run_bake(const BakeArgs& a) {
     if (a.mesh.empty() == a.height.empty()) throw UsageError("bake needs one of --mesh FILE and --height IMG");
+    // A folder that cannot be one is refused before any work.
+    if (std::error_code ec; std::filesystem::exists(a.out, ec) && !std::filesystem::is_directory(a.out, ec))
+        throw IoError("--out " + a.out + ": exists and is not a folder");
     if (!a.mesh.empty()) {
         if (!a.color.empty() || !a.range.empty() || a.texel_given)
             throw UsageError("--color, --range and --texel apply to --height, not --mesh");

@@ -18,6 +18,7 @@
 #include <unistd.h>
 
 #include "formats/image_io.h"
+#include "mesh/header_guard.h"
 
 namespace rtm {
 namespace {
@@ -217,6 +218,10 @@ TriangleMesh load_mesh(const std::string& path) {
     std::error_code ec;
     if (!fs::exists(path, ec)) fail(path, "cannot read mesh: no such file");
     if (fs::is_directory(path, ec)) fail(path, "cannot read mesh: it is a folder");
+    const std::uintmax_t bytes = fs::file_size(path, ec);
+    if (ec) fail(path, "cannot read mesh: " + ec.message());
+    if (const std::string why = check_declared_counts(path, bytes); !why.empty())
+        fail(path, "cannot read mesh: " + why);
     Assimp::Importer importer;
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
     const unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType |

@@ -52,6 +52,41 @@ if [ -f "$DUCK" ]; then
     { echo "FAIL: duck bake files: $(ls "$T/duck")"; fails=$((fails + 1)); }
   if grep -q warning "$T/stderr"; then echo "FAIL: duck bake warned: $(cat "$T/stderr")"; fails=$((fails + 1)); fi
   expect_ok render --mesh "$DUCK" --orbit 30,20,2.5 --size 64x64 --out "$T/duck.png"
+  # Each face, as a relief texture rendered by the pre-warp (two-pass) from straight in front of it, against the
+  # mesh rendered from the same eye: the object's frames and texel centres agree with the mesh. Measured at
+  # --size 128, 128x128 images: +x psnr 35.3 iou 0.978, +z psnr 39.0 iou 0.983 (llvmpipe). The bounds leave
+  # room for rasterization differences at the outline and the 8-bit displacement of the pre-warp; a frame off by
+  # a texel or mirrored falls far below them.
+  expect_ok bake --mesh "$DUCK" --size 128 --out "$T/duck128"
+  for key in +x +z; do
+    cam=$(python3 - "$T/duck128" "$key" <<'PY'
+import json, sys
+d, key = sys.argv[1], sys.argv[2]
+j = json.load(open(d + '/duck.object.json'))
+lo, hi = j['box']['min'], j['box']['max']
+f = j['faces'][key]
+w, h = f['size']
+e = [hi[k] - lo[k] for k in range(3)]
+o, a, b, n = {'+x': ([hi[0], lo[1], hi[2]], [0, 0, -e[2] / w], [0, e[1] / h, 0], [1, 0, 0]),
+              '+z': ([lo[0], lo[1], hi[2]], [e[0] / w, 0, 0], [0, e[1] / h, 0], [0, 0, 1])}[key]
+json.dump({'color': f['color'], 'displacement': f['displacement'], 'displacement_range': f['displacement_range'],
+           'origin': o, 'a': a, 'b': b}, open(d + '/face.relief.json', 'w'))
+c = [(lo[k] + hi[k]) / 2 for k in range(3)]
+print('--eye', ','.join(str(c[k] + 3 * n[k]) for k in range(3)), '--look-at', ','.join(map(str, c)))
+PY
+)
+    # shellcheck disable=SC2086
+    expect_ok render --relief "$T/duck128/face.relief.json" $cam --size 128x128 --method two-pass --out "$T/face.png"
+    # shellcheck disable=SC2086
+    expect_ok render --mesh "$DUCK" $cam --size 128x128 --out "$T/face_mesh.png"
+    "$RTM" diff "$T/face_mesh.png" "$T/face.png" >"$T/diff.txt" 2>&1
+    psnr=$(awk '$1 == "psnr" {print $2}' "$T/diff.txt")
+    iou=$(awk '$1 == "iou" {print $2}' "$T/diff.txt")
+    echo "face $key against the mesh: psnr $psnr iou $iou"
+    if ! awk -v p="$psnr" -v i="$iou" 'BEGIN { exit !(p >= 28 && i >= 0.95) }'; then
+      echo "FAIL: face $key against the mesh: psnr $psnr iou $iou (want >= 28, >= 0.95)"; fails=$((fails + 1))
+    fi
+  done
 fi
 
 # Flat meshes still bake, with a one-line warning.
@@ -75,6 +110,8 @@ expect_fail 1 'garbage\.obj' -- render --mesh "$T/m/garbage.obj" --orbit 0,0,3 -
 for d in o_point o_garbage o_missing o_garbage.png; do
   [ -e "$T/$d" ] && { echo "FAIL: $d left behind"; fails=$((fails + 1)); }
 done
+touch "$T/a_file"
+expect_fail 1 'a_file.*not a folder' -- bake --mesh "$T/m/bump.obj" --out "$T/a_file"
 # Usage errors: exit 2.
 expect_fail 2 'size' -- bake --mesh "$T/m/bump.obj" --size 0 --out "$T/o_size"
 expect_fail 2 'one of --mesh' -- bake --out "$T/o_none"

@@ -3,6 +3,7 @@
 
 #include "common/temp_dir.h"
 #include "formats/image_io.h"
+#include "mesh/header_guard.h"
 #include "mesh/mesh_test_util.h"
 #include "mesh/triangle_mesh.h"
 
@@ -135,6 +136,35 @@ TEST(MeshLoader, RefusesWithOneLineNamingTheFile) {
             EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
         }
     }
+}
+
+}  // namespace
+}  // namespace rtm
+
+namespace rtm {
+namespace {
+
+TEST(MeshLoader, RefusesDeclaredCountsLargerThanTheFile) {
+    // assimp's PLY and OFF readers reserve what the header declares (mesh/header_guard.h).
+    objects_testing::TempDir dir;
+    const std::string off = "OFF\n353535235358 6 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    const std::string ply = "ply\nformat ascii 1.0\nelement vertex 353535235358\nproperty float x\nproperty float y\n"
+                            "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                            "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    objects_testing::write_file(dir.file("huge.off"), off);
+    objects_testing::write_file(dir.file("huge.ply"), ply);
+    for (const char* name : {"huge.off", "huge.ply"}) {
+        try {
+            (void)load_mesh(dir.file(name));
+            ADD_FAILURE() << name << " was accepted";
+        } catch (const IoError& e) {
+            EXPECT_NE(std::string(e.what()).find("353535235358"), std::string::npos) << e.what();
+        }
+    }
+    EXPECT_EQ(check_declared_counts(dir.file("huge.off"), 1000000000000ull), "");
+    // Honest headers pass.
+    objects_testing::write_file(dir.file("ok.off"), "OFF\n# a comment\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+    EXPECT_EQ(load_mesh(dir.file("ok.off")).triangle_count(), 1u);
 }
 
 }  // namespace
