@@ -125,7 +125,7 @@ TEST(MeshLoader, RefusesWithOneLineNamingTheFile) {
     write_file(dir.file("points.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\np 1 2 3\n");
     write_file(dir.file("empty.ply"), "");
     write_file(dir.file("nan.obj"), "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
-    for (const std::string& name : {"garbage.obj", "points.obj", "empty.ply", "missing.obj", "nan.obj"}) {
+    for (const char* name : {"garbage.obj", "points.obj", "empty.ply", "missing.obj", "nan.obj"}) {
         const std::string path = dir.file(name);
         try {
             (void)load_mesh(path);
