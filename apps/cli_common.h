@@ -59,5 +59,6 @@ void add_view_command(CLI::App& app);
 void add_diff_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_bench_filter_command(CLI::App& app);
+void add_bake_command(CLI::App& app);
 
 }  // namespace rtm::cli

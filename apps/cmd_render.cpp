@@ -13,6 +13,7 @@
 #include "cmd_render_scene.h"
 #include "objects/bounds.h"
 #include "objects/render_relief.h"
+#include "render_mesh.h"
 #include "formats/relief_manifest.h"
 #include "objects/relief_quad.h"
 #include "texmap/gl_context.h"
@@ -24,7 +25,7 @@ namespace {
 
 
 struct RenderArgs {
-    std::string relief, object, scene, frames_dir, out, json, method = "two-pass", level = "0", filter = "point";
+    std::string relief, object, scene, mesh, frames_dir, out, json, method = "two-pass", level = "0", filter = "point";
     CameraArgs camera;
     bool exact = false, progress = false, no_sidewalls = false, depth_correction = false, no_skips = false;
     double discontinuity = -1;
@@ -68,7 +69,12 @@ void run_render(const RenderArgs& a) {
     if (!(a.discontinuity >= 0 || a.discontinuity == -1) || !std::isfinite(a.discontinuity))
         throw UsageError("--discontinuity: expected a threshold >= 0, found " + std::to_string(a.discontinuity));
     if (a.repeat < 1) throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
-    if (a.relief.empty()) throw UsageError("render needs --relief M, --object O or --scene S");
+    if (!a.mesh.empty()) {
+        if (!a.relief.empty()) throw UsageError("render takes one of --relief M and --mesh FILE, not both");
+        run_render_mesh(a.mesh, a.camera, a.out, a.json);
+        return;
+    }
+    if (a.relief.empty()) throw UsageError("render needs --relief M, --object O, --scene S or --mesh FILE");
     if (!a.camera.has_eye()) throw UsageError("render needs --eye X,Y,Z or --orbit AZ,EL,D");
     // Validate the camera's syntax before any file is read.
     (void)a.camera.resolve(Bounds{glm::dvec3(-1), glm::dvec3(1)});
@@ -159,6 +165,7 @@ void add_render_command(CLI::App& app) {
     sub->add_option("--camera-path", a->path_frame, "Scene: render frame K of the scene's camera path")
         ->check(CLI::NonNegativeNumber);
     sub->add_option("--frames", a->frames_dir, "Scene: render every frame of its camera path into DIR");
+    sub->add_option("--mesh", a->mesh, "A mesh (any file assimp reads), rendered with conventional OpenGL");
     a->camera.add_to(*sub);
     sub->add_option("--method", a->method, "flat, two-pass, pipelined, micromesh or raycast")->capture_default_str();
     sub->add_flag("--exact", a->exact, "Pre-warp with unquantized displacement and double-precision coordinates");

@@ -34,6 +34,7 @@ int main(int argc, char** argv) {
     rtm::cli::add_diff_command(app);
     rtm::cli::add_bench_command(app);
     rtm::cli::add_bench_filter_command(app);
+    rtm::cli::add_bake_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

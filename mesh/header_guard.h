@@ -1,0 +1,16 @@
+// Checks, before assimp reads a file, that the element counts its header declares fit in the file. assimp 5.2's
+// PLY and OFF readers reserve memory for the declared counts: a 309-byte OFF file claiming 353535235358 vertices
+// (assimp-testmodels' invalid/OutOfMemory.off) made it grow past 2 GB and run for minutes. Every declared element
+// takes at least one byte of the file, so a count larger than the file's size is a lie.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace rtm {
+
+// Returns "" when the file is not PLY or OFF or its declared counts fit in `file_size` bytes; otherwise what is
+// wrong ("header declares 353535235358 vertices in a file of 309 bytes"). Reads at most the first 64 KiB.
+std::string check_declared_counts(const std::string& path, std::uintmax_t file_size);
+
+}  // namespace rtm
