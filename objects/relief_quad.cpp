@@ -22,7 +22,10 @@ RenderMethod parse_render_method(const std::string& s) {
     if (s == "pipelined") return RenderMethod::pipelined;
     if (s == "micromesh") return RenderMethod::micromesh;
     if (s == "raycast") return RenderMethod::raycast;
-    throw std::invalid_argument("unknown method \"" + s + "\"; known: flat, two-pass, pipelined, micromesh, raycast");
+    if (const auto m = parse_perpixel_method(s)) return RenderMethod(int(RenderMethod::parallax) + int(*m));
+    std::string known = "flat, two-pass, pipelined, micromesh, raycast";
+    for (PerPixelMethod m : all_perpixel_methods()) known += ", " + to_string(m);
+    throw std::invalid_argument("unknown method \"" + s + "\"; known: " + known);
 }
 
 std::string to_string(RenderMethod m) {
@@ -32,8 +35,15 @@ std::string to_string(RenderMethod m) {
         case RenderMethod::pipelined: return "pipelined";
         case RenderMethod::micromesh: return "micromesh";
         case RenderMethod::raycast: return "raycast";
+        default: break;
     }
+    if (const auto p = perpixel_method(m)) return to_string(*p);
     return "?";
+}
+
+std::optional<PerPixelMethod> perpixel_method(RenderMethod m) {
+    if (int(m) < int(RenderMethod::parallax) || int(m) > int(RenderMethod::interval_mapping)) return std::nullopt;
+    return PerPixelMethod(int(m) - int(RenderMethod::parallax));
 }
 
 ImageRGBA8 flat_texture(const ReliefTexture& t) {
@@ -71,6 +81,11 @@ const MicroMesh& ReliefQuad::micromesh() {
 
 bool ReliefQuad::faces(const glm::dvec3& eye) const {
     return compute_coefficients(relief_.geometry, eye).side == ViewSide::front;
+}
+
+PerPixelQuad& ReliefQuad::perpixel() {
+    if (!perpixel_) perpixel_ = std::make_unique<PerPixelQuad>();
+    return *perpixel_;
 }
 
 const ReliefTexture& ReliefQuad::level_texture(int i) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "objects/view_analysis.h"
+#include "perpixel/perpixel_quad.h"
 #include "texmap/camera.h"
 #include "texmap/renderer.h"
 #include "warp/prewarp.h"
@@ -19,10 +20,15 @@ namespace rtm {
 
 struct MicroMesh;
 
-enum class RenderMethod { flat, two_pass, pipelined, micromesh, raycast };
+// After raycast: the per-pixel methods (perpixel/perpixel_method.h), by the same names.
+enum class RenderMethod {
+    flat, two_pass, pipelined, micromesh, raycast,
+    parallax, parallax_offset_limiting, steep_parallax, parallax_occlusion, relief_mapping, interval_mapping
+};
 
 RenderMethod parse_render_method(const std::string& s);  // throws std::invalid_argument naming s
 std::string to_string(RenderMethod m);
+std::optional<PerPixelMethod> perpixel_method(RenderMethod m);  // nullopt for the other methods
 
 struct StageTimes {
     double prewarp_ms = 0.0;      // pre-warping and resampling
@@ -82,6 +88,8 @@ public:
     const PrewarpStats& last_stats() const { return stats_; }
     // The micro-polygon mesh of this relief (ground truth), built on first use.
     const MicroMesh& micromesh();
+    // The per-pixel methods' textures and programs for this relief (level 0), made on first use.
+    PerPixelQuad& perpixel();
 
     // Draws with `method` (flat, two_pass or pipelined) into the current frame. Requires a current GL context,
     // the same one for the life of the quad. options.keep_outliers draws the side polygons (paper section 4,
@@ -102,6 +110,7 @@ private:
     ImageRGBA8 flat_;  // source colours of level flat_level_ as an ordinary texture (alpha 0 where empty)
     int flat_level_ = -1;
     std::unique_ptr<MicroMesh> micromesh_;
+    std::unique_ptr<PerPixelQuad> perpixel_;
     // What the current pre-warp was made for (reuse when the eye barely moved).
     struct Cached {
         bool valid = false;

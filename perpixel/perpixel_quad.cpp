@@ -1,0 +1,198 @@
+#include "perpixel/perpixel_quad.h"
+
+#include <glad/gl.h>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "perpixel/relief_map.h"
+#include "perpixel/shader_common.h"
+#include "texmap/gl_context.h"
+
+namespace rtm {
+namespace {
+
+GLuint compile(GLenum type, const std::string& source, const std::string& name) {
+    GLuint s = glCreateShader(type);
+    const char* src = source.c_str();
+    glShaderSource(s, 1, &src, nullptr);
+    glCompileShader(s);
+    GLint ok = 0;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        GLint len = 0;
+        glGetShaderiv(s, GL_INFO_LOG_LENGTH, &len);
+        std::string log(size_t(len > 1 ? len : 1), '\0');
+        glGetShaderInfoLog(s, len, nullptr, log.data());
+        glDeleteShader(s);
+        throw GlError("cannot compile the " + name + " shader: " + log.c_str());
+    }
+    return s;
+}
+
+GLuint link(const std::string& fs_src, const std::string& name) {
+    GLuint vs = compile(GL_VERTEX_SHADER, kPerPixelVertexShader, name);
+    GLuint fs = 0;
+    try {
+        fs = compile(GL_FRAGMENT_SHADER, fs_src, name);
+    } catch (...) {
+        glDeleteShader(vs);
+        throw;
+    }
+    GLuint p = glCreateProgram();
+    glAttachShader(p, vs);
+    glAttachShader(p, fs);
+    glLinkProgram(p);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    GLint ok = 0;
+    glGetProgramiv(p, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        GLint len = 0;
+        glGetProgramiv(p, GL_INFO_LOG_LENGTH, &len);
+        std::string log(size_t(len > 1 ? len : 1), '\0');
+        glGetProgramInfoLog(p, len, nullptr, log.data());
+        glDeleteProgram(p);
+        throw GlError("cannot link the " + name + " program: " + log.c_str());
+    }
+    return p;
+}
+
+}  // namespace
+
+PerPixelQuad::PerPixelQuad() = default;
+
+PerPixelQuad::~PerPixelQuad() {
+    if (!glad_glDeleteProgram) return;
+    for (const auto& [key, p] : programs_) glDeleteProgram(p);
+    if (vbo_) glDeleteBuffers(1, &vbo_);
+    if (vao_) glDeleteVertexArrays(1, &vao_);
+}
+
+unsigned PerPixelQuad::program(PerPixelMethod m, const PerPixelCommon& c) {
+    const auto key = std::make_tuple(int(m), c.depth_correction, c.shading, c.shading && c.self_shadowing,
+                                     c.iteration_counts);
+    auto it = programs_.find(key);
+    if (it != programs_.end()) return it->second;
+    const GLuint p = link(perpixel_fragment_shader(m, c), to_string(m));
+    programs_[key] = p;
+    return p;
+}
+
+void PerPixelQuad::prepare(PerPixelMethod m, const PerPixelCommon& common) { (void)program(m, common); }
+
+void PerPixelQuad::draw(Renderer& renderer, const Camera& cam, const ReliefTexture& t, PerPixelMethod m,
+                        const PerPixelSettings& s) {
+    s.validate();
+    renderer.clear_if_pending();
+    if (t.width <= 0 || t.height <= 0) return;
+    if (!color_) {
+        color_ = std::make_unique<GlTexture>();
+        color_->upload(perpixel_color_texture(t));
+        relief_map_ = std::make_unique<GlTexture>();
+        relief_map_->upload(perpixel_relief_map(t));
+    }
+    if (!vao_) {
+        glGenVertexArrays(1, &vao_);
+        glGenBuffers(1, &vbo_);
+        glBindVertexArray(vao_);
+        glBindBuffer(GL_ARRAY_BUFFER, vbo_);
+        glBufferData(GL_ARRAY_BUFFER, 4 * 5 * sizeof(float), nullptr, GL_DYNAMIC_DRAW);
+        glEnableVertexAttribArray(0);
+        glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 5 * sizeof(float), reinterpret_cast<void*>(0));
+        glEnableVertexAttribArray(1);
+        glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, 5 * sizeof(float), reinterpret_cast<void*>(3 * sizeof(float)));
+        glBindVertexArray(0);
+    }
+    const GLuint prog = program(m, s.common);
+
+    const ReliefGeometry& g = t.geometry;
+    const glm::dvec3 E = cam.eye, f = g.f();
+    const double range = t.quant.max - t.quant.min;
+    // A zero range (flat relief) still needs a finite V.z: a slab a millionth of the quad's size.
+    const double depth_range =
+        std::max(range, 1e-6 * std::max(glm::length(g.a) * t.width, glm::length(g.b) * t.height));
+    const glm::dvec3 top = g.origin + f * t.quant.max - E;  // eye-relative origin of the top polygon
+    const glm::dvec3 aw = g.a * double(t.width), bh = g.b * double(t.height);
+    const glm::dvec3 corners[4] = {top, top + aw, top + aw + bh, top + bh};
+    const float st[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    float data[4][5];
+    for (int i = 0; i < 4; ++i) {
+        data[i][0] = float(corners[i].x);
+        data[i][1] = float(corners[i].y);
+        data[i][2] = float(corners[i].z);
+        data[i][3] = st[i][0];
+        data[i][4] = st[i][1];
+    }
+    // Dual basis of (a, b), scaled to st: s = dot(p - origin, da) / width.
+    const double aa = glm::dot(g.a, g.a), ab = glm::dot(g.a, g.b), bb = glm::dot(g.b, g.b);
+    const double det = aa * bb - ab * ab;
+    const glm::dvec3 da = (g.a * bb - g.b * ab) / (det * t.width), db = (g.b * aa - g.a * ab) / (det * t.height);
+    const glm::dmat4 mvp_rel = cam.projection() * cam.view() * glm::translate(glm::dmat4(1.0), E);
+    const glm::dmat4 proj = cam.projection();
+    const glm::dvec3 forward = glm::normalize(cam.look_at - cam.eye);
+    const glm::dvec3 light = glm::normalize(s.common.light_dir);
+
+    glUseProgram(prog);
+    auto loc = [&](const char* name) { return glGetUniformLocation(prog, name); };
+    auto vec3u = [&](const char* name, const glm::dvec3& v) {
+        glUniform3f(loc(name), float(v.x), float(v.y), float(v.z));
+    };
+    const glm::mat4 mvpf(mvp_rel);
+    glUniformMatrix4fv(loc("u_mvp_rel"), 1, GL_FALSE, glm::value_ptr(mvpf));
+    glUniform1i(loc("u_color"), 0);
+    glUniform1i(loc("u_relief"), 1);
+    vec3u("u_da", da);
+    vec3u("u_db", db);
+    vec3u("u_f", f);
+    glUniform1f(loc("u_depth_range"), float(depth_range));
+    vec3u("u_forward", forward);
+    glUniform2f(loc("u_ndc"), float(-proj[2][2]), float(proj[3][2]));
+    vec3u("u_light", light);
+    glUniform1f(loc("u_ambient"), s.common.ambient);
+    glUniform1i(loc("u_shadow_steps"), s.common.shadow_steps);
+    // Each method's parameters into the shared uniforms (perpixel/shader_common.cpp).
+    switch (m) {
+        case PerPixelMethod::parallax:
+        case PerPixelMethod::parallax_offset_limiting:
+            glUniform1f(loc("u_scale"), s.parallax.scale);
+            glUniform1f(loc("u_bias"), s.parallax.bias);
+            break;
+        case PerPixelMethod::steep_parallax:
+            glUniform1i(loc("u_min_steps"), s.steep_parallax.min_steps);
+            glUniform1i(loc("u_max_steps"), s.steep_parallax.max_steps);
+            break;
+        case PerPixelMethod::parallax_occlusion:
+            glUniform1i(loc("u_min_steps"), s.parallax_occlusion.nMinSamples);
+            glUniform1i(loc("u_max_steps"), s.parallax_occlusion.nMaxSamples);
+            break;
+        case PerPixelMethod::relief_mapping:
+            glUniform1i(loc("u_linear_search_steps"), s.relief_mapping.linear_search_steps);
+            glUniform1i(loc("u_binary_search_steps"), s.relief_mapping.binary_search_steps);
+            glUniform1f(loc("u_convergence_threshold"), s.relief_mapping.convergence_threshold);
+            glUniform1i(loc("u_max_iterations"), s.relief_mapping.max_iterations);
+            break;
+        case PerPixelMethod::interval_mapping:
+            glUniform1i(loc("u_linear_search_steps"), s.interval_mapping.linear_search_steps);
+            glUniform1f(loc("u_convergence_threshold"), s.interval_mapping.convergence_threshold);
+            glUniform1i(loc("u_max_iterations"), s.interval_mapping.max_iterations);
+            break;
+    }
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, relief_map_->id());
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, color_->id());
+    glBindVertexArray(vao_);
+    glBindBuffer(GL_ARRAY_BUFFER, vbo_);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof(data), data);
+    glDrawArrays(GL_TRIANGLE_FAN, 0, 4);
+    glBindVertexArray(0);
+    check_gl(("PerPixelQuad::draw " + to_string(m)).c_str());
+}
+
+}  // namespace rtm
