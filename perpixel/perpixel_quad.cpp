@@ -151,6 +151,7 @@ void PerPixelQuad::draw(Renderer& renderer, const Camera& cam, const ReliefTextu
     vec3u("u_db", db);
     vec3u("u_f", f);
     glUniform1f(loc("u_depth_range"), float(depth_range));
+    glUniform2f(loc("u_half_texel"), float(0.5 / t.width), float(0.5 / t.height));
     vec3u("u_forward", forward);
     glUniform2f(loc("u_ndc"), float(-proj[2][2]), float(proj[3][2]));
     vec3u("u_light", light);

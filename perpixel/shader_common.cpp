@@ -26,6 +26,7 @@ uniform sampler2D u_color;   // colour, premultiplied by coverage alpha; image r
 uniform sampler2D u_relief;  // rgb: unit normal * 0.5 + 0.5 in (a, b, f); a: depth (254 - q) / 255
 uniform vec3 u_da, u_db, u_f;  // st = (dot(p - origin, u_da), dot(p - origin, u_db)); f the relief's normal
 uniform float u_depth_range;   // max - min of the displacement, world units
+uniform vec2 u_half_texel;     // (0.5 / width, 0.5 / height): the surface spans the texel centres
 uniform vec3 u_forward;        // the camera's view direction
 uniform vec2 u_ndc;            // ndc z = u_ndc.x + u_ndc.y / Z for eye-space distance Z along u_forward
 uniform vec3 u_light;          // world direction towards the light, unit
@@ -59,8 +60,9 @@ void main() {
     vec3 Vts = vec3(dot(V, u_da), dot(V, u_db), cos_view / u_depth_range);
     int iters = 0;
     vec3 hit = trace(v_st, Vts, cos_view, iters);
-    // Rays that leave the footprint find nothing: the relief exists over the quad only.
-    if (hit.x < 0.0 || hit.x > 1.0 || hit.y < 0.0 || hit.y > 1.0) discard;
+    // Rays that leave the footprint find nothing: the relief exists over the quad only, and its surface (as the
+    // ray caster's and the micro-polygons') spans the texel centres, half a texel inside the quad's border.
+    if (any(lessThan(hit.xy, u_half_texel)) || any(greaterThan(hit.xy, 1.0 - u_half_texel))) discard;
     vec2 tc = vec2(hit.x, 1.0 - hit.y);
     vec4 c = textureLod(u_color, tc, 0.0);
     if (c.a < 0.5) discard;  // empty texels are holes
