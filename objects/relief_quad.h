@@ -23,7 +23,8 @@ struct MicroMesh;
 // After raycast: the per-pixel methods (perpixel/perpixel_method.h), by the same names.
 enum class RenderMethod {
     flat, two_pass, pipelined, micromesh, raycast,
-    parallax, parallax_offset_limiting, steep_parallax, parallax_occlusion, relief_mapping, interval_mapping
+    parallax, parallax_offset_limiting, steep_parallax, parallax_occlusion, relief_mapping, interval_mapping,
+    protruded_displacement
 };
 
 RenderMethod parse_render_method(const std::string& s);  // throws std::invalid_argument naming s

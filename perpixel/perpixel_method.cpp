@@ -26,6 +26,7 @@ constexpr Named kNames[] = {
     {PerPixelMethod::parallax_occlusion, "parallax-occlusion"},
     {PerPixelMethod::relief_mapping, "relief-mapping"},
     {PerPixelMethod::interval_mapping, "interval-mapping"},
+    {PerPixelMethod::protruded_displacement, "protruded-displacement"},
 };
 
 void check_steps(const char* what, int n) {
@@ -69,7 +70,8 @@ const char* perpixel_trace_glsl(PerPixelMethod m) {
         case PerPixelMethod::parallax_offset_limiting: return kParallaxGlsl;
         case PerPixelMethod::steep_parallax: return kSteepParallaxGlsl;
         case PerPixelMethod::parallax_occlusion: return kParallaxOcclusionGlsl;
-        case PerPixelMethod::relief_mapping: return kReliefMappingGlsl;
+        case PerPixelMethod::relief_mapping:
+        case PerPixelMethod::protruded_displacement: return kReliefMappingGlsl;  // the paper's search
         case PerPixelMethod::interval_mapping: return kIntervalMappingGlsl;
     }
     throw std::logic_error("perpixel_trace_glsl: unknown method");
@@ -91,6 +93,10 @@ void PerPixelSettings::validate() const {
     check_steps("interval-mapping linear_search_steps", interval_mapping.linear_search_steps);
     check_steps("interval-mapping max_iterations", interval_mapping.max_iterations);
     check_nonneg("interval-mapping convergence_threshold", interval_mapping.convergence_threshold);
+    check_steps("protruded-displacement linear_search_steps", protruded_displacement.linear_search_steps);
+    if (protruded_displacement.binary_search_steps < 0 || protruded_displacement.binary_search_steps > 1024)
+        throw std::invalid_argument("protruded-displacement binary_search_steps: expected 0..1024, found " +
+                                    std::to_string(protruded_displacement.binary_search_steps));
     check_steps("shadow_steps", common.shadow_steps);
     check_nonneg("ambient", common.ambient);
     const glm::dvec3& l = common.light_dir;

@@ -20,6 +20,8 @@ enum class PerPixelMethod {
     relief_mapping,            // Policarpo, Oliveira, Comba, "Real-time relief mapping on arbitrary polygonal
                                // surfaces", I3D 2005
     interval_mapping,          // Risser, Shah, Pattanaik, "Interval mapping", I3D 2006 poster / tech. report
+    protruded_displacement,    // Yoo, "Protruded displacement mapping for image-based urban representation",
+                               // IEICE Electronics Express 8(13), 2011
 };
 
 // "parallax", "parallax-offset-limiting", ...; nullopt for a name that is not a per-pixel method.
@@ -73,6 +75,17 @@ struct IntervalMappingSettings {
     float convergence_threshold = 0.01f;
 };
 
+// Protruded displacement mapping: the base polygon at the bottom of the displacement range plus four faces
+// perpendicular to it along its border, from the bottom to the top of the range. Each fragment, on the base or on
+// a side face, maps its eye ray to where it meets the (extended) base plane and searches it from the top of the
+// range down with relief mapping's linear then binary search; outside the footprint there is no surface, so rays
+// that enter or leave through the border find the relief standing out beyond the base polygon (the paper's
+// "displacement overflow"). The paper's extra texture for steep slopes (its section 4) is not implemented.
+struct ProtrudedDisplacementSettings {
+    int linear_search_steps = 32;
+    int binary_search_steps = 8;
+};
+
 // What every method shares. The comparison shows unlit colour (as the pre-warp does); `shading` multiplies it by
 // a Lambert term from normals derived from the displacement, `self_shadowing` (relief mapping's section 3.2, used
 // by every method here) tests the segment towards the light for an occluder with shadow_steps linear steps.
@@ -95,6 +108,7 @@ struct PerPixelSettings {
     ParallaxOcclusionSettings parallax_occlusion;
     ReliefMappingSettings relief_mapping;
     IntervalMappingSettings interval_mapping;
+    ProtrudedDisplacementSettings protruded_displacement;
     // Throws std::invalid_argument naming the first bad value (steps < 1, thresholds < 0, non-finite).
     void validate() const;
 };

@@ -8,7 +8,9 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <array>
 #include <string>
+#include <vector>
 
 #include "perpixel/relief_map.h"
 #include "perpixel/shader_common.h"
@@ -102,7 +104,7 @@ void PerPixelQuad::draw(Renderer& renderer, const Camera& cam, const ReliefTextu
         glGenBuffers(1, &vbo_);
         glBindVertexArray(vao_);
         glBindBuffer(GL_ARRAY_BUFFER, vbo_);
-        glBufferData(GL_ARRAY_BUFFER, 4 * 5 * sizeof(float), nullptr, GL_DYNAMIC_DRAW);
+        glBufferData(GL_ARRAY_BUFFER, 5 * 4 * 5 * sizeof(float), nullptr, GL_DYNAMIC_DRAW);
         glEnableVertexAttribArray(0);
         glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 5 * sizeof(float), reinterpret_cast<void*>(0));
         glEnableVertexAttribArray(1);
@@ -119,16 +121,24 @@ void PerPixelQuad::draw(Renderer& renderer, const Camera& cam, const ReliefTextu
         std::max(range, 1e-6 * std::max(glm::length(g.a) * t.width, glm::length(g.b) * t.height));
     const glm::dvec3 top = g.origin + f * t.quant.max - E;  // eye-relative origin of the top polygon
     const glm::dvec3 aw = g.a * double(t.width), bh = g.b * double(t.height);
-    const glm::dvec3 corners[4] = {top, top + aw, top + aw + bh, top + bh};
-    const float st[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-    float data[4][5];
-    for (int i = 0; i < 4; ++i) {
-        data[i][0] = float(corners[i].x);
-        data[i][1] = float(corners[i].y);
-        data[i][2] = float(corners[i].z);
-        data[i][3] = st[i][0];
-        data[i][4] = st[i][1];
+    // The top polygon; for protruded displacement mapping the base polygon and the four side faces instead
+    // (their fragments compute their ray's top-plane point, so their st attribute is unused).
+    const bool protruded = m == PerPixelMethod::protruded_displacement;
+    const glm::dvec3 base = g.origin + f * t.quant.min - E, up = top - base;
+    std::vector<std::array<glm::dvec3, 4>> faces;
+    if (!protruded) {
+        faces.push_back({top, top + aw, top + aw + bh, top + bh});
+    } else {
+        faces.push_back({base, base + aw, base + aw + bh, base + bh});
+        const glm::dvec3 c[4] = {base, base + aw, base + aw + bh, base + bh};
+        for (int i = 0; i < 4; ++i) faces.push_back({c[i], c[(i + 1) % 4], c[(i + 1) % 4] + up, c[i] + up});
     }
+    const float st[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    std::vector<float> data;
+    for (const auto& face : faces)
+        for (int i = 0; i < 4; ++i)
+            data.insert(data.end(), {float(face[size_t(i)].x), float(face[size_t(i)].y), float(face[size_t(i)].z),
+                                     st[i][0], st[i][1]});
     // Dual basis of (a, b), scaled to st: s = dot(p - origin, da) / width.
     const double aa = glm::dot(g.a, g.a), ab = glm::dot(g.a, g.b), bb = glm::dot(g.b, g.b);
     const double det = aa * bb - ab * ab;
@@ -151,6 +161,7 @@ void PerPixelQuad::draw(Renderer& renderer, const Camera& cam, const ReliefTextu
     vec3u("u_db", db);
     vec3u("u_f", f);
     glUniform1f(loc("u_depth_range"), float(depth_range));
+    vec3u("u_top", top);
     glUniform2f(loc("u_half_texel"), float(0.5 / t.width), float(0.5 / t.height));
     vec3u("u_forward", forward);
     glUniform2f(loc("u_ndc"), float(-proj[2][2]), float(proj[3][2]));
@@ -178,6 +189,12 @@ void PerPixelQuad::draw(Renderer& renderer, const Camera& cam, const ReliefTextu
             glUniform1f(loc("u_convergence_threshold"), s.relief_mapping.convergence_threshold);
             glUniform1i(loc("u_max_iterations"), s.relief_mapping.max_iterations);
             break;
+        case PerPixelMethod::protruded_displacement:
+            glUniform1i(loc("u_linear_search_steps"), s.protruded_displacement.linear_search_steps);
+            glUniform1i(loc("u_binary_search_steps"), s.protruded_displacement.binary_search_steps);
+            glUniform1f(loc("u_convergence_threshold"), 0.0f);
+            glUniform1i(loc("u_max_iterations"), 1);
+            break;
         case PerPixelMethod::interval_mapping:
             glUniform1i(loc("u_linear_search_steps"), s.interval_mapping.linear_search_steps);
             glUniform1f(loc("u_convergence_threshold"), s.interval_mapping.convergence_threshold);
@@ -190,8 +207,8 @@ void PerPixelQuad::draw(Renderer& renderer, const Camera& cam, const ReliefTextu
     glBindTexture(GL_TEXTURE_2D, color_->id());
     glBindVertexArray(vao_);
     glBindBuffer(GL_ARRAY_BUFFER, vbo_);
-    glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof(data), data);
-    glDrawArrays(GL_TRIANGLE_FAN, 0, 4);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(data.size() * sizeof(float)), data.data());
+    for (size_t i = 0; i < faces.size(); ++i) glDrawArrays(GL_TRIANGLE_FAN, GLint(4 * i), 4);
     glBindVertexArray(0);
     check_gl(("PerPixelQuad::draw " + to_string(m)).c_str());
 }

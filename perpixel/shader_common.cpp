@@ -27,6 +27,7 @@ uniform sampler2D u_relief;  // rgb: unit normal * 0.5 + 0.5 in (a, b, f); a: de
 uniform vec3 u_da, u_db, u_f;  // st = (dot(p - origin, u_da), dot(p - origin, u_db)); f the relief's normal
 uniform float u_depth_range;   // max - min of the displacement, world units
 uniform vec2 u_half_texel;     // (0.5 / width, 0.5 / height): the surface spans the texel centres
+uniform vec3 u_top;            // eye-relative origin of the top plane (origin + f * max - eye)
 uniform vec3 u_forward;        // the camera's view direction
 uniform vec2 u_ndc;            // ndc z = u_ndc.x + u_ndc.y / Z for eye-space distance Z along u_forward
 uniform vec3 u_light;          // world direction towards the light, unit
@@ -43,6 +44,10 @@ const int kMaxLoop = 1024;  // bounds every loop whatever the uniforms say
 
 // Depth (0 top .. 1 bottom) of the bilinearly filtered depth map at st (t up; the image's top row is t = 1).
 float depth_at(vec2 st) {
+#if RTM_PROTRUDED
+    // No surface outside the footprint (the texel centres): rays pass by there.
+    if (any(lessThan(st, u_half_texel)) || any(greaterThan(st, 1.0 - u_half_texel))) return 2.0;
+#endif
     return textureLod(u_relief, vec2(st.x, 1.0 - st.y), 0.0).a * (255.0 / 254.0);
 }
 
@@ -58,8 +63,16 @@ void main() {
     float cos_view = -dot(V, u_f);
     if (cos_view <= 1e-6) discard;  // seen from behind
     vec3 Vts = vec3(dot(V, u_da), dot(V, u_db), cos_view / u_depth_range);
+#if RTM_PROTRUDED
+    // A fragment of the base polygon or of a side face: its ray's point on the (extended) top plane.
+    vec3 top = V * (dot(u_top, u_f) / dot(V, u_f));
+    vec2 A = vec2(dot(top - u_top, u_da), dot(top - u_top, u_db));
+#else
+    vec3 top = v_rel;  // the fragment is on the top polygon
+    vec2 A = v_st;
+#endif
     int iters = 0;
-    vec3 hit = trace(v_st, Vts, cos_view, iters);
+    vec3 hit = trace(A, Vts, cos_view, iters);
     // Rays that leave the footprint find nothing: the relief exists over the quad only, and its surface (as the
     // ray caster's and the micro-polygons') spans the texel centres, half a texel inside the quad's border.
     if (any(lessThan(hit.xy, u_half_texel)) || any(greaterThan(hit.xy, 1.0 - u_half_texel))) discard;
@@ -101,7 +114,7 @@ void main() {
 #endif
 #if RTM_DEPTH
     // Depth correction: the depth of the point found, not of the polygon (relief mapping's section 3).
-    vec3 p = v_rel + V * (hit.z * u_depth_range / cos_view);
+    vec3 p = top + V * (hit.z * u_depth_range / cos_view);
     gl_FragDepth = 0.5 * (u_ndc.x + u_ndc.y / dot(p, u_forward)) + 0.5;
 #endif
 }
@@ -117,6 +130,7 @@ std::string perpixel_fragment_shader(PerPixelMethod m, const PerPixelCommon& c) 
     s += "#define RTM_ITERATIONS " + std::to_string(c.iteration_counts ? 1 : 0) + "\n";
     s += "#define RTM_OFFSET_LIMITING " + std::to_string(m == PerPixelMethod::parallax_offset_limiting ? 1 : 0) +
          "\n";
+    s += "#define RTM_PROTRUDED " + std::to_string(m == PerPixelMethod::protruded_displacement ? 1 : 0) + "\n";
     s += kPrelude;
     s += perpixel_trace_glsl(m);
     s += kMain;

@@ -5,7 +5,8 @@
 
 R="$SRC/media/bumps.relief.json"
 expect_ok render --relief "$R" --orbit 30,35,2.0 --size 96x96 --method raycast --out "$T/ray.png"
-for m in parallax parallax-offset-limiting steep-parallax parallax-occlusion relief-mapping interval-mapping; do
+for m in parallax parallax-offset-limiting steep-parallax parallax-occlusion relief-mapping interval-mapping \
+    protruded-displacement; do
   expect_ok render --relief "$R" --orbit 30,35,2.0 --size 96x96 --method "$m" --out "$T/$m.png" --json "$T/$m.json"
   expect_ok diff "$T/ray.png" "$T/$m.png"
   # The relief covers most of what the ray caster covers (the top polygon loses the rays entering through the
