@@ -131,7 +131,7 @@ void add_render_command(CLI::App& app) {
     a->camera.add_to(*sub);
     sub->add_option("--method", a->method, "flat, two-pass, pipelined, micromesh, raycast, or a per-pixel method: parallax, "
                     "parallax-offset-limiting, steep-parallax, parallax-occlusion, relief-mapping, interval-mapping, "
-                    "protruded-displacement")->capture_default_str();
+                    "protruded-displacement, quadric-silhouettes (on a cylinder patch)")->capture_default_str();
     sub->add_flag("--exact", a->exact, "Pre-warp with unquantized displacement and double-precision coordinates");
     sub->add_option("--filter", a->filter, "Pre-warp resampling: point or coverage (Fant-style, two-pass only)")
         ->capture_default_str();

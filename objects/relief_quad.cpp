@@ -42,7 +42,7 @@ std::string to_string(RenderMethod m) {
 }
 
 std::optional<PerPixelMethod> perpixel_method(RenderMethod m) {
-    if (int(m) < int(RenderMethod::parallax) || int(m) > int(RenderMethod::protruded_displacement)) return std::nullopt;
+    if (int(m) < int(RenderMethod::parallax) || int(m) > int(RenderMethod::quadric_silhouettes)) return std::nullopt;
     return PerPixelMethod(int(m) - int(RenderMethod::parallax));
 }
 

@@ -24,7 +24,7 @@ struct MicroMesh;
 enum class RenderMethod {
     flat, two_pass, pipelined, micromesh, raycast,
     parallax, parallax_offset_limiting, steep_parallax, parallax_occlusion, relief_mapping, interval_mapping,
-    protruded_displacement
+    protruded_displacement, quadric_silhouettes
 };
 
 RenderMethod parse_render_method(const std::string& s);  // throws std::invalid_argument naming s

@@ -27,6 +27,7 @@ constexpr Named kNames[] = {
     {PerPixelMethod::relief_mapping, "relief-mapping"},
     {PerPixelMethod::interval_mapping, "interval-mapping"},
     {PerPixelMethod::protruded_displacement, "protruded-displacement"},
+    {PerPixelMethod::quadric_silhouettes, "quadric-silhouettes"},
 };
 
 void check_steps(const char* what, int n) {
@@ -72,6 +73,7 @@ const char* perpixel_trace_glsl(PerPixelMethod m) {
         case PerPixelMethod::parallax_occlusion: return kParallaxOcclusionGlsl;
         case PerPixelMethod::relief_mapping:
         case PerPixelMethod::protruded_displacement: return kReliefMappingGlsl;  // the paper's search
+        case PerPixelMethod::quadric_silhouettes: return "";  // a shader of its own (quadric_silhouettes_glsl.cpp)
         case PerPixelMethod::interval_mapping: return kIntervalMappingGlsl;
     }
     throw std::logic_error("perpixel_trace_glsl: unknown method");
@@ -97,6 +99,18 @@ void PerPixelSettings::validate() const {
     if (protruded_displacement.binary_search_steps < 0 || protruded_displacement.binary_search_steps > 1024)
         throw std::invalid_argument("protruded-displacement binary_search_steps: expected 0..1024, found " +
                                     std::to_string(protruded_displacement.binary_search_steps));
+    check_steps("quadric-silhouettes linear_search_steps", quadric_silhouettes.linear_search_steps);
+    if (quadric_silhouettes.binary_search_steps < 0 || quadric_silhouettes.binary_search_steps > 1024)
+        throw std::invalid_argument("quadric-silhouettes binary_search_steps: expected 0..1024, found " +
+                                    std::to_string(quadric_silhouettes.binary_search_steps));
+    if (!(quadric_silhouettes.angle > 0.0 && quadric_silhouettes.angle < 6.0))
+        throw std::invalid_argument("quadric-silhouettes angle: expected 0 < angle < 6 radians, found " +
+                                    std::to_string(quadric_silhouettes.angle));
+    if (quadric_silhouettes.segments < 1 || quadric_silhouettes.segments > 4096 || quadric_silhouettes.rows < 1 ||
+        quadric_silhouettes.rows > 4096)
+        throw std::invalid_argument("quadric-silhouettes segments x rows: expected 1..4096 each, found " +
+                                    std::to_string(quadric_silhouettes.segments) + "x" +
+                                    std::to_string(quadric_silhouettes.rows));
     check_steps("shadow_steps", common.shadow_steps);
     check_nonneg("ambient", common.ambient);
     const glm::dvec3& l = common.light_dir;

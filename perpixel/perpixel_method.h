@@ -22,6 +22,8 @@ enum class PerPixelMethod {
     interval_mapping,          // Risser, Shah, Pattanaik, "Interval mapping", I3D 2006 poster / tech. report
     protruded_displacement,    // Yoo, "Protruded displacement mapping for image-based urban representation",
                                // IEICE Electronics Express 8(13), 2011
+    quadric_silhouettes,       // Oliveira and Policarpo, "An efficient representation for surface details",
+                               // UFRGS tech. report RP-351, 2005
 };
 
 // "parallax", "parallax-offset-limiting", ...; nullopt for a name that is not a per-pixel method.
@@ -86,6 +88,22 @@ struct ProtrudedDisplacementSettings {
     int binary_search_steps = 8;
 };
 
+// Relief mapping with quadric silhouettes: the relief on a cylinder patch (perpixel/cylinder_patch.h) bent through
+// `angle` radians, `segments` x `rows` quads with per-vertex quadric coefficients; the search is relief mapping's
+// (linear, then binary) over the part of the ray inside the quadric shell; rays that leave it are silhouettes.
+// Shading and self-shadowing are not implemented for it (the colour is unlit); iteration counts write the binary
+// steps.
+struct QuadricSilhouettesSettings {
+    int linear_search_steps = 32;
+    int binary_search_steps = 8;
+    double angle = 1.2;
+    int segments = 32;
+    int rows = 4;
+    // false: the quadric coefficients are zero, the original relief mapping on the curved mesh (the paper's
+    // Figure 9, left): no ray leaves, the silhouette is the mesh's.
+    bool quadric = true;
+};
+
 // What every method shares. The comparison shows unlit colour (as the pre-warp does); `shading` multiplies it by
 // a Lambert term from normals derived from the displacement, `self_shadowing` (relief mapping's section 3.2, used
 // by every method here) tests the segment towards the light for an occluder with shadow_steps linear steps.
@@ -109,6 +127,7 @@ struct PerPixelSettings {
     ReliefMappingSettings relief_mapping;
     IntervalMappingSettings interval_mapping;
     ProtrudedDisplacementSettings protruded_displacement;
+    QuadricSilhouettesSettings quadric_silhouettes;
     // Throws std::invalid_argument naming the first bad value (steps < 1, thresholds < 0, non-finite).
     void validate() const;
 };

@@ -7,16 +7,21 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
+#include <cstddef>
 #include <stdexcept>
 #include <array>
 #include <string>
 #include <vector>
 
+#include "perpixel/cylinder_patch.h"
 #include "perpixel/relief_map.h"
 #include "perpixel/shader_common.h"
 #include "texmap/gl_context.h"
 
 namespace rtm {
+
+extern const char* const kQuadricVertexShader;
+
 namespace {
 
 GLuint compile(GLenum type, const std::string& source, const std::string& name) {
@@ -37,8 +42,8 @@ GLuint compile(GLenum type, const std::string& source, const std::string& name) 
     return s;
 }
 
-GLuint link(const std::string& fs_src, const std::string& name) {
-    GLuint vs = compile(GL_VERTEX_SHADER, kPerPixelVertexShader, name);
+GLuint link(const char* vs_src, const std::string& fs_src, const std::string& name) {
+    GLuint vs = compile(GL_VERTEX_SHADER, vs_src, name);
     GLuint fs = 0;
     try {
         fs = compile(GL_FRAGMENT_SHADER, fs_src, name);
@@ -74,6 +79,9 @@ PerPixelQuad::~PerPixelQuad() {
     for (const auto& [key, p] : programs_) glDeleteProgram(p);
     if (vbo_) glDeleteBuffers(1, &vbo_);
     if (vao_) glDeleteVertexArrays(1, &vao_);
+    if (quadric_vbo_) glDeleteBuffers(1, &quadric_vbo_);
+    if (quadric_ebo_) glDeleteBuffers(1, &quadric_ebo_);
+    if (quadric_vao_) glDeleteVertexArrays(1, &quadric_vao_);
 }
 
 unsigned PerPixelQuad::program(PerPixelMethod m, const PerPixelCommon& c) {
@@ -81,7 +89,8 @@ unsigned PerPixelQuad::program(PerPixelMethod m, const PerPixelCommon& c) {
                                      c.iteration_counts);
     auto it = programs_.find(key);
     if (it != programs_.end()) return it->second;
-    const GLuint p = link(perpixel_fragment_shader(m, c), to_string(m));
+    const char* vs = m == PerPixelMethod::quadric_silhouettes ? kQuadricVertexShader : kPerPixelVertexShader;
+    const GLuint p = link(vs, perpixel_fragment_shader(m, c), to_string(m));
     programs_[key] = p;
     return p;
 }
@@ -112,6 +121,7 @@ void PerPixelQuad::draw(Renderer& renderer, const Camera& cam, const ReliefTextu
         glBindVertexArray(0);
     }
     const GLuint prog = program(m, s.common);
+    if (m == PerPixelMethod::quadric_silhouettes) return draw_quadric(cam, t, s, prog);
 
     const ReliefGeometry& g = t.geometry;
     const glm::dvec3 E = cam.eye, f = g.f();
@@ -211,6 +221,67 @@ void PerPixelQuad::draw(Renderer& renderer, const Camera& cam, const ReliefTextu
     for (size_t i = 0; i < faces.size(); ++i) glDrawArrays(GL_TRIANGLE_FAN, GLint(4 * i), 4);
     glBindVertexArray(0);
     check_gl(("PerPixelQuad::draw " + to_string(m)).c_str());
+}
+
+void PerPixelQuad::draw_quadric(const Camera& cam, const ReliefTexture& t, const PerPixelSettings& s,
+                                unsigned prog) {
+    const QuadricSilhouettesSettings& q = s.quadric_silhouettes;
+    const CylinderPatch patch = cylinder_patch_for(t, q.angle);
+    std::vector<QuadricVertex> vertices;
+    std::vector<uint32_t> indices;
+    cylinder_base_mesh(patch, q.segments, q.rows, vertices, indices);
+    const glm::dvec3 E = cam.eye;
+    for (QuadricVertex& v : vertices) {
+        v.position = glm::vec3(glm::dvec3(v.position) - E);  // eye-relative
+        if (!q.quadric) v.quadric = glm::vec2(0.0f);
+    }
+    if (!quadric_vao_) {
+        glGenVertexArrays(1, &quadric_vao_);
+        glGenBuffers(1, &quadric_vbo_);
+        glGenBuffers(1, &quadric_ebo_);
+        glBindVertexArray(quadric_vao_);
+        glBindBuffer(GL_ARRAY_BUFFER, quadric_vbo_);
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, quadric_ebo_);
+        const GLsizei stride = sizeof(QuadricVertex);
+        const size_t offsets[6] = {offsetof(QuadricVertex, position), offsetof(QuadricVertex, normal),
+                                   offsetof(QuadricVertex, tangent), offsetof(QuadricVertex, binormal),
+                                   offsetof(QuadricVertex, st), offsetof(QuadricVertex, quadric)};
+        const GLint sizes[6] = {3, 3, 3, 3, 2, 2};
+        for (GLuint i = 0; i < 6; ++i) {
+            glEnableVertexAttribArray(i);
+            glVertexAttribPointer(i, sizes[i], GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(offsets[i]));
+        }
+        glBindVertexArray(0);
+    }
+    const double depth = std::max(patch.depth, 1e-6 * std::max(patch.width, patch.height));
+    const glm::dmat4 mvp_rel = cam.projection() * cam.view() * glm::translate(glm::dmat4(1.0), E);
+    const glm::dmat4 proj = cam.projection();
+    const glm::dvec3 forward = glm::normalize(cam.look_at - cam.eye);
+    glUseProgram(prog);
+    auto loc = [&](const char* name) { return glGetUniformLocation(prog, name); };
+    const glm::mat4 mvpf(mvp_rel);
+    glUniformMatrix4fv(loc("u_mvp_rel"), 1, GL_FALSE, glm::value_ptr(mvpf));
+    glUniform1i(loc("u_color"), 0);
+    glUniform1i(loc("u_relief"), 1);
+    glUniform3f(loc("u_size"), float(patch.width), float(patch.height), float(depth));
+    glUniform2f(loc("u_half_texel"), float(0.5 / t.width), float(0.5 / t.height));
+    glUniform3f(loc("u_forward"), float(forward.x), float(forward.y), float(forward.z));
+    glUniform2f(loc("u_ndc"), float(-proj[2][2]), float(proj[3][2]));
+    glUniform1i(loc("u_linear_search_steps"), q.linear_search_steps);
+    glUniform1i(loc("u_binary_search_steps"), q.binary_search_steps);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, relief_map_->id());
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, color_->id());
+    glBindVertexArray(quadric_vao_);
+    glBindBuffer(GL_ARRAY_BUFFER, quadric_vbo_);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(QuadricVertex)), vertices.data(),
+                 GL_STREAM_DRAW);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(uint32_t)), indices.data(),
+                 GL_STREAM_DRAW);
+    glDrawElements(GL_TRIANGLES, GLsizei(indices.size()), GL_UNSIGNED_INT, nullptr);
+    glBindVertexArray(0);
+    check_gl("PerPixelQuad::draw quadric-silhouettes");
 }
 
 }  // namespace rtm

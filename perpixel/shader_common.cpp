@@ -122,8 +122,15 @@ void main() {
 
 }  // namespace
 
+extern const char* const kQuadricFragmentShader;
+
 std::string perpixel_fragment_shader(PerPixelMethod m, const PerPixelCommon& c) {
     std::string s = "#version 330 core\n";
+    if (m == PerPixelMethod::quadric_silhouettes) {
+        s += "#define RTM_DEPTH " + std::to_string(c.depth_correction ? 1 : 0) + "\n";
+        s += "#define RTM_ITERATIONS " + std::to_string(c.iteration_counts ? 1 : 0) + "\n";
+        return s + kQuadricFragmentShader;
+    }
     s += "#define RTM_DEPTH " + std::to_string(c.depth_correction ? 1 : 0) + "\n";
     s += "#define RTM_SHADING " + std::to_string(c.shading ? 1 : 0) + "\n";
     s += "#define RTM_SHADOWS " + std::to_string(c.shading && c.self_shadowing ? 1 : 0) + "\n";

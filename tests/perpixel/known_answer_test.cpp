@@ -12,6 +12,7 @@
 #include "measure/compare.h"
 #include "measure/image_diff.h"
 #include "objects/render_relief.h"
+#include "perpixel/cylinder_patch.h"
 #include "procedural/known_answer.h"
 #include "texmap/gl_context.h"
 #include "truth/micromesh.h"
@@ -125,6 +126,7 @@ TEST(PerPixel, KnownAnswersAgainstTheRayCaster) {
             const std::string stem = dump ? std::string(dump) + "/" + name + "_" + v.name + "_" : "";
             if (dump) write_rgba8(stem + "raycast.png", truth);
             for (PerPixelMethod m : all_perpixel_methods()) {
+                if (m == PerPixelMethod::quadric_silhouettes) continue;  // a curved relief: its own test below
                 const ImageRGBA8 img = render(gl, quad, cam, parse_render_method(to_string(m)));
                 if (dump) write_rgba8(stem + to_string(m) + ".png", img);
                 const DiffResult d = diff_images(truth, img);
@@ -242,6 +244,53 @@ TEST(PerPixel, IterationCountsOfIntervalAndReliefMapping) {
                     for (const Rgba8& p : colour.pixels) covered_colour += covered(p);
                     EXPECT_EQ(st.pixels, covered_colour) << name << " " << v.name << " " << to_string(m);
                 }
+            }
+        }
+    }
+}
+
+}  // namespace
+}  // namespace rtm
+
+namespace rtm {
+namespace {
+
+// Relief mapping with quadric silhouettes on the cylinder patch (bent through 1.2 radians: depth range / radius =
+// 0.3), against the truth for that curved surface: the relief displaced radially on the patch, one vertex a texel
+// (curved_micromesh), through the same GL path; beside it the original relief mapping on the same mesh (quadric
+// coefficients zero). Measured (128x128, llvmpipe): IoU 0.79-0.91 with the quadrics against 0.71-0.88 without
+// (gains 0.014 to 0.079); PSNR 16.5-20.8 dB, 0.4-0.6 dB better than without. The colour error is the method's model, not the search: it maps depth along the
+// fragment's normal with texture coordinates that do not shrink with depth, while radially the ground (depth 1)
+// has 30% less arc length than the top. Bounds: the lowest measured less 0.02 IoU and 1.5 dB, and the quadrics
+// must gain coverage at every view (by 0.005 at least) (their purpose: silhouettes where the ray leaves the surface).
+TEST(PerPixel, QuadricSilhouettesAgainstTheCurvedMicroPolygons) {
+    Gl gl;
+    for (const std::string& name : known_answer_names()) {
+        ReliefQuad quad(to_relief(make_known_answer(name, kReliefSize)));
+        const PerPixelSettings s;
+        const CylinderPatch patch = cylinder_patch_for(quad.relief(), s.quadric_silhouettes.angle);
+        std::vector<MeshVertex> vertices;
+        std::vector<uint32_t> indices;
+        curved_micromesh(quad.relief(), patch, vertices, indices);
+        for (const CompareView& v : views()) {
+            const Camera cam = compare_camera(quad, v, kImage, kImage);
+            gl.renderer->begin_frame(cam);
+            gl.renderer->draw_mesh(cam, vertices, indices);
+            const ImageRGBA8 truth = gl.renderer->read_pixels(kImage, kImage);
+            const ImageRGBA8 img = render(gl, quad, cam, RenderMethod::quadric_silhouettes, s);
+            const DiffResult d = diff_images(truth, img);
+            PerPixelSettings plain = s;
+            plain.quadric_silhouettes.quadric = false;
+            const DiffResult dp = diff_images(truth, render(gl, quad, cam, RenderMethod::quadric_silhouettes, plain));
+            std::printf("%-10s %-8s quadric-silhouettes psnr %.2f iou %.4f; without the quadrics psnr %.2f iou %.4f\n",
+                        name.c_str(), v.name.c_str(), d.psnr, d.iou, dp.psnr, dp.iou);
+            EXPECT_GE(d.psnr, 15.0) << name << " " << v.name;
+            EXPECT_GE(d.iou, 0.77) << name << " " << v.name;
+            EXPECT_GT(d.iou, dp.iou + 0.005) << name << " " << v.name;
+            if (const char* dump = std::getenv("RTM_PERPIXEL_DUMP")) {
+                const std::string stem = std::string(dump) + "/quadric_" + name + "_" + v.name + "_";
+                write_rgba8(stem + "truth.png", truth);
+                write_rgba8(stem + "quadric-silhouettes.png", img);
             }
         }
     }
