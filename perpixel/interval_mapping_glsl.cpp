@@ -13,11 +13,12 @@ vec3 trace(vec2 A, vec3 V, float cos_view, inout int iters) {
     int n = clamp(u_linear_search_steps, 1, kMaxLoop);
     float size = 1.0 / float(n);
     float lower_d = 1.0, lower_s = depth_at(A + dir);
-    for (int i = 1; i <= n; ++i) {
+    for (int i = 0; i <= n; ++i) {  // from A itself, as relief mapping's search (relief_mapping_glsl.cpp)
         float ray = float(i) * size;
         float s = depth_at(A + dir * ray);
         if (s <= ray) { lower_d = ray; lower_s = s; break; }
     }
+    if (lower_d <= 0.0) { iters = 1; return vec3(A, 0.0); }  // the surface at the top, where the ray enters
     float upper_d = max(lower_d - size, 0.0);
     float upper_s = depth_at(A + dir * upper_d);
     float best = lower_d;

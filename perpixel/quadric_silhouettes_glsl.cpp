@@ -63,7 +63,7 @@ void main() {
     float t_max = leaves ? c1 / k : 2.0 / (c1 + sqrt(disc));
     int n = clamp(u_linear_search_steps, 1, kMaxLoop);
     float t_in = -1.0, t_out = 0.0;
-    for (int i = 1; i <= n; ++i) {
+    for (int i = 0; i <= n; ++i) {  // from the entry point itself (i = 0), as in relief_mapping_glsl.cpp
         float t = t_max * float(i) / float(n);
         float D = c1 * t - k * t * t;
         // The last sample of a ray that does not leave is at depth 1, the bottom: inside whatever rounding says.

@@ -11,7 +11,9 @@ vec3 trace(vec2 A, vec3 V, float cos_view, inout int iters) {
     int n = clamp(u_linear_search_steps, 1, kMaxLoop);
     float size = 1.0 / float(n);
     float inside = 1.0;  // depth 1 is inside (or on) the height field everywhere
-    for (int i = 1; i <= n; ++i) {
+    // From A itself (i = 0): where the surface reaches the top of the range (depth 0), a ray entering over it has
+    // hit; the first step would carry it up to 1/n of the range's depth further, over the edge of a plateau.
+    for (int i = 0; i <= n; ++i) {
         float ray = float(i) * size;
         if (depth_at(A + dir * ray) <= ray) { inside = ray; break; }
     }

@@ -3,6 +3,7 @@
 // both cover (PSNR) and coverage (IoU).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -106,10 +107,10 @@ const std::map<std::string, std::array<Bound, 3>> kBounds = {
     {"parallax-offset-limiting", {{{30.0, 0.94}, {13.0, 0.74}, {10.0, 0.39}}}},
     {"steep-parallax", {{{45.5, 0.99}, {28.0, 0.83}, {21.5, 0.48}}}},
     {"parallax-occlusion", {{{58.5, 0.99}, {35.5, 0.83}, {29.5, 0.48}}}},
-    {"relief-mapping", {{{58.5, 0.99}, {25.5, 0.83}, {28.5, 0.48}}}},
-    {"interval-mapping", {{{58.5, 0.99}, {25.5, 0.83}, {28.5, 0.48}}}},
+    {"relief-mapping", {{{58.5, 0.99}, {45.5, 0.83}, {37.5, 0.48}}}},
+    {"interval-mapping", {{{58.5, 0.99}, {45.5, 0.83}, {37.5, 0.48}}}},
     // The side faces recover the rays through the slab's sides: coverage as the ray caster's.
-    {"protruded-displacement", {{{58.5, 0.99}, {26.0, 0.99}, {31.0, 0.985}}}},
+    {"protruded-displacement", {{{58.5, 0.99}, {46.0, 0.99}, {40.0, 0.99}}}},
 };
 
 TEST(PerPixel, KnownAnswersAgainstTheRayCaster) {
@@ -151,12 +152,13 @@ namespace {
 
 // Relief mapping and interval mapping at their top settings (256 linear steps; 16 bisections / secant steps to
 // 1e-4), against the micro-polygon truth, beside the exact ray caster's own PSNR against it. The issue asks for
-// "within 1 dB of the ray caster"; measured here (128x128, llvmpipe) it is NOT met: the gap is 4.4 to 8.5 dB on
-// the smooth reliefs (pyramid, sphere cap), where both images are within half a grey level of the truth (ray
-// caster 60-67 dB, the shaders 53.7-61 dB: rmse 0.2-0.5 levels, the order of llvmpipe's 8-bit filtered colour
-// and depth), and 10-12.5 dB on the step, where a dozen pixels along the block's edges differ (the same pixels
-// with 32 or 256 linear steps, so not the linear search; cause not yet found). What is asserted is what holds
-// with about 1 dB to spare: smooth reliefs >= 52.5 dB, the step >= 33.5 dB, frontal and oblique.
+// "within 1 dB of the ray caster". Measured here (128x128, llvmpipe): met on the step at frontal and oblique views
+// (63.3 dB against the ray caster's exact match; 46.3 against 47.1), 2.7 dB short at grazing (42.7 against 45.4);
+// NOT met on the smooth reliefs (pyramid, sphere cap), 4.4 to 8.5 dB short, where both images are within half a
+// grey level of the truth (ray caster 60-67 dB, the shaders 53.7-61 dB: rmse 0.2-0.5 levels, the order of
+// llvmpipe's 8-bit filtered colour and depth). Asserted: the step within 1 dB of the ray caster (capped at 62 dB)
+// at frontal and oblique views, >= 41.5 dB at grazing; the smooth reliefs >= 52.5 dB (what holds, about 1 dB
+// to spare).
 TEST(PerPixel, TopSettingsWithinOneDecibelOfTheRayCaster) {
     Gl gl;
     PerPixelSettings top;
@@ -182,7 +184,8 @@ TEST(PerPixel, TopSettingsWithinOneDecibelOfTheRayCaster) {
                 }
                 std::printf("%-10s %-8s %-16s %.2f dB (ray caster %.2f dB) against the micro-polygons\n",
                             name.c_str(), v.name.c_str(), to_string(m).c_str(), p, ray);
-                EXPECT_GE(p, name == "step" ? 33.5 : 52.5) << name << " " << v.name << " " << to_string(m);
+                const double bound = name != "step" ? 52.5 : v.name == "grazing" ? 41.5 : std::min(ray, 62.0) - 1.0;
+                EXPECT_GE(p, bound) << name << " " << v.name << " " << to_string(m);
             }
         }
     }
