@@ -129,7 +129,8 @@ void add_render_command(CLI::App& app) {
     CLI::App* sub = app.add_subcommand("render", "Render a relief texture (or object, scene) to an image");
     sub->add_option("--relief", a->relief, "Relief texture manifest (NAME.relief.json)");
     a->camera.add_to(*sub);
-    sub->add_option("--method", a->method, "flat, two-pass, pipelined, micromesh, raycast, or a per-pixel method: parallax, "
+    sub->add_option("--method", a->method,
+                    "flat, two-pass, pipelined, micromesh, raycast, or a per-pixel method: parallax, "
                     "parallax-offset-limiting, steep-parallax, parallax-occlusion, relief-mapping, interval-mapping, "
                     "protruded-displacement, quadric-silhouettes (on a cylinder patch)")->capture_default_str();
     sub->add_flag("--exact", a->exact, "Pre-warp with unquantized displacement and double-precision coordinates");
