@@ -359,3 +359,51 @@ TEST(PerPixel, DepthCorrectionPutsTheFoundPointInTheDepthBuffer) {
 
 }  // namespace
 }  // namespace rtm
+
+namespace rtm {
+namespace {
+
+// Shading and relief mapping's self-shadowing on the step seen frontally, the light from +x at 26.6 degrees above
+// the plane (direction (1, 0, 0.5)): the lit ground and the block's top get ambient + (1 - ambient) N.L = 0.25 +
+// 0.75 * 0.447 = 0.585 of the unlit colour; the block's shadow (0.25 / 0.5 = 0.5 long in x, cut off by the quad's
+// border at x = 0: [0, 0.3] x [0.3, 0.7], 12% of the quad) only the ambient 0.25. Measured fractions of the
+// covered pixels darkened below 0.4 of the unlit colour: 0.132 with shadows, 0.021 without (the wall facing away
+// from the light, border pixels); 0.857 and 0.968 lit as expected. Bounds leave room for rasterization.
+TEST(PerPixel, ShadingAndSelfShadowing) {
+    Gl gl;
+    ReliefQuad quad(to_relief(make_step(kReliefSize)));
+    const Camera cam = compare_camera(quad, {"frontal", 0, 0, 2.2}, kImage, kImage);
+    PerPixelSettings unlit;
+    const ImageRGBA8 base = render(gl, quad, cam, RenderMethod::relief_mapping, unlit);
+    for (bool shadows : {false, true}) {
+        PerPixelSettings s;
+        s.common.shading = true;
+        s.common.self_shadowing = shadows;
+        s.common.light_dir = {1.0, 0.0, 0.5};
+        const ImageRGBA8 img = render(gl, quad, cam, RenderMethod::relief_mapping, s);
+        long long dark = 0, lit = 0, n = 0;
+        for (size_t i = 0; i < img.pixels.size(); ++i) {
+            const Rgba8& b = base.pixels[i];
+            const int sum_b = b.r + b.g + b.b;
+            if (!covered(b) || sum_b < 150) continue;  // ratios need colour to be measured on
+            const Rgba8& p = img.pixels[i];
+            const double ratio = double(p.r + p.g + p.b) / sum_b;
+            ++n;
+            if (ratio < 0.4) ++dark;
+            if (std::abs(ratio - 0.585) < 0.03) ++lit;
+        }
+        const double fd = double(dark) / n, fl = double(lit) / n;
+        std::printf("self-shadowing %s: %.3f of the pixels in shadow, %.3f lit at N.L = 0.447\n",
+                    shadows ? "on" : "off", fd, fl);
+        if (shadows) {
+            EXPECT_GT(fd, 0.08);
+            EXPECT_LT(fd, 0.15);
+        } else {
+            EXPECT_LT(fd, 0.03);
+        }
+        EXPECT_GT(fl, 0.75);  // the flat parts in the light: the right darkening, within 8-bit normal rounding
+    }
+}
+
+}  // namespace
+}  // namespace rtm
