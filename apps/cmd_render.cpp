@@ -167,7 +167,10 @@ void add_render_command(CLI::App& app) {
     sub->add_option("--frames", a->frames_dir, "Scene: render every frame of its camera path into DIR");
     sub->add_option("--mesh", a->mesh, "A mesh (any file assimp reads), rendered with conventional OpenGL");
     a->camera.add_to(*sub);
-    sub->add_option("--method", a->method, "flat, two-pass, pipelined, micromesh or raycast")->capture_default_str();
+    sub->add_option("--method", a->method,
+                    "flat, two-pass, pipelined, micromesh, raycast, or a per-pixel method: parallax, "
+                    "parallax-offset-limiting, steep-parallax, parallax-occlusion, relief-mapping, interval-mapping, "
+                    "protruded-displacement, quadric-silhouettes (on a cylinder patch)")->capture_default_str();
     sub->add_flag("--exact", a->exact, "Pre-warp with unquantized displacement and double-precision coordinates");
     sub->add_option("--filter", a->filter, "Pre-warp resampling: point or coverage (Fant-style, two-pass only)")
         ->capture_default_str();

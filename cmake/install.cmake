@@ -4,11 +4,12 @@
 # include/rtm/<name>/ (each library's include directory is include/rtm, so a header's own includes such as
 # "warp/image.h" resolve as in the source tree), include/rtm/rtm_version.h, and lib/cmake/rtm/ with rtmConfig.cmake,
 # its version file and the exported targets: another project's find_package(rtm) then gives rtm::warp,
-# rtm::formats, rtm::texmap, rtm::procedural, rtm::truth, rtm::objects and rtm::measure (examples/prewarp_relief).
+# rtm::formats, rtm::texmap, rtm::procedural, rtm::truth, rtm::perpixel, rtm::objects, rtm::measure and rtm::mesh
+# (examples/prewarp_relief).
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-set(RTM_LIBRARIES warp formats texmap procedural truth objects measure)
+set(RTM_LIBRARIES warp formats texmap procedural truth perpixel objects measure mesh)
 set(RTM_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/rtm)
 
 # librtm_warp.a rather than libwarp.a: the installed names must not clash with other projects' libraries.

@@ -51,6 +51,11 @@ bool ReliefQuad::faces(const glm::dvec3& eye) const {
     return compute_coefficients(relief_.geometry, eye).side == ViewSide::front;
 }
 
+PerPixelQuad& ReliefQuad::perpixel() {
+    if (!perpixel_) perpixel_ = std::make_unique<PerPixelQuad>();
+    return *perpixel_;
+}
+
 const ReliefTexture& ReliefQuad::level_texture(int i) {
     if (i <= 0) return relief_;
     while (int(pyramid_.size()) < i) {

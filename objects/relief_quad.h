@@ -11,6 +11,7 @@
 
 #include "objects/frame_plan.h"
 #include "objects/view_analysis.h"
+#include "perpixel/perpixel_quad.h"
 #include "texmap/camera.h"
 #include "texmap/renderer.h"
 #include "warp/prewarp.h"
@@ -59,6 +60,8 @@ public:
     const PrewarpStats& last_stats() const { return stats_; }
     // The micro-polygon mesh of this relief (ground truth), built on first use.
     const MicroMesh& micromesh();
+    // The per-pixel methods' textures and programs for this relief (level 0), made on first use.
+    PerPixelQuad& perpixel();
 
     // Draws with `method` (flat, two_pass or pipelined) into the current frame. Requires a current GL context,
     // the same one for the life of the quad. options.keep_outliers draws the side polygons (paper section 4,
@@ -82,6 +85,7 @@ private:
     std::unique_ptr<MicroMesh> micromesh_;
     LastPrewarp last_prewarp_;   // what prewarped_ was made for (reuse when the eye barely moved)
     UploadedTexture uploaded_;  // what texture_ holds (partial upload)
+    std::unique_ptr<PerPixelQuad> perpixel_;  // the per-pixel methods' textures and programs, made on first use
     // count_still_texels per pyramid level, [level][exact]; -1 = not counted yet (they do not depend on the view).
     std::vector<std::array<long long, 2>> still_texels_;
     std::vector<std::optional<MovingTexels>> moving_;  // moving_texels per pyramid level, computed on first use

@@ -11,13 +11,19 @@ constexpr Reconstruction kReconstructions[] = {Reconstruction::two_pass, Reconst
 
 // The methods by name; the warping ones are named as their reconstructions.
 const std::vector<std::pair<RenderMethod, std::string>>& method_table() {
-    static const std::vector<std::pair<RenderMethod, std::string>> table = {
-        {RenderMethod::flat, "flat"},
-        {RenderMethod::two_pass, to_string(Reconstruction::two_pass)},
-        {RenderMethod::pipelined, to_string(Reconstruction::pipelined)},
-        {RenderMethod::micromesh, "micromesh"},
-        {RenderMethod::raycast, "raycast"},
-    };
+    static const std::vector<std::pair<RenderMethod, std::string>> table = [] {
+        std::vector<std::pair<RenderMethod, std::string>> t = {
+            {RenderMethod::flat, "flat"},
+            {RenderMethod::two_pass, to_string(Reconstruction::two_pass)},
+            {RenderMethod::pipelined, to_string(Reconstruction::pipelined)},
+            {RenderMethod::micromesh, "micromesh"},
+            {RenderMethod::raycast, "raycast"},
+        };
+        // The per-pixel methods, by their own table's names (perpixel/perpixel_method.h).
+        for (PerPixelMethod m : all_perpixel_methods())
+            t.emplace_back(RenderMethod(int(RenderMethod::parallax) + int(m)), to_string(m));
+        return t;
+    }();
     return table;
 }
 
@@ -42,6 +48,11 @@ std::vector<RenderMethod> render_methods() {
     std::vector<RenderMethod> out;
     for (const auto& entry : method_table()) out.push_back(entry.first);
     return out;
+}
+
+std::optional<PerPixelMethod> perpixel_method(RenderMethod m) {
+    if (int(m) < int(RenderMethod::parallax) || int(m) > int(RenderMethod::quadric_silhouettes)) return std::nullopt;
+    return PerPixelMethod(int(m) - int(RenderMethod::parallax));
 }
 
 Reconstruction parse_reconstruction(const std::string& s) {

@@ -27,6 +27,10 @@ ImageRGBA8 render_relief_frame(ReliefQuad& quad, Renderer* renderer, const Camer
         renderer->draw_mesh(cam, mesh.vertices, mesh.indices);
         renderer->finish();
         times.texture_map_ms += ms_since(t0);
+    } else if (const auto pp = perpixel_method(s.method)) {
+        quad.perpixel().draw(*renderer, cam, quad.relief(), *pp, s.perpixel);
+        renderer->finish();
+        times.texture_map_ms += ms_since(t0);
     } else {
         StageTimes st;
         quad.draw(*renderer, cam, s.method, s.prewarp, st, s.draw, report);

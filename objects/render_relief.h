@@ -13,6 +13,7 @@ struct RenderSettings {
     RenderMethod method = RenderMethod::two_pass;
     PrewarpOptions prewarp;        // keep_outliers = side polygons
     DrawOptions draw;  // depth correction, pyramid level, skips
+    PerPixelSettings perpixel;     // the per-pixel methods' parameters
     std::function<void(double)> progress;  // for slow methods (raycast); may be empty
 };
 

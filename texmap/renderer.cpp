@@ -430,6 +430,8 @@ void Renderer::begin_frame(const Camera& cam) {
     check_gl("Renderer::begin_frame");
 }
 
+void Renderer::clear_if_pending() { impl_->issue_pending_clear(); }
+
 void Renderer::draw_textured_quad(const Camera& cam, const std::array<glm::dvec3, 4>& corners, const GlTexture& tex) {
     impl_->issue_pending_clear();
     if (tex.width() <= 0 || tex.height() <= 0) return;  // nothing uploaded: nothing to draw

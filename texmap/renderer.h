@@ -73,6 +73,8 @@ public:
     // not here: llvmpipe then clears in the draw's own pass over the tiles instead of in a pass of its own that a
     // finish() between them (the upload's timer) would force, 0.15 to 0.18 ms a frame at 512x512.
     void begin_frame(const Camera& cam);
+    // Issues begin_frame's clear now if no draw has yet: for drawing code outside this class (perpixel/).
+    void clear_if_pending();
     // corners: world positions of the texture's (u,v) = (0,0), (w,0), (w,h), (0,h) in that order; the texture's
     // top row is v = h (docs/FORMATS.md).
     void draw_textured_quad(const Camera& cam, const std::array<glm::dvec3, 4>& corners, const GlTexture& tex);

@@ -1,0 +1,96 @@
+// Relief mapping with quadric silhouettes (Oliveira and Policarpo 2005) on a curved base mesh. Each vertex carries
+// its tangent frame and the coefficients (a, b) of the quadric z = a x^2 + b y^2 fitted to the mesh around it,
+// interpolated over the triangles. A fragment's eye ray, in texture space (equation 9: V_t = (V.T / s_x, V.B / s_y,
+// V.N / s_z)), goes deeper into the relief's shell by D(t) = -V_t.z t - (alpha V_t.x^2 + beta V_t.y^2) t^2 below the
+// quadric (equation 7, the paper's faster approximate distance, with alpha = a s_x^2 / s_z and beta = b s_y^2 / s_z,
+// equation 8). The search runs over [0, t_max] (section 3.3: where D reaches 1, or returns to 0), linear then
+// binary as in relief mapping; a ray that returns to depth 0 without meeting the relief is a silhouette and is
+// discarded.
+namespace rtm {
+
+extern const char* const kQuadricVertexShader;
+const char* const kQuadricVertexShader = R"(#version 330 core
+layout(location = 0) in vec3 a_rel;
+layout(location = 1) in vec3 a_normal;
+layout(location = 2) in vec3 a_tangent;
+layout(location = 3) in vec3 a_binormal;
+layout(location = 4) in vec2 a_st;
+layout(location = 5) in vec2 a_quadric;
+uniform mat4 u_mvp_rel;
+out vec3 v_rel, v_normal, v_tangent, v_binormal;
+out vec2 v_st, v_quadric;
+void main() {
+    v_rel = a_rel;
+    v_normal = a_normal;
+    v_tangent = a_tangent;
+    v_binormal = a_binormal;
+    v_st = a_st;
+    v_quadric = a_quadric;
+    gl_Position = u_mvp_rel * vec4(a_rel, 1.0);
+}
+)";
+
+extern const char* const kQuadricFragmentShader;
+const char* const kQuadricFragmentShader = R"(
+in vec3 v_rel, v_normal, v_tangent, v_binormal;
+in vec2 v_st, v_quadric;
+uniform sampler2D u_color;
+uniform sampler2D u_relief;
+uniform vec3 u_size;  // (s_x, s_y, s_z): the texture tile's width and height on the surface, the relief's depth
+uniform vec2 u_half_texel;
+uniform vec3 u_forward;
+uniform vec2 u_ndc;
+uniform int u_linear_search_steps, u_binary_search_steps;
+layout(location = 0) out vec4 o_color;
+
+const int kMaxLoop = 1024;
+
+float depth_at(vec2 st) {
+    return textureLod(u_relief, vec2(st.x, 1.0 - st.y), 0.0).a * (255.0 / 254.0);
+}
+
+void main() {
+    vec3 V = normalize(v_rel);
+    vec3 N = normalize(v_normal), T = normalize(v_tangent), B = normalize(v_binormal);
+    vec3 Vt = vec3(dot(V, T) / u_size.x, dot(V, B) / u_size.y, dot(V, N) / u_size.z);
+    float c1 = -Vt.z;
+    if (c1 <= 1e-9) discard;  // seen from behind
+    float alpha = v_quadric.x * u_size.x * u_size.x / u_size.z;
+    float beta = v_quadric.y * u_size.y * u_size.y / u_size.z;
+    float k = -(alpha * Vt.x * Vt.x + beta * Vt.y * Vt.y);  // D(t) = c1 t - k t^2
+    float disc = c1 * c1 - 4.0 * k;
+    bool leaves = disc < 0.0;  // k > 0 and D never reaches 1: the ray comes back out at D = 0
+    float t_max = leaves ? c1 / k : 2.0 / (c1 + sqrt(disc));
+    int n = clamp(u_linear_search_steps, 1, kMaxLoop);
+    float t_in = -1.0, t_out = 0.0;
+    for (int i = 0; i <= n; ++i) {  // from the entry point itself (i = 0), as in relief_mapping_glsl.cpp
+        float t = t_max * float(i) / float(n);
+        float D = c1 * t - k * t * t;
+        // The last sample of a ray that does not leave is at depth 1, the bottom: inside whatever rounding says.
+        if (D >= depth_at(v_st + Vt.xy * t) || (i == n && !leaves)) { t_in = t; break; }
+        t_out = t;
+    }
+    if (t_in < 0.0) discard;  // the ray left the surface: silhouette
+    for (int i = 0; i < min(u_binary_search_steps, kMaxLoop); ++i) {
+        float t = 0.5 * (t_in + t_out);
+        float D = c1 * t - k * t * t;
+        if (D >= depth_at(v_st + Vt.xy * t)) t_in = t; else t_out = t;
+    }
+    vec2 st = v_st + Vt.xy * t_in;
+    if (any(lessThan(st, u_half_texel)) || any(greaterThan(st, 1.0 - u_half_texel))) discard;
+    vec2 tc = vec2(st.x, 1.0 - st.y);
+    vec4 c = textureLod(u_color, tc, 0.0);
+    if (c.a < 0.5) discard;
+#if RTM_ITERATIONS
+    o_color = vec4(vec3(float(u_binary_search_steps) / 255.0), 1.0);
+#else
+    o_color = vec4(c.rgb / c.a, 1.0);
+#endif
+#if RTM_DEPTH
+    vec3 p = v_rel + V * t_in;  // t is the distance along the unit view direction
+    gl_FragDepth = 0.5 * (u_ndc.x + u_ndc.y / dot(p, u_forward)) + 0.5;
+#endif
+}
+)";
+
+}  // namespace rtm
