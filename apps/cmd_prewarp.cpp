@@ -16,7 +16,7 @@ namespace rtm::cli {
 namespace {
 
 struct PrewarpArgs {
-    std::string relief, eye, out, method = "two-pass", level = "0", json, filter = "point";
+    std::string relief, eye, out, method = "two-pass", level = "0", json, filter = "point", isa = "auto";
     bool exact = false;
     int repeat = 1, threads = 0;
 };
@@ -36,6 +36,7 @@ void run_prewarp(const PrewarpArgs& a) {
     opt.exact = a.exact;
     opt.threads = a.threads;
     opt.filter = parse_filter(a.filter, opt.method);
+    opt.isa = parse_isa_arg(a.isa, "--isa");
 
     ReliefQuad quad(load_relief(a.relief));
     int level = level_arg;
@@ -73,6 +74,7 @@ void run_prewarp(const PrewarpArgs& a) {
             {"method", a.method},
             {"exact", a.exact},
             {"filter", a.filter},
+            {"isa", isa_name(stats.isa)},
             {"prewarp_ms", timing_json(times)},
             {"texels", stats.texels},
             {"dropped_texels", stats.dropped},
@@ -105,6 +107,9 @@ void add_prewarp_command(CLI::App& app) {
     sub->add_option("--level", a->level, "Relief texture pyramid level N or auto")->capture_default_str();
     sub->add_option("--repeat", a->repeat, "Run N times after one warm-up, for timing")->capture_default_str();
     sub->add_option("--threads", a->threads, "Threads (0 = all)")->capture_default_str();
+    sub->add_option("--isa", a->isa, "SIMD target: auto, avx512, avx2, sse4, neon, sve or generic (the reference "
+                                     "kernels); auto follows RTM_ISA, else the fastest")
+        ->capture_default_str();
     sub->add_option("--json", a->json, "Write figures as JSON");
     sub->callback([a] { run_prewarp(*a); });
 }

@@ -11,7 +11,6 @@
 #include "truth/micromesh.h"
 #include "warp/timing.h"
 #include "objects/view_analysis.h"
-#include "warp/fast_prewarp.h"
 #include "warp/pyramid.h"
 
 namespace rtm {
@@ -208,12 +207,11 @@ void ReliefQuad::draw(Renderer& renderer, const Camera& cam, RenderMethod method
                 times.prewarp_ms += ms_since(t0);
                 cached_ = {true, lvl, method, o.exact, o.keep_outliers, d.depth_correction, o.filter, k};
                 // Skip: texels at zero displacement were copied, not warped (paper section 5, the brick wall).
-                // The reference kernels count their copies; the fast kernels copy one-pixel spans on pixel
-                // centres without counting, and the still texels are a property of the level, counted once.
+                // The reference kernels count their copies; the SIMD kernels (any target but generic) copy
+                // one-pixel spans on pixel centres without counting, and the still texels are a property of the
+                // level, counted once.
                 const long long still = o.copy_still_runs ? still_texels(lvl, o.exact) : 0;
-                if (still > 0 &&
-                    (stats_.still_copied > 0 ||
-                     fast_prewarp_covers(t, k, o, stats_.extent, d.depth_correction ? &displ_ : nullptr))) {
+                if (still > 0 && (stats_.still_copied > 0 || stats_.isa != Isa::generic)) {
                     rep.skips.push_back(kSkipZeroRuns);
                     rep.still_texels = still;
                     rep.still_copied = stats_.still_copied;

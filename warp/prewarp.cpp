@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "warp/fast_prewarp.h"
+#include "warp/simd/schedule.h"
 #include "warp/coverage_line.h"
 #include "warp/line_warp.h"
 
@@ -586,7 +586,9 @@ PrewarpStats prewarp(const ReliefTexture& relief, const PrewarpCoefficients& k, 
     if (options.filter == Filter::coverage && options.method != Reconstruction::two_pass)
         throw std::invalid_argument("the coverage filter works with the two-pass reconstruction only (method " +
                                     to_string(options.method) + ")");
-    if (fast_prewarp_covers(relief, k, options, fr.e, displ_out)) return fast_prewarp(relief, k, options, fr.e, ws, out);
+    const Isa isa = resolve_isa(options.isa);
+    if (fast_prewarp_covers(isa, relief, k, options, fr.e, displ_out))
+        return fast_prewarp(isa, relief, k, options, fr.e, ws, out);
     out.resize(fr.out_w(), fr.out_h());
     if (displ_out) displ_out->resize(fr.out_w(), fr.out_h(), kEmptyIndex);
     if (k.side == ViewSide::on_plane || relief.width == 0 || relief.height == 0) return {0, 0, fr.e};
