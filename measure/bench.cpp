@@ -416,7 +416,8 @@ std::string bench_markdown(const BenchResult& r) {
     s << "|---|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const BenchRow& x : r.rows) {
         std::snprintf(buf, sizeof buf, "| %s | %d^2 | %s | %s | %s | %d | %.3f | %.3f | %.1f | %.1f | %.3f | %.2f |\n",
-                      x.relief.c_str(), x.size, x.method.c_str(), x.path.c_str(), x.kernel.c_str(), x.threads,
+                      x.relief.c_str(), x.size, x.method.c_str(), x.path.c_str(),
+                      (x.kernel == "fast" ? "fast " + x.isa : x.kernel).c_str(), x.threads,
                       x.ms_median, x.ms_min, x.mtexels_per_s, x.prewarps_per_s, x.bound_ms, x.bound_ratio);
         s << buf;
     }
