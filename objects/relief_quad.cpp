@@ -207,11 +207,11 @@ void ReliefQuad::draw(Renderer& renderer, const Camera& cam, RenderMethod method
                 times.prewarp_ms += ms_since(t0);
                 cached_ = {true, lvl, method, o.exact, o.keep_outliers, d.depth_correction, o.filter, k};
                 // Skip: texels at zero displacement were copied, not warped (paper section 5, the brick wall).
-                // The reference kernels count their copies; the SIMD kernels (any target but generic) copy
-                // one-pixel spans on pixel centres without counting, and the still texels are a property of the
-                // level, counted once.
+                // The reference kernels count their copies; the avx512 kernels copy one-pixel spans on pixel
+                // centres without counting, and the still texels are a property of the level, counted once. (The
+                // Highway kernels draw such spans like any other: no skip.)
                 const long long still = o.copy_still_runs ? still_texels(lvl, o.exact) : 0;
-                if (still > 0 && (stats_.still_copied > 0 || stats_.isa != Isa::generic)) {
+                if (still > 0 && (stats_.still_copied > 0 || stats_.isa == Isa::avx512)) {
                     rep.skips.push_back(kSkipZeroRuns);
                     rep.still_texels = still;
                     rep.still_copied = stats_.still_copied;

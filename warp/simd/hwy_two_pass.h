@@ -3,15 +3,17 @@
 // contract as the hand-written AVX-512 kernels of warp/simd/avx512_two_pass.h, whose job they take and whose
 // scheduling (warp/simd/schedule.cpp) they share: the output of prewarp()'s two-pass lookup-table path bit for bit.
 //
-// Horizontal steps: each row's texels are warped with the reference's own arithmetic and line rasterizer
-// (row positions as row_samples computes them, then warp_line_to of warp/line_warp.h) into the band. Vertical steps:
-// the columns advance together, as many in the lanes of a vector as the target has; each lane computes what
-// raster_span / raster_point compute for its column, operation by operation in float (no contraction: the file is
-// compiled with -ffp-contract=off, and SSE4 has no FMA anyway), and the colour with lerp8's integer formula. The
-// pixels are written lane by lane (Highway 1.0.3 has no masked scatter).
+// Horizontal steps: each row is set up with the reference's own arithmetic (row_samples' positions and final row
+// coordinates, NaN where a texel does not take part) and drawn in the reference's occlusion-compatible order; where
+// a whole vector of consecutive samples are spans that follow the processing direction (no foldover), their pixels
+// are disjoint and are drawn in the lanes together, everything else sample by sample through raster_point and
+// raster_span. Vertical steps: the columns advance together, as many in the lanes of a vector as the target has;
+// each lane computes what raster_span / raster_point compute for its column, operation by operation in float (no
+// contraction: the file is compiled with -ffp-contract=off, and SSE4 has no FMA anyway), and the colour with
+// lerp8's integer formula. Pixels are written lane by lane (Highway 1.0.3 has no masked scatter).
 //
-// Not yet here (tracked in docs/BENCHMARKS.md, "SIMD targets"): the pipelined reconstruction (these targets run the
-// reference kernels for it) and a vector horizontal pass.
+// Not yet here (docs/BENCHMARKS.md, "SIMD targets"): the pipelined reconstruction (these targets run the reference
+// kernels for it) and vector paths for foldovers and for runs of short spans of mixed orientation.
 #pragma once
 
 #include <cstddef>
