@@ -4,9 +4,9 @@
 //
 // Targets: avx512 (the hand-written AVX-512 kernels of warp/simd/, needing AVX-512 F/BW/DQ/VL/VBMI/VNNI and BMI2),
 // avx2 and sse4 on x86-64, neon and sve on ARM (kernels written once over Google Highway, warp/simd/hwy_*), and
-// generic (the reference kernels, warp/prewarp.cpp, which every other target matches bit for bit). A target covers
-// what its kernels implement (warp/simd/dispatch.cpp); a pre-warp it does not cover runs on the reference kernels,
-// and PrewarpStats::isa says which ran.
+// generic (the reference kernels, warp/reference/, which every other target matches bit for bit). A target covers
+// what its kernels implement (fast_prewarp_covers, warp/simd/schedule.h); a pre-warp it does not cover runs on the
+// reference kernels, and PrewarpStats::isa says which ran.
 #pragma once
 
 #include <string>

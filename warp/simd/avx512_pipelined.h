@@ -1,5 +1,5 @@
 // The fast pipelined pre-warp kernel (AVX-512): the same output as prewarp()'s pipelined lookup-table path
-// (warp/prewarp.cpp, paper section 3.2.2) bit for bit, for reliefs without discontinuity marks and without depth
+// (warp/reference/, paper section 3.2.2) bit for bit, for reliefs without discontinuity marks and without depth
 // output. Scheduling lives in warp/simd/schedule.cpp.
 //
 // A part (the rows below the epipole, bottom up, or the rows above it, top down) is processed row by row: each row

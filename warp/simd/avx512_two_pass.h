@@ -1,5 +1,5 @@
 // The fast two-pass pre-warp kernels (AVX-512): the same output as prewarp()'s two-pass lookup-table path
-// (warp/prewarp.cpp) bit for bit, for reliefs without discontinuity marks and without depth output. Scheduling
+// (warp/reference/) bit for bit, for reliefs without discontinuity marks and without depth output. Scheduling
 // (threads, bands of rows) lives in warp/simd/schedule.cpp; these functions only work on the ranges they are given.
 //
 // The two passes are interleaved row by row instead of going through a whole intermediate image. The reference's
