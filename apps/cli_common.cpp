@@ -48,6 +48,31 @@ int parse_level(const std::string& text) {
     return n;
 }
 
+Isa parse_isa_arg(const std::string& text, const std::string& flag) {
+    Isa isa;
+    if (!parse_isa(text, isa))
+        throw UsageError(flag + ": unknown target \"" + text + "\"; known: auto, " + isa_names());
+    if (!isa_supported(isa)) {
+        std::string have;
+        for (Isa i : supported_isas()) have += std::string(have.empty() ? "" : ", ") + isa_name(i);
+        throw UsageError(flag + ": this CPU cannot run target \"" + text + "\"; it runs: " + have);
+    }
+    try {
+        default_isa();  // RTM_ISA, which "auto" follows
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+    }
+    return isa;
+}
+
+std::vector<Isa> parse_isa_list(const std::string& text, const std::string& flag) {
+    std::vector<Isa> v;
+    std::stringstream ss(text);
+    for (std::string item; std::getline(ss, item, ',');) v.push_back(parse_isa_arg(item, flag));
+    if (v.empty()) throw UsageError(flag + ": expected at least one target");
+    return v;
+}
+
 Filter parse_filter(const std::string& text, Reconstruction method) {
     Filter f;
     if (text == "point")

@@ -30,6 +30,11 @@ Filter parse_filter(const std::string& text, Reconstruction method);
 // A comma-separated list of procedural relief names (procedural/procedural_media.h); throws UsageError naming the
 // unknown one.
 std::vector<std::string> parse_relief_names(const std::string& text, const std::string& flag);
+// --isa NAME (warp/isa.h): a target this CPU supports ("auto" too). Throws UsageError naming the value when it names
+// no target or one this CPU or build lacks; also when RTM_ISA does (that variable chooses for "auto").
+Isa parse_isa_arg(const std::string& text, const std::string& flag);
+// --isa LIST: comma-separated targets, each as parse_isa_arg.
+std::vector<Isa> parse_isa_list(const std::string& text, const std::string& flag);
 void parse_size(const std::string& text, const std::string& flag, int& w, int& h);
 
 struct CameraArgs {

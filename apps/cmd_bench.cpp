@@ -14,7 +14,7 @@ namespace rtm::cli {
 namespace {
 
 struct BenchArgs {
-    std::string json, sizes, reliefs, threads, methods;
+    std::string json, sizes, reliefs, threads, methods, isa;
     bool full = false, no_exact = false, no_reference = false, no_table1 = false, no_objects = false;
     double min_time = 0;
     bool min_time_given = false;
@@ -40,6 +40,8 @@ void run_bench_command(const BenchArgs& a) {
     if (!a.sizes.empty()) c.sizes = parse_ints(a.sizes, "--sizes", 8, 8192);
     if (!a.threads.empty()) c.threads = parse_ints(a.threads, "--threads", 1, 1024);
     if (!a.reliefs.empty()) c.reliefs = parse_relief_names(a.reliefs, "--reliefs");
+    c.isas = parse_isa_list(a.isa.empty() ? std::string("auto") : a.isa, "--isa");
+    if (a.isa.empty()) c.isas.clear();
     if (!a.methods.empty()) {
         c.methods.clear();
         std::stringstream ss(a.methods);
@@ -81,6 +83,8 @@ void add_bench_command(CLI::App& app) {
     sub->add_option("--reliefs", a->reliefs, "Procedural reliefs, e.g. bumps,bricks,ridges");
     sub->add_option("--methods", a->methods, "Reconstructions, e.g. two-pass,pipelined (default both)");
     sub->add_option("--threads", a->threads, "Thread counts of the fast kernels, e.g. 1,2");
+    sub->add_option("--isa", a->isa, "SIMD targets to measure side by side, e.g. avx512,avx2,sse4,generic (default: "
+                                     "auto, i.e. RTM_ISA or the fastest)");
     sub->add_option("--min-time", a->min_time, "Seconds of repeats per measurement (default 0.25)")
         ->each([a](const std::string&) { a->min_time_given = true; });
     sub->add_flag("--no-exact", a->no_exact, "Skip the --exact (double precision) path");

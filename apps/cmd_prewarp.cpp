@@ -20,7 +20,7 @@ namespace rtm::cli {
 namespace {
 
 struct PrewarpArgs {
-    std::string relief, object, eye, out, method = "two-pass", level = "0", json, filter = "point";
+    std::string relief, object, eye, out, method = "two-pass", level = "0", json, filter = "point", isa = "auto";
     bool exact = false;
     int repeat = 1, threads = 0;
 };
@@ -44,6 +44,7 @@ void run_prewarp(const PrewarpArgs& a) {
     opt.exact = a.exact;
     opt.threads = a.threads;
     opt.filter = parse_filter(a.filter, opt.method);
+    opt.isa = parse_isa_arg(a.isa, "--isa");
 
     ReliefQuad quad(load_relief(a.relief));
     int level = level_arg;
@@ -69,7 +70,7 @@ void run_prewarp(const PrewarpArgs& a) {
         // Texels at zero displacement do not move and are copied without the warp arithmetic: the skip
         // "zero-displacement-runs", by the rule ReliefQuad::draw reports it with (objects/frame_plan.h).
         const long long all_still = opt.copy_still_runs ? count_still_texels(relief, opt.exact) : 0;
-        const bool fired = zero_runs_fired(relief, k, opt, stats, all_still, nullptr);
+        const bool fired = zero_runs_fired(stats, all_still);
         const long long still = fired ? all_still : 0;
         nlohmann::json skips = nlohmann::json::array();
         if (fired) skips.push_back(kSkipZeroRuns);
@@ -80,6 +81,7 @@ void run_prewarp(const PrewarpArgs& a) {
             {"method", a.method},
             {"exact", a.exact},
             {"filter", a.filter},
+            {"isa", isa_name(stats.isa)},
             {"prewarp_ms", timing_json(times)},
             {"texels", stats.texels},
             {"dropped_texels", stats.dropped},
@@ -114,6 +116,9 @@ void add_prewarp_command(CLI::App& app) {
     sub->add_option("--level", a->level, "Relief texture pyramid level N or auto")->capture_default_str();
     sub->add_option("--repeat", a->repeat, "Run N times after one warm-up, for timing")->capture_default_str();
     sub->add_option("--threads", a->threads, "Threads (0 = all)")->capture_default_str();
+    sub->add_option("--isa", a->isa, "SIMD target: auto, avx512, avx2, sse4, neon, sve or generic (the reference "
+                                     "kernels); auto follows RTM_ISA, else the fastest")
+        ->capture_default_str();
     sub->add_option("--json", a->json, "Write figures as JSON");
     sub->callback([a] { run_prewarp(*a); });
 }

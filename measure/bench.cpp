@@ -24,7 +24,7 @@
 #include "warp/timing.h"
 #include "objects/render_relief.h"
 #include "texmap/gl_context.h"
-#include "warp/fast_prewarp.h"
+#include "warp/simd/schedule.h"
 
 namespace rtm {
 
@@ -109,7 +109,7 @@ void prewarp_traffic(Reconstruction method, bool exact, bool fast, int w, int h,
     // Texels are 4 bytes; --exact also reads the 4-byte exact displacement.
     const double in = src * (exact ? 8.0 : 4.0);
     // The pipelined reconstruction has no intermediate image; nor have the fast two-pass kernels, which hand each
-    // band of rows to the vertical pass while it is in the cache (warp/fast_two_pass.h).
+    // band of rows to the vertical pass while it is in the cache (warp/simd/avx512_two_pass.h).
     if (method == Reconstruction::pipelined || (fast && !exact)) {
         read = in;
         written = out * 4.0;
@@ -285,18 +285,22 @@ BenchResult run_bench(const BenchConfig& c) {
             const PrewarpCoefficients k = compute_coefficients(t.geometry, cam.eye);
             for (Reconstruction method : c.methods) {
                 struct Variant {
-                    bool exact, fast;
+                    bool exact;
+                    Isa isa;
                     int threads;
                 };
                 std::vector<Variant> variants;
-                for (int th : c.threads) variants.push_back({false, true, th});
-                if (c.reference && size <= c.reference_max_size) variants.push_back({false, false, 1});
-                if (c.exact && size <= c.exact_max_size) variants.push_back({true, false, max_threads});
+                const std::vector<Isa> isas = c.isas.empty() ? std::vector<Isa>{Isa::automatic} : c.isas;
+                for (int th : c.threads)
+                    for (Isa isa : isas)
+                        if (isa != Isa::generic) variants.push_back({false, isa, th});
+                if (c.reference && size <= c.reference_max_size) variants.push_back({false, Isa::generic, 1});
+                if (c.exact && size <= c.exact_max_size) variants.push_back({true, Isa::generic, max_threads});
                 for (const Variant& v : variants) {
                     PrewarpOptions o;
                     o.method = method;
                     o.exact = v.exact;
-                    o.fast = v.fast;
+                    o.isa = v.isa;
                     o.threads = v.threads;
                     PrewarpWorkspace ws;
                     ImageRGBA8 out;
@@ -312,7 +316,8 @@ BenchResult run_bench(const BenchConfig& c) {
                     row.method = method;
                     row.path = v.exact ? CoordinatePath::exact : CoordinatePath::lut;
                     row.kernel =
-                        v.fast && !v.exact && fast_prewarp_available() ? BenchKernel::fast : BenchKernel::reference;
+                        st.isa != Isa::generic ? BenchKernel::fast : BenchKernel::reference;
+                    row.isa = isa_name(st.isa);
                     row.threads = v.threads;
                     row.texels = st.texels;
                     row.out_width = out.width;
@@ -339,7 +344,7 @@ BenchResult run_bench(const BenchConfig& c) {
                     char buf[256];
                     std::snprintf(buf, sizeof buf, "%s %d^2 %s %s %s %d thread%s: %.3f ms, %.0f Mtexel/s (%.1fx bound)",
                                   name.c_str(), size, to_string(row.method).c_str(), to_string(row.path).c_str(),
-                                  to_string(row.kernel).c_str(),
+                                  row.isa.c_str(),
                                   v.threads, v.threads == 1 ? "" : "s", row.ms_median, row.mtexels_per_s,
                                   row.bound_ratio);
                     progress(buf);
@@ -466,6 +471,40 @@ std::vector<PipelinedRatio> pipelined_ratios(const BenchResult& r) {
     return out;
 }
 
+std::string bench_isa_markdown(const BenchResult& r) {
+    std::vector<std::string> isas;  // in the order of the rows
+    for (const BenchRow& x : r.rows)
+        if (x.path == CoordinatePath::lut && std::find(isas.begin(), isas.end(), x.isa) == isas.end()) isas.push_back(x.isa);
+    if (isas.size() < 2) return "";
+    auto find = [&](const BenchRow& like, const std::string& isa, int threads) {
+        for (const BenchRow& x : r.rows)
+            if (x.relief == like.relief && x.size == like.size && x.method == like.method && x.path == CoordinatePath::lut &&
+                x.isa == isa && x.threads == threads)
+                return &x;
+        return static_cast<const BenchRow*>(nullptr);
+    };
+    std::ostringstream s;
+    char buf[256];
+    s << "\n### SIMD targets\n\n";
+    s << "Median ms of the lookup-table kernels per target (the target that ran: a reconstruction a target does not "
+         "implement runs on the generic kernels and is listed there); x avx512 = the avx512 target's time / this "
+         "one's (higher is faster), x generic = the generic kernels' time at one thread / this one's.\n\n";
+    s << "| relief | size | method | threads | target | median ms | x avx512 | x generic |\n";
+    s << "|---|---:|---|---:|---|---:|---:|---:|\n";
+    for (const BenchRow& x : r.rows) {
+        if (x.path != CoordinatePath::lut) continue;
+        const BenchRow* a = find(x, "avx512", x.threads);
+        const BenchRow* g = find(x, "generic", 1);
+        std::string ra = a ? "" : "-", rg = g ? "" : "-";
+        if (a) std::snprintf(buf, sizeof buf, "%.2f", a->ms_median / x.ms_median), ra = buf;
+        if (g) std::snprintf(buf, sizeof buf, "%.2f", g->ms_median / x.ms_median), rg = buf;
+        std::snprintf(buf, sizeof buf, "| %s | %d^2 | %s | %d | %s | %.3f | %s | %s |\n", x.relief.c_str(), x.size,
+                      to_string(x.method).c_str(), x.threads, x.isa.c_str(), x.ms_median, ra.c_str(), rg.c_str());
+        s << buf;
+    }
+    return s.str();
+}
+
 std::string bench_markdown(const BenchResult& r) {
     std::ostringstream s;
     char buf[512];
@@ -481,10 +520,11 @@ std::string bench_markdown(const BenchResult& r) {
     for (const BenchRow& x : r.rows) {
         std::snprintf(buf, sizeof buf, "| %s | %d^2 | %s | %s | %s | %d | %.3f | %.3f | %.1f | %.1f | %.3f | %.2f |\n",
                       x.relief.c_str(), x.size, to_string(x.method).c_str(), to_string(x.path).c_str(),
-                      to_string(x.kernel).c_str(), x.threads,
+                      (x.kernel == BenchKernel::fast ? "fast " + x.isa : to_string(x.kernel)).c_str(), x.threads,
                       x.ms_median, x.ms_min, x.mtexels_per_s, x.prewarps_per_s, x.bound_ms, x.bound_ratio);
         s << buf;
     }
+    s << bench_isa_markdown(r);
     const std::vector<PipelinedRatio> ratios = pipelined_ratios(r);
     if (!ratios.empty()) {
         s << "\n### Pipelined against two-pass\n\n";
@@ -567,6 +607,7 @@ nlohmann::json bench_json(const BenchResult& r) {
                         {"method", to_string(x.method)},
                         {"path", to_string(x.path)},
                         {"kernel", to_string(x.kernel)},
+                        {"isa", x.isa},
                         {"threads", x.threads},
                         {"texels", x.texels},
                         {"out_size", {x.out_width, x.out_height}},

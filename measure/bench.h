@@ -23,6 +23,9 @@ struct BenchConfig {
     std::vector<std::string> reliefs;   // procedural relief names (procedural/procedural_media.h)
     std::vector<Reconstruction> methods = {Reconstruction::two_pass, Reconstruction::pipelined};
     std::vector<int> threads;           // thread counts of the lookup-table fast kernels
+    // SIMD targets of the lookup-table kernels (warp/isa.h), each measured at every thread count; empty: the one
+    // PrewarpOptions::isa's automatic picks. With more than one, the report compares them (bench_markdown).
+    std::vector<Isa> isas;
     bool exact = true;                  // also --exact (double precision, generic kernels) at the largest thread count
     int exact_max_size = 1024;
     bool reference = true;              // also the generic lookup-table kernels (fast = false), one thread
@@ -54,6 +57,7 @@ struct BenchRow {
     Reconstruction method = Reconstruction::two_pass;
     CoordinatePath path = CoordinatePath::lut;
     BenchKernel kernel = BenchKernel::fast;
+    std::string isa;  // the target whose kernels ran (PrewarpStats::isa: "generic" for the reference kernels)
     int threads = 0;
     long long texels = 0;
     int out_width = 0, out_height = 0;
@@ -120,6 +124,9 @@ struct BenchResult {
 BenchResult run_bench(const BenchConfig& config);
 // The relief and size pairs of `result` that have both reconstructions, in the order of the rows.
 std::vector<PipelinedRatio> pipelined_ratios(const BenchResult& result);
+// The SIMD targets of `result` side by side: per relief, size, reconstruction and thread count, each target's median
+// time and its speed against the avx512 target and the generic kernels (one thread). Empty with fewer than two.
+std::string bench_isa_markdown(const BenchResult& result);
 std::string bench_markdown(const BenchResult& result);
 nlohmann::json bench_json(const BenchResult& result);
 

@@ -52,12 +52,12 @@ std::vector<FilterMeasurement> measure_filters(const FilterMeasureOptions& opt) 
                 m.filter = to_string(f);
                 PrewarpOptions o = base;
                 o.filter = f;
-                o.fast = false;
+                o.isa = Isa::generic;
                 ImageRGBA8 out;
                 m.ms = median_ms(t, k, o, opt.repeat, out);
                 m.error = prewarp_error(out, truth, e);
                 if (opt.on_image) opt.on_image(name, v.name, m.filter, out);
-                o.fast = true;
+                o.isa = Isa::automatic;
                 ImageRGBA8 fast_out;
                 m.fast_ms = median_ms(t, k, o, opt.repeat, fast_out);
                 rows.push_back(m);

@@ -104,7 +104,7 @@ std::vector<SkipMeasurement> measure_skips(int frames, const std::function<void(
         for (int with = 0; with < 2; ++with) {
             rs[with].method = RenderMethod::two_pass;
             rs[with].prewarp.keep_outliers = s.sidewalls;
-            rs[with].prewarp.fast = s.fast;
+            rs[with].prewarp.isa = s.fast ? Isa::automatic : Isa::generic;
             rs[with].prewarp.threads = s.threads;
             rs[with].draw.skips = with;
             rs[with].draw.level = with ? s.level : 0;

@@ -6,7 +6,6 @@
 #include <stdexcept>
 
 #include "objects/bounds.h"
-#include "warp/fast_prewarp.h"
 #include "warp/pyramid.h"
 
 namespace rtm {
@@ -146,9 +145,8 @@ UploadPlan plan_upload(const UploadedTexture& now, const UploadedTexture& last, 
     u.next = skips ? now : UploadedTexture{};
     return u;
 }
-bool zero_runs_fired(const ReliefTexture& t, const PrewarpCoefficients& k, const PrewarpOptions& o,
-                     const PrewarpStats& stats, long long still, const Image2D<uint8_t>* displ) {
-    return still > 0 && (stats.still_copied > 0 || fast_prewarp_covers(t, k, o, stats.extent, displ));
+bool zero_runs_fired(const PrewarpStats& stats, long long still) {
+    return still > 0 && (stats.still_copied > 0 || stats.isa == Isa::avx512);
 }
 
 }  // namespace rtm

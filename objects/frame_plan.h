@@ -127,9 +127,9 @@ UploadPlan plan_upload(const UploadedTexture& now, const UploadedTexture& last, 
 
 // The zero-displacement-runs skip of a pre-warp made with options `o` (paper section 5, the brick wall): texels at
 // zero displacement were copied, not warped. The reference kernels count their copies (stats.still_copied); the
-// fast kernels copy one-pixel spans on pixel centres without counting. `still` = count_still_texels of the relief
-// when o.copy_still_runs, else 0. Returns true when the skip fired.
-bool zero_runs_fired(const ReliefTexture& t, const PrewarpCoefficients& k, const PrewarpOptions& o,
-                     const PrewarpStats& stats, long long still, const Image2D<uint8_t>* displ);
+// avx512 kernels copy one-pixel spans on pixel centres without counting; the Highway kernels (avx2, sse4, neon, sve)
+// draw such spans like any other, so the skip does not fire for them. `still` = count_still_texels of the relief
+// when the options' copy_still_runs is on, else 0. Returns true when the skip fired.
+bool zero_runs_fired(const PrewarpStats& stats, long long still);
 
 }  // namespace rtm

@@ -10,6 +10,7 @@
 #include "objects/bounds.h"
 #include "truth/micromesh.h"
 #include "warp/timing.h"
+#include "objects/view_analysis.h"
 #include "warp/pyramid.h"
 
 namespace rtm {
@@ -144,7 +145,7 @@ void ReliefQuad::draw(Renderer& renderer, const Camera& cam, RenderMethod method
         last_prewarp_ = {true, plan.setup, plan.k};
         // The still texels are a property of the level, counted once.
         const long long still = o.copy_still_runs ? still_texels(lvl, o.exact) : 0;
-        if (zero_runs_fired(t, plan.k, o, stats_, still, d.depth_correction ? &displ_ : nullptr)) {
+        if (zero_runs_fired(stats_, still)) {
             rep.skips.push_back(kSkipZeroRuns);
             rep.still_texels = still;
             rep.still_copied = stats_.still_copied;

@@ -61,8 +61,8 @@ int split_index(double split_pos, int n);
 // (the centre of t's 2^-13 bin) and at most 2^14 - 1 (NaN gives that too), and the channel is
 // (a * (2^14 - w) + b * w + 2^13) >> 14, i.e. a + (b - a) * w / 2^14 rounded. An odd w never makes a tie
 // ((b - a) * w is never an odd multiple of 2^13), so the result is the nearest integer to a + (b - a) * w / 2^14. The
-// vector kernels (warp/fast_line.h) do the same with integer dot products on packed colours, a third of the work of
-// the float formula uint8_t(a * (1 - t) + b * t + 0.5) it replaced (docs/perf-history.md).
+// vector kernels (warp/simd/avx512_line.h) do the same with integer dot products on packed colours, a third of the work
+// of the float formula uint8_t(a * (1 - t) + b * t + 0.5) it replaced (docs/perf-history.md).
 // Against that formula: |t - w / 2^14| <= 2^-14 moves the exact value a + (b - a) * t by at most 255 / 2^14 < 0.016,
 // and each result rounds its own value (the float one with an error far below that), so the two differ by at most 1
 // level, and only where the exact value lies within 0.016 of a rounding boundary (tests/warp/fast_kernels_test.cpp
@@ -83,7 +83,7 @@ inline void raster_point(P p, Rgba8 c, const A& attr, int n, Put&& put) {
 
 // Pixels x0 .. x1 of the span from pa to pb (pa != pb), colour and attribute interpolated at each centre. A pixel's
 // value depends on x alone, so any part of a span gives the same pixels as the whole (the fast kernels' backward
-// rows, warp/fast_line.h, draw only the parts no later span covers).
+// rows, warp/simd/avx512_line.h, draw only the parts no later span covers).
 template <class P, class A, class Put>
 inline void raster_span_pixels(P pa, Rgba8 ca, const A& aa, P pb, Rgba8 cb, const A& ab, int x0, int x1, Put&& put) {
     const P inv = P(1) / (pb - pa);

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "image.h"
+#include "isa.h"
 #include "prewarp_coefficients.h"
 #include "relief_texture.h"
 #include "tables.h"
@@ -39,39 +40,21 @@ enum class Reconstruction { two_pass, pipelined };
 //              parts of spans that cover it, weighted by the length covered, and alpha = the covered fraction.
 enum class Filter { point, coverage };
 
-// How the fast kernels (warp/fast_prewarp.h) schedule their work where there is more than one way. Every choice
-// gives the same output to the bit; `automatic` is what the kernels' measurements chose, and the tests sweep the
-// others.
-enum class KernelChoice { automatic, always, never };
-struct FastKernelPolicy {
-    // The pipelined kernel's reverse mode (warp/fast_pipelined.cpp, reverse_rows): automatic switches a part to it
-    // where its rows overdraw much; always runs whole parts in it.
-    KernelChoice pipelined_reverse = KernelChoice::automatic;
-    // Threads of the pipelined kernel on chunks of rows rather than ranges of columns (warp/fast_prewarp.cpp,
-    // pipelined_row_chunks): automatic takes row chunks with threads and one part.
-    KernelChoice pipelined_row_chunks = KernelChoice::automatic;
-    // The two-pass kernel's backward rows (warp/fast_line.h, warp_line_reverse): automatic takes the rows that fold
-    // over; always every row whose samples all take part.
-    KernelChoice two_pass_reverse = KernelChoice::automatic;
-    // With two_pass_reverse: clear each backward row and warp it forwards again (the fallback for a backward warp
-    // that fails, otherwise unreachable).
-    bool two_pass_redo_forwards = false;
-};
-
 struct PrewarpOptions {
     Reconstruction method = Reconstruction::two_pass;
     bool exact = false;          // unquantized displacement and double-precision coordinates (the reference path)
     int threads = 0;             // 0 = all available; the output never depends on it
     bool keep_outliers = false;  // keep samples that leave the quad in a margin (for the side polygons)
     int max_margin = -1;         // largest margin per side in texels; -1 = 2 * max(w, h)
-    bool fast = true;            // use the fast kernels where they apply (warp/fast_prewarp.h); same output
+    // The SIMD target of the kernels (warp/isa.h): automatic takes RTM_ISA or the fastest this CPU has; generic
+    // the reference kernels. Same output on every target. A target the CPU lacks throws std::invalid_argument.
+    Isa isa = Isa::automatic;
     Filter filter = Filter::point;
     // Texels whose displacement is exactly zero do not move (paper section 5, the brick wall): copy runs of them
     // without the warp arithmetic. Same output either way; off only to measure what the copy saves. "Zero" is a
     // level that decodes to exactly 0 (with `exact`: a displacement of exactly 0.0). It applies to the reference
     // kernels with the point filter (the fast kernels always copy one-pixel spans that lie on pixel centres).
     bool copy_still_runs = true;
-    FastKernelPolicy kernel_policy = {};  // the fast kernels' scheduling (same output)
 };
 
 // Texels of output beyond the quad on each side (all 0 unless keep_outliers).
@@ -86,7 +69,7 @@ struct PrewarpWorkspace {
     ImageF mid_v, mid_d;          // final v and displacement carried by the horizontal pass (lookup-table path)
     Image2D<double> mid_v_exact;  // the same in double precision (--exact)
     Image2D<double> mid_d_exact;
-    // The fast pipelined kernel's row chunks after a part's first (warp/fast_prewarp.cpp): output-sized images, 0
+    // The fast pipelined kernel's row chunks after a part's first (warp/simd/schedule.cpp): output-sized images, 0
     // everywhere between pre-warps (the kernel clears what it wrote).
     std::vector<ImageRGBA8> chunk_scratch;
     bool chunk_scratch_dirty = false;  // set while chunks and composite run: an interrupted pre-warp left pixels
@@ -111,6 +94,9 @@ struct PrewarpStats {
     // pays for foldovers.
     long long row_pixels = 0;
     long long column_samples = 0;
+    // The target whose kernels computed this pre-warp (generic: the reference kernels, also where the chosen
+    // target's kernels do not cover the case).
+    Isa isa = Isa::generic;
 };
 
 // Non-empty texels at zero displacement (the texels copy_still_runs copies), whatever the view: a level that decodes

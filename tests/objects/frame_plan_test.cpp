@@ -275,8 +275,8 @@ TEST(FramePlan, ZeroRunsFireOnlyWithStillTexels) {
     const FramePlan p = r.plan(r.orbit(20, 10, 2.5));
     PrewarpStats stats;
     stats.still_copied = 5;
-    EXPECT_TRUE(zero_runs_fired(r.t, p.k, p.prewarp, stats, 10, nullptr));
-    EXPECT_FALSE(zero_runs_fired(r.t, p.k, p.prewarp, stats, 0, nullptr));
+    EXPECT_TRUE(zero_runs_fired(stats, 10));
+    EXPECT_FALSE(zero_runs_fired(stats, 0));
 }
 
 TEST(FramePlan, Names) {

@@ -13,7 +13,7 @@
 #include "objects/render_relief.h"
 #include "objects/view_analysis.h"
 #include "texmap/gl_context.h"
-#include "warp/fast_prewarp.h"
+#include "warp/simd/schedule.h"
 #include "warp/test_util.h"
 
 namespace rtm {
@@ -31,7 +31,7 @@ struct Frame {
         RenderSettings s;
         s.method = method;
         s.prewarp.keep_outliers = sidewalls;
-        s.prewarp.fast = fast;
+        s.prewarp.isa = fast ? Isa::automatic : Isa::generic;
         s.draw.skips = skips;
         s.draw.level = level;
         StageTimes t;
@@ -164,7 +164,7 @@ TEST(ViewAnalysis, MovingFootprintHoldsEveryChange) {
         o.method = rng() % 2 ? Reconstruction::two_pass : Reconstruction::pipelined;
         o.exact = rng() % 2;
         o.keep_outliers = rng() % 2;
-        o.fast = rng() % 2;
+        o.isa = rng() % 2 ? Isa::automatic : Isa::generic;
         if (o.method == Reconstruction::two_pass && rng() % 3 == 0) o.filter = Filter::coverage;
         auto eye = [&] {
             return glm::dvec3(U(rng) * 3 - 1, U(rng) * 3 - 1, (rng() % 4 == 0 ? 0.1 + amp * U(rng) : 0.5 + U(rng) * 3));

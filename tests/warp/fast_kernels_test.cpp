@@ -1,4 +1,5 @@
-// The fast pre-warp kernels (warp/fast_prewarp.h) against the generic implementation, pixel by pixel: random
+// The SIMD pre-warp kernels (warp/simd/schedule.h) against the generic implementation, pixel by pixel, on every
+// target this machine supports (warp/isa.h), each chosen in turn (PrewarpOptions::isa): random
 // reliefs (smooth, mostly flat with steps, noisy and foldover-heavy, with empty texels), sizes from 1x1 through
 // 1xN, Nx1, odd sizes and sizes around multiples of 16, views with the epipole inside, outside, on texel centres and
 // boundaries, far, near, grazing, below the highest texels, margins on and off, one and two threads.
@@ -17,9 +18,10 @@
 #include <vector>
 
 #include "test_util.h"
-#include "warp/fast_pipelined.h"
-#include "warp/fast_prewarp.h"
-#include "warp/fast_two_pass.h"
+#include "warp/simd/avx512_pipelined.h"
+#include "warp/simd/schedule.h"
+#include "warp/simd/avx512_two_pass.h"
+#include "warp/simd/kernel_policy.h"
 #include "warp/line_warp.h"
 #include "warp/prewarp.h"
 
@@ -149,11 +151,16 @@ std::string first_difference(const ImageRGBA8& ref, const ImageRGBA8& got) {
     return "";
 }
 
-class FastKernels : public ::testing::TestWithParam<Reconstruction> {
+// A reconstruction and a SIMD target that implements it (instantiated below for every target of this machine).
+struct MethodTarget {
+    Reconstruction method;
+    Isa isa;
+};
+
+class FastKernels : public ::testing::TestWithParam<MethodTarget> {
 protected:
-    void SetUp() override {
-        if (!fast_prewarp_available()) GTEST_SKIP() << "no AVX-512 on this CPU: the fast kernels are not used";
-    }
+    Reconstruction method() const { return GetParam().method; }
+    Isa isa() const { return GetParam().isa; }
 };
 
 TEST_P(FastKernels, MatchTheReferencePixelByPixel) {
@@ -165,15 +172,15 @@ TEST_P(FastKernels, MatchTheReferencePixelByPixel) {
     int covered = 0;
     for (int i = 0; i < cases; ++i) {
         Case c = random_case(rng);
-        c.options.method = GetParam();
+        c.options.method = method();
         SCOPED_TRACE("seed " + std::to_string(seed) + " case " + std::to_string(i) + ": " + c.describe);
         const PrewarpCoefficients k = compute_coefficients(c.relief.geometry, c.eye);
         PrewarpOptions o = c.options;
-        o.fast = false;
+        o.isa = Isa::generic;
         o.threads = 1;
         const PrewarpStats sr = prewarp(c.relief, k, o, ws_ref, ref);
         for (int threads : {1, 2}) {
-            o.fast = true;
+            o.isa = isa();
             o.threads = threads;
             const PrewarpStats sf = prewarp(c.relief, k, o, ws_fast, fast);
             const std::string diff = first_difference(ref, fast);
@@ -182,7 +189,7 @@ TEST_P(FastKernels, MatchTheReferencePixelByPixel) {
             ASSERT_EQ(sf.dropped, sr.dropped);
             ASSERT_EQ(sf.extent, sr.extent);
         }
-        covered += fast_prewarp_covers(c.relief, k, o, sr.extent, nullptr);
+        covered += fast_prewarp_covers(isa(), c.relief, k, o, sr.extent, nullptr);
     }
     // Everything but the eye in the relief's plane goes through the fast kernels.
     EXPECT_GT(covered, cases * 9 / 10);
@@ -210,15 +217,15 @@ TEST_P(FastKernels, LargeReliefsAndManyThreadsMatch) {
         const glm::dvec3 eye{d * std::cos(el) * std::sin(az), d * std::sin(el) * 0.5, d * std::cos(el) * std::cos(az)};
         const PrewarpCoefficients k = compute_coefficients(g, eye);
         PrewarpOptions o;
-        o.method = GetParam();
+        o.method = method();
         o.keep_outliers = i % 2 == 0;
-        o.fast = false;
+        o.isa = Isa::generic;
         o.threads = 1;
         SCOPED_TRACE("seed " + std::to_string(seed) + " case " + std::to_string(i) + " " + std::to_string(w) + "x" +
                      std::to_string(h) + " " + k.to_string());
         prewarp(t, k, o, ws_ref, ref);
         for (int threads : {1, 2, 0}) {
-            o.fast = true;
+            o.isa = isa();
             o.threads = threads;
             prewarp(t, k, o, ws_fast, fast);
             ASSERT_EQ(first_difference(ref, fast), "") << "threads " << threads;
@@ -256,14 +263,14 @@ TEST_P(FastKernels, ExtremeConfigurationsMatch) {
             w, h, lo, hi, [&](int x, int r) { return lo + (hi - lo) * (((x * 31 + r * 17) % 13) / 12.0); }, g);
         const PrewarpCoefficients k = compute_coefficients(g, eye);
         PrewarpOptions o;
-        o.method = GetParam();
+        o.method = method();
         o.keep_outliers = i % 3 == 0;
-        o.fast = false;
+        o.isa = Isa::generic;
         o.threads = 1;
         SCOPED_TRACE("seed " + std::to_string(seed) + " case " + std::to_string(i) + " " + std::to_string(w) + "x" +
                      std::to_string(h) + " " + k.to_string());
         const PrewarpStats sr = prewarp(t, k, o, ws_ref, ref);
-        o.fast = true;
+        o.isa = isa();
         const PrewarpStats sf = prewarp(t, k, o, ws_fast, fast);
         ASSERT_EQ(first_difference(ref, fast), "");
         ASSERT_EQ(sf.dropped, sr.dropped);
@@ -295,15 +302,15 @@ TEST_P(FastKernels, BandsAndThreadsMatch) {
             const glm::dvec3 eye = g.origin + g.a * eu + g.b * ev + g.f() * (0.3 + U(rng));
             const PrewarpCoefficients k = compute_coefficients(g, eye);
             PrewarpOptions o;
-            o.method = GetParam();
+            o.method = method();
             o.keep_outliers = rng() % 2;
-            o.fast = false;
+            o.isa = Isa::generic;
             o.threads = 1;
             SCOPED_TRACE("seed " + std::to_string(seed) + " " + std::to_string(w) + "x" + std::to_string(h) +
                          " epipole row " + std::to_string(ev) + " " + k.to_string());
             prewarp(t, k, o, ws_ref, ref);
             for (int threads : {1, 2, 3, 4, 0}) {
-                o.fast = true;
+                o.isa = isa();
                 o.threads = threads;
                 prewarp(t, k, o, ws_fast, fast);
                 ASSERT_EQ(first_difference(ref, fast), "") << "threads " << threads;
@@ -324,10 +331,10 @@ TEST_P(FastKernels, StillRunCopiesAreInvisible) {
         const PrewarpCoefficients k = compute_coefficients(t.geometry, eye);
         SCOPED_TRACE(k.to_string());
         PrewarpOptions o;
-        o.method = GetParam();
-        o.fast = false;
+        o.method = method();
+        o.isa = Isa::generic;
         prewarp(t, k, o, ws, ref);
-        o.fast = true;
+        o.isa = isa();
         for (int threads : {1, 2}) {
             o.threads = threads;
             o.copy_still_runs = true;
@@ -350,7 +357,8 @@ TEST_P(FastKernels, SteadyStateAllocatesNothing) {
         test::make_test_relief(300, 200, 0.0, 0.2, [](int x, int r) { return 0.1 + 0.1 * std::sin(x * 0.1 + r * 0.07); },
                                g);
     PrewarpOptions o;
-    o.method = GetParam();
+    o.method = method();
+    o.isa = isa();
     o.threads = 1;
     o.keep_outliers = true;
     PrewarpWorkspace ws;
@@ -403,7 +411,7 @@ TEST(Lerp8, FixedPointWithinOneLevelOfTheFloatFormula) {
     EXPECT_LT(differ, total / 50);
 }
 
-// The pipelined kernel's reverse mode (warp/fast_pipelined.cpp, reverse_rows: each pixel written once, by the
+// The pipelined kernel's reverse mode (warp/simd/avx512_pipelined.cpp, reverse_rows: each pixel written once, by the
 // last emission of the forward order) forced on for whole parts, and off, against the reference: the random cases
 // above, and foldover-heavy reliefs (noise and steep ridges seen at grazing angles: spans far longer than a pixel,
 // columns whose written rows are not one interval), still texels (samples on pixel centres, spans on both sides
@@ -429,7 +437,7 @@ const char* choice_name(KernelChoice c) {
     return c == KernelChoice::always ? "always" : c == KernelChoice::never ? "never" : "automatic";
 }
 
-// Scheduling policies of the fast kernels (PrewarpOptions::kernel_policy), with names for the messages.
+// Scheduling policies of the avx512 kernels (the test seam warp/simd/kernel_policy.h), with names for the messages.
 struct NamedPolicy {
     const char* name;
     FastKernelPolicy policy;
@@ -470,12 +478,12 @@ void random_cases_with_policies(Reconstruction method, const NamedPolicy (&polic
         SCOPED_TRACE("seed " + std::to_string(seed) + " case " + std::to_string(i) + ": " + c.describe);
         const PrewarpCoefficients k = compute_coefficients(c.relief.geometry, c.eye);
         PrewarpOptions o = c.options;
-        o.fast = false;
+        o.isa = Isa::generic;
         o.threads = 1;
         const PrewarpStats sr = prewarp(c.relief, k, o, ws_ref, ref);
-        o.fast = true;
+        o.isa = Isa::avx512;
         for (const NamedPolicy& policy : policies) {
-            o.kernel_policy = policy.policy;
+            const simd::testing::ScopedKernelPolicy scope(policy.policy);
             for (int threads : {1, 2}) {
                 o.threads = threads;
                 o.copy_still_runs = (i + threads) % 2 == 0;
@@ -526,14 +534,14 @@ TEST_F(ReverseModeFixture, PipelinedReverseModeFoldoversStillTexelsAndGaps) {
         PrewarpOptions o;
         o.method = Reconstruction::pipelined;
         o.keep_outliers = i % 4 != 0;
-        o.fast = false;
+        o.isa = Isa::generic;
         o.threads = 1;
         SCOPED_TRACE("seed " + std::to_string(seed) + " case " + std::to_string(i) + " kind " + std::to_string(kind) +
                      " " + std::to_string(w) + "x" + std::to_string(h) + " " + k.to_string());
         prewarp(t, k, o, ws_ref, ref);
-        o.fast = true;
+        o.isa = Isa::avx512;
         for (KernelChoice reverse : {KernelChoice::always, KernelChoice::automatic}) {
-            o.kernel_policy = pipelined_policy(reverse);
+            const simd::testing::ScopedKernelPolicy scope(pipelined_policy(reverse));
             for (int threads : {1, 3}) {
                 o.threads = threads;
                 for (bool copy : {true, false}) {
@@ -547,12 +555,12 @@ TEST_F(ReverseModeFixture, PipelinedReverseModeFoldoversStillTexelsAndGaps) {
     }
 }
 
-// Row chunks (warp/fast_prewarp.cpp, kernel_policy.pipelined_row_chunks always: every part split into chunks of consecutive rows,
-// one per thread, each starting from the row before it warped without drawing, composited in row order) against
-// the reference, 2 to 4 threads, reverse mode off, forced and automatic: the random cases above (one part and two,
-// heights from 1 row), reliefs of 1 to 3 rows (fewer rows than threads) seen with the epipole inside and outside
-// the rows, and foldover-heavy reliefs whose chunks switch to reverse mode on their own; the dropped counts too.
-// Row chunks balanced by time (warp/fast_prewarp.cpp): exact cases worked by hand, then a sweep where each
+// Row chunks (warp/simd/schedule.cpp, FastKernelPolicy::pipelined_row_chunks always: every part split into chunks of
+// consecutive rows, one per thread, each starting from the row before it warped without drawing, composited in row
+// order) against the reference, 2 to 4 threads, reverse mode off, forced and automatic: the random cases above (one
+// part and two, heights from 1 row), reliefs of 1 to 3 rows (fewer rows than threads) seen with the epipole inside and
+// outside the rows, and foldover-heavy reliefs whose chunks switch to reverse mode on their own; the dropped counts
+// too. Row chunks balanced by time (warp/simd/schedule.cpp): exact cases worked by hand, then a sweep where each
 // chunk's time is the sum of fixed random costs of its rows: the bounds stay increasing from 0 to the row count
 // and within 40 rounds bring every chunk to the mean time within two of the costliest rows (the bounds move by
 // whole rows, and half-way each round).
@@ -620,13 +628,14 @@ TEST_F(ReverseModeFixture, PipelinedRowChunksMatchTheReference) {
         const PrewarpCoefficients k = compute_coefficients(t.geometry, eye);
         SCOPED_TRACE(k.to_string());
         o.method = Reconstruction::pipelined;
-        o.fast = false;
+        o.isa = Isa::generic;
         o.threads = 1;
         const PrewarpStats sr = prewarp(t, k, o, ws_ref, ref);
-        o.fast = true;
+        o.isa = Isa::avx512;
         for (const NamedPolicy& policy : kPipelinedReverse) {
-            o.kernel_policy = policy.policy;
-            o.kernel_policy.pipelined_row_chunks = KernelChoice::always;
+            FastKernelPolicy chunks = policy.policy;
+            chunks.pipelined_row_chunks = KernelChoice::always;
+            const simd::testing::ScopedKernelPolicy scope(chunks);
             for (int threads : {2, 3, 4}) {
                 o.threads = threads;
                 // Chunks as the last pre-warp's times balanced them, then at random bounds (the part's row count
@@ -699,14 +708,16 @@ TEST_F(ReverseModeFixture, PipelinedRowChunksRecoverFromAnInterruptedPrewarp) {
     const PrewarpCoefficients k = compute_coefficients(g, g.origin + g.a * 80.0 - g.b * 100.0 + g.f() * 0.8);
     PrewarpOptions o;
     o.method = Reconstruction::pipelined;
-    o.fast = false;
+    o.isa = Isa::generic;
     o.threads = 1;
     PrewarpWorkspace ws_ref, ws;
     ImageRGBA8 ref, fast;
     prewarp(t, k, o, ws_ref, ref);
-    o.fast = true;
+    o.isa = Isa::avx512;
     o.threads = 2;
-    o.kernel_policy.pipelined_row_chunks = KernelChoice::always;
+    FastKernelPolicy chunks;
+    chunks.pipelined_row_chunks = KernelChoice::always;
+    const simd::testing::ScopedKernelPolicy scope(chunks);
     prewarp(t, k, o, ws, fast);
     ASSERT_EQ(first_difference(ref, fast), "");
     ASSERT_FALSE(ws.chunk_scratch.empty());
@@ -732,7 +743,7 @@ TEST_F(ReverseModeFixture, PipelinedReverseModeAllocatesNothingInSteadyState) {
     for (int threads : {1, 2})
         for (double ey : {0.3, -0.3})
             for (KernelChoice reverse : {KernelChoice::always, KernelChoice::automatic}) {
-                o.kernel_policy = pipelined_policy(reverse);
+                const simd::testing::ScopedKernelPolicy scope(pipelined_policy(reverse));
                 o.threads = threads;
                 const PrewarpCoefficients k = compute_coefficients(g, {1.2, ey, 0.4});
                 prewarp(t, k, o, ws, out);  // warm-up: buffers grow to size
@@ -744,12 +755,12 @@ TEST_F(ReverseModeFixture, PipelinedReverseModeAllocatesNothingInSteadyState) {
             }
 }
 
-// The two-pass kernel's backward rows (warp/fast_line.h, warp_line_reverse: a row's items in the reverse of the
-// forward order, each pixel shaded once) against the reference, with each kernel_policy.two_pass_reverse:
+// The two-pass kernel's backward rows (warp/simd/avx512_line.h, warp_line_reverse: a row's items in the reverse of the
+// forward order, each pixel shaded once) against the reference, with each FastKernelPolicy::two_pass_reverse:
 // always takes every row whose samples all take part backwards (also rows without foldovers: copies, spans of one,
 // two and more pixels, clipped on either side of the pixels already written), with two_pass_redo_forwards then
-// redoes the row forwards (the fallback), automatic takes only rows that fold over, never none. Rows with empty texels or texels that cannot be pre-warped always go
-// forwards.
+// redoes the row forwards (the fallback), automatic takes only rows that fold over, never none. Rows with empty texels
+// or texels that cannot be pre-warped always go forwards.
 class TwoPassReverseRows : public ::testing::Test {
 protected:
     void SetUp() override {
@@ -816,15 +827,15 @@ TEST_F(TwoPassReverseRows, FoldoversEmptyRowsAndMarksMatchTheReference) {
         PrewarpOptions o;
         o.method = Reconstruction::two_pass;
         o.keep_outliers = i % 4 != 0;
-        o.fast = false;
+        o.isa = Isa::generic;
         o.threads = 1;
         SCOPED_TRACE("seed " + std::to_string(seed) + " case " + std::to_string(i) + " kind " + std::to_string(kind) +
                      " empty rows " + std::to_string(empty_rows) + " " + std::to_string(w) + "x" +
                      std::to_string(h) + " " + k.to_string());
         const PrewarpStats sr = prewarp(t, k, o, ws_ref, ref);
-        o.fast = true;
+        o.isa = Isa::avx512;
         for (const NamedPolicy& policy : kTwoPassReverse) {
-            o.kernel_policy = policy.policy;
+            const simd::testing::ScopedKernelPolicy scope(policy.policy);
             for (int threads : {1, 3}) {
                 o.threads = threads;
                 for (bool copy : {true, false}) {
@@ -838,12 +849,12 @@ TEST_F(TwoPassReverseRows, FoldoversEmptyRowsAndMarksMatchTheReference) {
         }
         // Discontinuity marks: the generic kernels, whatever the policy says.
         mark_discontinuities(t, 0.05);
-        o.fast = false;
+        o.isa = Isa::generic;
         prewarp(t, k, o, ws_ref, ref);
-        o.fast = true;
-        EXPECT_FALSE(fast_prewarp_covers(t, k, o, sr.extent, nullptr));
+        o.isa = Isa::avx512;
+        EXPECT_FALSE(fast_prewarp_covers(Isa::avx512, t, k, o, sr.extent, nullptr));
         for (KernelChoice reverse : {KernelChoice::automatic, KernelChoice::always}) {
-            o.kernel_policy = two_pass_policy(reverse);
+            const simd::testing::ScopedKernelPolicy scope(two_pass_policy(reverse));
             prewarp(t, k, o, ws_fast, fast);
             ASSERT_EQ(first_difference(ref, fast), "") << "marks, backward rows " << choice_name(reverse);
         }
@@ -861,7 +872,7 @@ TEST_F(TwoPassReverseRows, AllocatesNothingInSteadyState) {
     ImageRGBA8 out;
     for (const NamedPolicy& policy : kTwoPassReverse) {
         if (policy.policy.two_pass_reverse == KernelChoice::never) continue;
-        o.kernel_policy = policy.policy;
+        const simd::testing::ScopedKernelPolicy scope(policy.policy);
         const PrewarpCoefficients k = compute_coefficients(g, {1.2, 0.3, 0.4});
         prewarp(t, k, o, ws, out);  // warm-up: buffers grow to size
         const long long before = g_allocations.load();
@@ -871,7 +882,7 @@ TEST_F(TwoPassReverseRows, AllocatesNothingInSteadyState) {
 }
 
 TEST(FastPrewarpCovers, OnlyOutputsItsKernelsCanAddress) {
-    // The column kernels scatter by 32-bit pixel offsets (store_rows, warp/fast_columns.h): outputs of 2^31 - 16
+    // The column kernels scatter by 32-bit pixel offsets (store_rows, warp/simd/avx512_columns.h): outputs of 2^31 - 16
     // pixels or more, and sides over 2^22, go to the generic kernels. Only the decision is tested: no image that
     // size is allocated.
     if (!fast_prewarp_available()) GTEST_SKIP() << "no AVX-512 on this CPU";
@@ -883,7 +894,7 @@ TEST(FastPrewarpCovers, OnlyOutputsItsKernelsCanAddress) {
         PrewarpExtent e;
         e.right = ow - 16;
         e.top = oh - 16;
-        return fast_prewarp_covers(t, k, o, e, nullptr);
+        return fast_prewarp_covers(Isa::avx512, t, k, o, e, nullptr);
     };
     EXPECT_TRUE(covers(16, 16));
     EXPECT_TRUE(covers(46340, 46340));        // 2,147,395,600 pixels: 88,032 under the limit
@@ -893,10 +904,22 @@ TEST(FastPrewarpCovers, OnlyOutputsItsKernelsCanAddress) {
     EXPECT_FALSE(covers(16, (1 << 22) + 1));
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, FastKernels, ::testing::Values(Reconstruction::two_pass, Reconstruction::pipelined),
-                         [](const auto& info) {
-                             return info.param == Reconstruction::two_pass ? "TwoPass" : "Pipelined";
-                         });
+// Every SIMD target this machine supports with each reconstruction it implements (the Highway targets: two-pass
+// only so far; pipelined pre-warps on them run the reference kernels, warp/simd/schedule.h).
+std::vector<MethodTarget> method_targets() {
+    std::vector<MethodTarget> v;
+    for (Isa isa : supported_isas()) {
+        if (isa == Isa::generic) continue;
+        v.push_back({Reconstruction::two_pass, isa});
+        if (isa == Isa::avx512) v.push_back({Reconstruction::pipelined, isa});
+    }
+    return v;
+}
+
+INSTANTIATE_TEST_SUITE_P(Targets, FastKernels, ::testing::ValuesIn(method_targets()), [](const auto& info) {
+    return std::string(info.param.method == Reconstruction::two_pass ? "TwoPass_" : "Pipelined_") +
+           isa_name(info.param.isa);
+});
 
 }  // namespace
 }  // namespace rtm

@@ -78,7 +78,7 @@ TEST(Pipelined, NoHoleAtTheSplits) {
 
 // PrewarpStats::row_pixels and column_samples, the work each reconstruction does.
 PrewarpStats reference_stats(const ReliefTexture& t, const glm::dvec3& eye, Reconstruction m, bool exact) {
-    PrewarpOptions o{.method = m, .exact = exact, .fast = false};
+    PrewarpOptions o{.method = m, .exact = exact, .isa = Isa::generic};
     PrewarpWorkspace ws;
     ImageRGBA8 out;
     return prewarp(t, compute_coefficients(t.geometry, eye), o, ws, out);
@@ -148,7 +148,8 @@ TEST(PipelinedWork, TheFastKernelsDoNotCount) {
     ImageRGBA8 out;
     for (Reconstruction m : {Reconstruction::two_pass, Reconstruction::pipelined}) {
         const PrewarpStats s = prewarp(t, compute_coefficients(t.geometry, {0.3, 0.2, 0.5}),
-                                       PrewarpOptions{.method = m, .fast = true}, ws, out);
+                                       PrewarpOptions{.method = m}, ws, out);
+        if (s.isa == Isa::generic) continue;  // no SIMD kernel for this reconstruction on this CPU
         EXPECT_EQ(s.row_pixels, 0);
         EXPECT_EQ(s.column_samples, 0);
     }

@@ -99,7 +99,7 @@ Case random_case(std::mt19937_64& rng) {
     c.options.keep_outliers = pick(2);
     if (pick(4) == 0) c.options.max_margin = pick(10);
     c.options.threads = 1 + pick(2);
-    c.options.fast = false;  // the reference kernels are what this tests (warp/fast_* always copy such spans)
+    c.options.isa = Isa::generic;  // the reference kernels are what this tests (warp/fast_* always copy such spans)
     c.with_displ = pick(3) == 0;
     std::ostringstream s;
     s << w << "x" << h << " kind " << kind << " brick " << bw << "x" << bh << " empties " << empties << " marks "
@@ -210,7 +210,7 @@ TEST(StillRuns, AFlatReliefIsCopiedWhole) {
     for (Reconstruction m : {Reconstruction::two_pass, Reconstruction::pipelined})
         for (bool exact : {false, true}) {
             SCOPED_TRACE(to_string(m) + (exact ? " exact" : " lut"));
-            PrewarpOptions o{.method = m, .exact = exact, .fast = false};
+            PrewarpOptions o{.method = m, .exact = exact, .isa = Isa::generic};
             PrewarpWorkspace ws;
             ImageRGBA8 out;
             const PrewarpStats s = prewarp(t, compute_coefficients(t.geometry, c + t.geometry.f() * 0.3), o, ws, out);
@@ -231,7 +231,7 @@ TEST(StillRuns, ExactMeansExactlyZero) {
     const PrewarpCoefficients k = compute_coefficients(t.geometry, glm::dvec3(0.7, 0.3, 0.5));
     PrewarpWorkspace ws;
     ImageRGBA8 out;
-    PrewarpOptions o{.fast = false};
+    PrewarpOptions o{.isa = Isa::generic};
     EXPECT_GT(prewarp(t, k, o, ws, out).still_copied, 40 * 12 / 2);
     EXPECT_EQ(count_still_texels(t, false), 35 * 9);  // the bricks: columns x % 8 != 0, rows r % 4 != 0
     o.exact = true;

@@ -1,6 +1,7 @@
-// The fast pipelined pre-warp kernel (see fast_pipelined.h). Compiled with -ffp-contract=off (warp/CMakeLists.txt):
-// the pixel identity with the reference rests on every float operation being the one the reference performs.
-#include "warp/fast_pipelined.h"
+// The fast pipelined pre-warp kernel (see simd/avx512_pipelined.h). Compiled with -ffp-contract=off
+// (warp/CMakeLists.txt): the pixel identity with the reference rests on every float operation being the one the
+// reference performs.
+#include "warp/simd/avx512_pipelined.h"
 
 #include <immintrin.h>
 
@@ -15,10 +16,10 @@
 
 #include "warp/line_warp.h"
 
-#include "warp/fast_target_begin.h"
-#include "warp/fast_line.h"
-#include "warp/fast_row.h"
-#include "warp/fast_columns.h"
+#include "warp/simd/avx512_target_begin.h"
+#include "warp/simd/avx512_line.h"
+#include "warp/simd/avx512_row.h"
+#include "warp/simd/avx512_columns.h"
 
 namespace rtm {
 namespace {
@@ -568,4 +569,4 @@ void pipelined_seam(const PipelinedJob& job) {
 }  // namespace fast
 }  // namespace rtm
 
-#include "warp/fast_target_end.h"
+#include "warp/simd/avx512_target_end.h"

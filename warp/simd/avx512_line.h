@@ -1,4 +1,5 @@
-// The fast 1-D forward warp of one line (AVX-512), for warp/fast_two_pass.cpp and warp/fast_pipelined.cpp only.
+// The fast 1-D forward warp of one line (AVX-512), for warp/simd/avx512_two_pass.cpp and warp/simd/avx512_pipelined.cpp
+// only.
 //
 // It computes exactly what warp_line_to (warp/line_warp.h) computes for float coordinates, always-connected
 // samples and one float attribute or none: the same occlusion-compatible order, the same spans, the same float
@@ -24,7 +25,7 @@
 //    more than 32 samples) and interpolated as raster_span does. Sub-runs of at most kScalarSpans spans
 //    (foldover-heavy lines) go through raster_span itself.
 //
-// Include only after warp/fast_target_begin.h (the AVX-512 target) and after every other header: everything here
+// Include only after warp/simd/avx512_target_begin.h (the AVX-512 target) and after every other header: everything here
 // is internal to the including file (anonymous namespace), so no inline function compiled for AVX-512 can leak
 // into code that runs without it.
 #pragma once

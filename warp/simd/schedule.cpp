@@ -1,4 +1,4 @@
-#include "warp/fast_prewarp.h"
+#include "warp/simd/schedule.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/info.h>
@@ -17,8 +17,10 @@
 #include <memory>
 #include <mutex>
 
-#include "warp/fast_pipelined.h"
-#include "warp/fast_two_pass.h"
+#include "warp/simd/avx512_pipelined.h"
+#include "warp/simd/avx512_two_pass.h"
+#include "warp/simd/hwy_two_pass.h"
+#include "warp/simd/kernel_policy.h"
 #include "warp/line_warp.h"
 #include "warp/tables.h"
 
@@ -28,8 +30,8 @@ namespace {
 
 // Largest output side the kernels accept: pixel indices and span ends stay exact in float far below 2^24.
 constexpr int kMaxSide = 1 << 22;
-// Largest output the kernels accept: the column kernels' scatter (store_rows, warp/fast_columns.h) addresses pixels
-// by 32-bit offsets of up to the whole image from its last storage row. 2^31 - 16 pixels is 8 GiB of RGBA8.
+// Largest output the kernels accept: the column kernels' scatter (store_rows, warp/simd/avx512_columns.h) addresses
+// pixels by 32-bit offsets of up to the whole image from its last storage row. 2^31 - 16 pixels is 8 GiB of RGBA8.
 constexpr long long kMaxPixels = (1ll << 31) - 16;
 
 // One task arena per explicit thread count, created on first use: an arena created, used for one parallel_for and
@@ -109,6 +111,15 @@ FastTables make_fast_tables(const PrewarpTables& tab) {
 
 }  // namespace fast
 
+namespace simd::testing {
+namespace {
+FastKernelPolicy g_policy;
+}
+const FastKernelPolicy& kernel_policy() { return g_policy; }
+ScopedKernelPolicy::ScopedKernelPolicy(const FastKernelPolicy& policy) : saved_(g_policy) { g_policy = policy; }
+ScopedKernelPolicy::~ScopedKernelPolicy() { g_policy = saved_; }
+}  // namespace simd::testing
+
 bool fast_prewarp_available() {
     static const bool ok = fast::cpu_supported();
     return ok;
@@ -136,20 +147,24 @@ void balance_row_chunks(std::vector<int>& bounds, const double* ms) {
     }
 }
 
-bool fast_prewarp_covers(const ReliefTexture& relief, const PrewarpCoefficients& k, const PrewarpOptions& options,
-                         const PrewarpExtent& e, const Image2D<uint8_t>* displ_out) {
-    if (!options.fast || options.exact || displ_out || options.filter != Filter::point) return false;
+bool fast_prewarp_covers(Isa isa, const ReliefTexture& relief, const PrewarpCoefficients& k,
+                         const PrewarpOptions& options, const PrewarpExtent& e, const Image2D<uint8_t>* displ_out) {
+    if (options.exact || displ_out || options.filter != Filter::point) return false;
+    if (isa == Isa::automatic || isa == Isa::generic) return false;
+    if (isa != Isa::avx512 && (options.method != Reconstruction::two_pass || !simd::hwy_two_pass_kernels(isa).vertical))
+        return false;
     if (!relief.breaks.empty() || relief.discontinuity_threshold > 0.0) return false;
     if (k.side == ViewSide::on_plane || relief.width <= 0 || relief.height <= 0) return false;
     const long long ow = (long long)relief.width + e.left + e.right, oh = (long long)relief.height + e.bottom + e.top;
     if (ow > kMaxSide || oh > kMaxSide || ow * oh > kMaxPixels) return false;
-    return fast_prewarp_available();
+    return isa != Isa::avx512 || fast_prewarp_available();
 }
 
 namespace {
 
-PrewarpStats fast_two_pass(const ReliefTexture& relief, const PrewarpCoefficients& k, const PrewarpOptions& options,
-                           const PrewarpExtent& e, const fast::FastTables& tables, PrewarpWorkspace& ws,
+PrewarpStats fast_two_pass(const simd::TwoPassKernels& kernels, const ReliefTexture& relief,
+                           const PrewarpCoefficients& k, const PrewarpOptions& options, const PrewarpExtent& e,
+                           const PrewarpTables& ref_tables, const fast::FastTables& tables, PrewarpWorkspace& ws,
                            ImageRGBA8& out) {
     const int w = relief.width, h = relief.height;
     const int ow = w + e.left + e.right, oh = h + e.bottom + e.top;
@@ -167,6 +182,7 @@ PrewarpStats fast_two_pass(const ReliefTexture& relief, const PrewarpCoefficient
     fast::TwoPassJob job;
     job.relief = &relief;
     job.tables = &tables;
+    job.ref_tables = &ref_tables;
     job.extent = e;
     job.split_u = split_index(k.epipole_u, w);
     job.split_v = split_index(k.epipole_v, h);
@@ -177,8 +193,8 @@ PrewarpStats fast_two_pass(const ReliefTexture& relief, const PrewarpCoefficient
     job.seam_c = mc + stride;
     job.col_ok = reinterpret_cast<uint16_t*>(mc + 2 * size_t(stride));
     job.copy_still = options.copy_still_runs;
-    job.reverse = options.kernel_policy.two_pass_reverse;
-    job.redo_forwards = options.kernel_policy.two_pass_redo_forwards;
+    job.reverse = simd::testing::kernel_policy().two_pass_reverse;
+    job.redo_forwards = simd::testing::kernel_policy().two_pass_redo_forwards;
     job.col_fl = reinterpret_cast<int32_t*>(mv + 2 * size_t(stride));
     job.col_ce = reinterpret_cast<int32_t*>(mv + 3 * size_t(stride));
     job.dropped = &dropped;
@@ -186,11 +202,11 @@ PrewarpStats fast_two_pass(const ReliefTexture& relief, const PrewarpCoefficient
     auto band_v = [&](int slot) { return mv + size_t(4 + slot * band) * stride; };
     const int bands = (h + band - 1) / band;
     auto horizontal = [&](int b) {
-        fast::horizontal_steps(job, b * band, std::min(h, (b + 1) * band), band_c(b % slots), band_v(b % slots),
+        kernels.horizontal(job, b * band, std::min(h, (b + 1) * band), band_c(b % slots), band_v(b % slots),
                                size_t(stride));
     };
     auto vertical = [&](int b, int x0, int x1) {
-        fast::vertical_steps(job, b * band, std::min(h, (b + 1) * band), band_c(b % slots), band_v(b % slots),
+        kernels.vertical(job, b * band, std::min(h, (b + 1) * band), band_c(b % slots), band_v(b % slots),
                              size_t(stride), x0, x1);
     };
     if (options.threads == 1 || bands < 2) {
@@ -357,7 +373,7 @@ PrewarpStats fast_pipelined(const ReliefTexture& relief, const PrewarpCoefficien
     fast::PipelinedJob job;
     job.relief = &relief;
     job.copy_still = options.copy_still_runs;
-    job.reverse = options.kernel_policy.pipelined_reverse;
+    job.reverse = simd::testing::kernel_policy().pipelined_reverse;
     job.tables = &tables;
     job.extent = e;
     job.split_u = split_index(k.epipole_u, w);
@@ -374,7 +390,7 @@ PrewarpStats fast_pipelined(const ReliefTexture& relief, const PrewarpCoefficien
         if (!parts[p]) std::fill(job.seam_c[p], job.seam_c[p] + ow, 0u);  // no rows: nothing received
     const int np = int(parts[0]) + int(parts[1]);
     const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
-    if (pipelined_row_chunks(options.kernel_policy.pipelined_row_chunks, threads, np))
+    if (pipelined_row_chunks(simd::testing::kernel_policy().pipelined_row_chunks, threads, np))
         pipelined_in_row_chunks(job, options.threads, threads, ws);
     else
         pipelined_in_column_ranges(job, options.threads, threads);
@@ -384,11 +400,24 @@ PrewarpStats fast_pipelined(const ReliefTexture& relief, const PrewarpCoefficien
 
 }  // namespace
 
-PrewarpStats fast_prewarp(const ReliefTexture& relief, const PrewarpCoefficients& k, const PrewarpOptions& options,
-                          const PrewarpExtent& e, PrewarpWorkspace& ws, ImageRGBA8& out) {
-    const fast::FastTables tables = fast::make_fast_tables(PrewarpTables::build(k, relief.quant));
-    if (options.method == Reconstruction::pipelined) return fast_pipelined(relief, k, options, e, tables, ws, out);
-    return fast_two_pass(relief, k, options, e, tables, ws, out);
+PrewarpStats fast_prewarp(Isa isa, const ReliefTexture& relief, const PrewarpCoefficients& k,
+                          const PrewarpOptions& options, const PrewarpExtent& e, PrewarpWorkspace& ws,
+                          ImageRGBA8& out) {
+    const PrewarpTables ref_tables = PrewarpTables::build(k, relief.quant);
+    PrewarpStats stats;
+    if (isa == Isa::avx512) {
+        const fast::FastTables tables = fast::make_fast_tables(ref_tables);
+        if (options.method == Reconstruction::pipelined)
+            stats = fast_pipelined(relief, k, options, e, tables, ws, out);
+        else
+            stats = fast_two_pass({&fast::horizontal_steps, &fast::vertical_steps}, relief, k, options, e, ref_tables,
+                                  tables, ws, out);
+    } else {
+        stats = fast_two_pass(simd::hwy_two_pass_kernels(isa), relief, k, options, e, ref_tables, fast::FastTables{},
+                              ws, out);
+    }
+    stats.isa = isa;
+    return stats;
 }
 
 }  // namespace rtm

@@ -1,11 +1,11 @@
 // The fast pipelined pre-warp kernel (AVX-512): the same output as prewarp()'s pipelined lookup-table path
-// (warp/prewarp.cpp, paper section 3.2.2) bit for bit, for reliefs without discontinuity marks and without depth
-// output. Scheduling lives in warp/fast_prewarp.cpp.
+// (warp/reference/, paper section 3.2.2) bit for bit, for reliefs without discontinuity marks and without depth
+// output. Scheduling lives in warp/simd/schedule.cpp.
 //
 // A part (the rows below the epipole, bottom up, or the rows above it, top down) is processed row by row: each row
-// is prepared and warped by the line kernel of warp/fast_line.h into a row buffer, and every group of pixels the
+// is prepared and warped by the line kernel of warp/simd/avx512_line.h into a row buffer, and every group of pixels the
 // line kernel reports is rasterized at once into its columns, 16 columns at a time, each connected to the last
-// sample its column received from the previous row (warp/fast_columns.h: 16 columns in the lanes of a register).
+// sample its column received from the previous row (warp/simd/avx512_columns.h: 16 columns in the lanes of a register).
 // A part can be split into column ranges that run on different threads: each range warps every row (the
 // horizontal work is repeated) and rasterizes only its own columns. Or into chunks of consecutive rows: the column
 // state carried from row to row is only the previous row's last emission per column, so a chunk starts exactly by
@@ -17,7 +17,8 @@
 #include <atomic>
 #include <cstdint>
 
-#include "warp/fast_tables.h"
+#include "warp/simd/avx512_tables.h"
+#include "warp/simd/kernel_policy.h"
 #include "warp/image.h"
 #include "warp/prewarp.h"
 #include "warp/relief_texture.h"

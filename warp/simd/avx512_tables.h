@@ -1,4 +1,4 @@
-// Per-view tables of the fast pre-warp kernels (warp/fast_prewarp.h), built from the reference's PrewarpTables.
+// Per-view tables of the fast pre-warp kernels (warp/simd/schedule.h), built from the reference's PrewarpTables.
 #pragma once
 
 #include <cstdint>

@@ -1,6 +1,6 @@
 // The fast two-pass pre-warp kernels (AVX-512): the same output as prewarp()'s two-pass lookup-table path
-// (warp/prewarp.cpp) bit for bit, for reliefs without discontinuity marks and without depth output. Scheduling
-// (threads, bands of rows) lives in warp/fast_prewarp.cpp; these functions only work on the ranges they are given.
+// (warp/reference/) bit for bit, for reliefs without discontinuity marks and without depth output. Scheduling
+// (threads, bands of rows) lives in warp/simd/schedule.cpp; these functions only work on the ranges they are given.
 //
 // The two passes are interleaved row by row instead of going through a whole intermediate image. The reference's
 // vertical pass warps each column of the intermediate image in occlusion-compatible order: the bottom part from
@@ -9,20 +9,21 @@
 // rows are produced in that order: "step" s = 0, 1, ... h - 1 is intermediate row j = s (v order, 0 = bottom) for
 // s < split_v, then j = h - 1 - (s - split_v). A band of steps is warped horizontally (rows independent: any order,
 // any thread), then handed to the vertical kernel, which keeps per column the last sample it received and
-// rasterizes the span from it to the new one (warp/fast_columns.h), for 16 columns at a time. Bands must reach the
-// vertical kernel in step order; different column ranges may run concurrently.
+// rasterizes the span from it to the new one (warp/simd/avx512_columns.h), for 16 columns at a time. Bands must reach
+// the vertical kernel in step order; different column ranges may run concurrently.
 //
 // Horizontal pass, per row: u_i = (u_s + K1[q]) * R[q] + left margin and the final row coordinate
 // v_i = (v_s + K2[q]) * R[q] + bottom margin in float exactly as the reference computes them; the row is warped by
-// the line kernel of warp/fast_line.h into one row of the band (colour with alpha 255 where written, 0 elsewhere;
-// v_i).
+// the line kernel of warp/simd/avx512_line.h into one row of the band (colour with alpha 255 where written, 0
+// elsewhere; v_i).
 #pragma once
 
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
 
-#include "warp/fast_tables.h"
+#include "warp/simd/avx512_tables.h"
+#include "warp/simd/kernel_policy.h"
 #include "warp/image.h"
 #include "warp/prewarp.h"
 #include "warp/relief_texture.h"
@@ -32,6 +33,7 @@ namespace rtm::fast {
 struct TwoPassJob {
     const ReliefTexture* relief = nullptr;
     const FastTables* tables = nullptr;
+    const PrewarpTables* ref_tables = nullptr;  // the reference's tables (the Highway kernels)
     PrewarpExtent extent;
     int split_u = 0, split_v = 0;  // split_index of the epipole along rows and columns (source)
     ImageRGBA8* out = nullptr;     // out width x out height
@@ -41,7 +43,9 @@ struct TwoPassJob {
     // the bottom part (colour alpha 0 where none), for the span across the epipole.
     float* col_v = nullptr;
     uint32_t* col_c = nullptr;
-    int32_t* col_fl = nullptr;  // floor and ceil of its v - 0.5, clamped to [-1, out height]
+    // Floor and ceil of its v - 0.5, clamped to [-1, out height]. The Highway kernels (warp/simd/hwy_two_pass.h)
+    // keep instead, in col_fl, -1 where the column has a sample and 0 elsewhere.
+    int32_t* col_fl = nullptr;
     int32_t* col_ce = nullptr;
     uint16_t* col_ok = nullptr;
     float* seam_v = nullptr;

@@ -1,9 +1,9 @@
-// Preparing one row of a relief for the fast line kernel (AVX-512): for fast_two_pass.cpp and fast_pipelined.cpp
-// only, included after warp/fast_target_begin.h like warp/fast_line.h.
+// Preparing one row of a relief for the fast line kernel (AVX-512): for simd/avx512_two_pass.cpp and
+// simd/avx512_pipelined.cpp only, included after warp/simd/avx512_target_begin.h like warp/simd/avx512_line.h.
 #pragma once
 
-#include "warp/fast_line.h"
-#include "warp/fast_tables.h"
+#include "warp/simd/avx512_line.h"
+#include "warp/simd/avx512_tables.h"
 #include "warp/prewarp.h"
 #include "warp/relief_texture.h"
 

@@ -1,5 +1,5 @@
 // The vertical work of the fast kernels (AVX-512) with 16 adjacent output columns in the lanes of one register: for
-// warp/fast_two_pass.cpp and warp/fast_pipelined.cpp only, included after warp/fast_line.h.
+// warp/simd/avx512_two_pass.cpp and warp/simd/avx512_pipelined.cpp only, included after warp/simd/avx512_line.h.
 //
 // Both reconstructions end the same way for every pixel a row warp produces: the column it lands in connects it to
 // the last sample that column received from the previous row (raster_span along the column), or starts a new run
@@ -10,7 +10,7 @@
 // branching on the data in the usual cases, and long spans go row by row over the columns that share those rows.
 #pragma once
 
-#include "warp/fast_line.h"
+#include "warp/simd/avx512_line.h"
 
 namespace rtm {
 namespace {

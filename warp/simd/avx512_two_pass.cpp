@@ -1,5 +1,6 @@
-// The fast two-pass pre-warp kernels (see fast_two_pass.h). Compiled with -ffp-contract=off (warp/CMakeLists.txt):
-// the pixel identity with the reference rests on every float operation being the one the reference performs.
+// The fast two-pass pre-warp kernels (see simd/avx512_two_pass.h). Compiled with -ffp-contract=off
+// (warp/CMakeLists.txt): the pixel identity with the reference rests on every float operation being the one the
+// reference performs.
 //
 // Measurements that shaped this file (one thread, thread CPU time, best of 100 to 3000 runs, bumps, the view of
 // `rtm bench`, AMD EPYC Zen 4 guest; docs/BENCHMARKS.md has the whole story):
@@ -7,12 +8,13 @@
 //   16 x 16 transposes, warped each column with the row kernel and transposed the result into the output: 1024^2
 //   7.4 ms (horizontal 3.4, vertical 4.0, the vertical pass slowed by the 8 MB intermediate image: 2.2 ns a texel at
 //   256^2, 3.8 at 1024^2), 256^2 0.33 ms. Interleaving the passes band by band with the columns in SIMD lanes (the
-//   pipelined kernel's vertical step, warp/fast_columns.h), no intermediate image and no transposes: 5.75 and 0.29
+//   pipelined kernel's vertical step, warp/simd/avx512_columns.h), no intermediate image and no transposes: 5.75 and
+// 0.29
 //   ms before any other change;
 // - keeping floor and ceil of each column's last v - 0.5 (integer span ends, no float rounding of the previous
 //   sample again) and the rare first sample of a column out of the common path: 256^2 0.256 -> 0.254, 1024^2
 //   5.24 -> 5.14 ms.
-#include "warp/fast_two_pass.h"
+#include "warp/simd/avx512_two_pass.h"
 
 #include <immintrin.h>
 
@@ -24,10 +26,10 @@
 
 #include "warp/line_warp.h"
 
-#include "warp/fast_target_begin.h"
-#include "warp/fast_line.h"
-#include "warp/fast_row.h"
-#include "warp/fast_columns.h"
+#include "warp/simd/avx512_target_begin.h"
+#include "warp/simd/avx512_line.h"
+#include "warp/simd/avx512_row.h"
+#include "warp/simd/avx512_columns.h"
 
 namespace rtm {
 namespace {
@@ -167,4 +169,4 @@ void vertical_steps(const TwoPassJob& job, int s0, int s1, const uint32_t* band_
 }  // namespace fast
 }  // namespace rtm
 
-#include "warp/fast_target_end.h"
+#include "warp/simd/avx512_target_end.h"

@@ -1,0 +1,123 @@
+// The choice of SIMD target (warp/isa.h): names, what this CPU supports, RTM_ISA, and PrewarpStats::isa naming the
+// target that ran.
+#include <gtest/gtest.h>
+
+#include <hwy/targets.h>
+
+#include <cstdlib>
+#include <stdexcept>
+
+#include "test_util.h"
+#include "warp/isa.h"
+#include "warp/prewarp.h"
+
+namespace rtm {
+namespace {
+
+// Restores RTM_ISA and Highway's supported targets at the end of a test.
+class IsaTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const char* v = std::getenv("RTM_ISA");
+        had_ = v != nullptr;
+        if (v) saved_ = v;
+        unsetenv("RTM_ISA");
+    }
+    void TearDown() override {
+        if (had_)
+            setenv("RTM_ISA", saved_.c_str(), 1);
+        else
+            unsetenv("RTM_ISA");
+        hwy::SetSupportedTargetsForTest(0);  // 0: the CPU's own again
+    }
+    bool had_ = false;
+    std::string saved_;
+};
+
+TEST_F(IsaTest, NamesRoundTrip) {
+    for (Isa i : {Isa::automatic, Isa::avx512, Isa::avx2, Isa::sse4, Isa::neon, Isa::sve, Isa::generic}) {
+        Isa back = Isa::generic;
+        ASSERT_TRUE(parse_isa(isa_name(i), back)) << isa_name(i);
+        EXPECT_EQ(back, i);
+    }
+    Isa x = Isa::sse4;
+    EXPECT_FALSE(parse_isa("avx", x));
+    EXPECT_FALSE(parse_isa("", x));
+    EXPECT_FALSE(parse_isa("AVX2", x));
+    EXPECT_EQ(x, Isa::sse4);
+    EXPECT_EQ(isa_names(), "avx512, avx2, sse4, neon, sve, generic");
+}
+
+TEST_F(IsaTest, GenericIsAlwaysSupportedAndLast) {
+    const std::vector<Isa> v = supported_isas();
+    ASSERT_FALSE(v.empty());
+    EXPECT_EQ(v.back(), Isa::generic);
+    for (Isa i : v) EXPECT_TRUE(isa_supported(i)) << isa_name(i);
+    EXPECT_EQ(default_isa(), v.front());
+    EXPECT_EQ(resolve_isa(Isa::automatic), v.front());
+    EXPECT_EQ(resolve_isa(Isa::generic), Isa::generic);
+#if defined(__x86_64__)
+    EXPECT_FALSE(isa_supported(Isa::neon));
+    EXPECT_THROW(resolve_isa(Isa::neon), std::invalid_argument);
+#elif defined(__aarch64__)
+    EXPECT_FALSE(isa_supported(Isa::avx2));
+    EXPECT_THROW(resolve_isa(Isa::avx2), std::invalid_argument);
+#endif
+}
+
+TEST_F(IsaTest, ForcedHighwayTargetsRestrictTheChoice) {
+#if defined(__x86_64__)
+    if (!isa_supported(Isa::avx2)) GTEST_SKIP() << "no AVX2 on this CPU";
+    hwy::SetSupportedTargetsForTest(HWY_SSE4);  // as on a CPU with SSE4 but no AVX2
+    EXPECT_FALSE(isa_supported(Isa::avx2));
+    EXPECT_TRUE(isa_supported(Isa::sse4));
+    hwy::SetSupportedTargetsForTest(0);
+    EXPECT_TRUE(isa_supported(Isa::avx2));
+#else
+    GTEST_SKIP() << "x86-64 targets";
+#endif
+}
+
+TEST_F(IsaTest, EnvironmentChoosesForAutomatic) {
+    setenv("RTM_ISA", "generic", 1);
+    EXPECT_EQ(default_isa(), Isa::generic);
+    setenv("RTM_ISA", "auto", 1);
+    EXPECT_EQ(default_isa(), supported_isas().front());
+    setenv("RTM_ISA", "", 1);
+    EXPECT_EQ(default_isa(), supported_isas().front());
+    setenv("RTM_ISA", "mmx", 1);
+    try {
+        default_isa();
+        FAIL() << "RTM_ISA=mmx accepted";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("RTM_ISA"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("mmx"), std::string::npos) << e.what();
+    }
+#if defined(__x86_64__)
+    setenv("RTM_ISA", "neon", 1);
+    EXPECT_THROW(default_isa(), std::invalid_argument);
+#endif
+}
+
+TEST_F(IsaTest, StatsNameTheTargetThatRan) {
+    const ReliefTexture t = test::make_test_relief(40, 30, 0.0, 0.2, [](int x, int) { return 0.02 * (x % 5); });
+    const PrewarpCoefficients k = compute_coefficients(t.geometry, {0.3, 0.2, 0.8});
+    PrewarpWorkspace ws;
+    ImageRGBA8 out;
+    for (Isa isa : supported_isas()) {
+        PrewarpOptions o;
+        o.isa = isa;
+        EXPECT_EQ(prewarp(t, k, o, ws, out).isa, isa) << isa_name(isa);
+        o.exact = true;  // the reference kernels' path on every target
+        EXPECT_EQ(prewarp(t, k, o, ws, out).isa, Isa::generic) << isa_name(isa);
+        o.exact = false;
+        o.method = Reconstruction::pipelined;  // on avx512 only so far
+        EXPECT_EQ(prewarp(t, k, o, ws, out).isa, isa == Isa::avx512 ? Isa::avx512 : Isa::generic) << isa_name(isa);
+    }
+    // RTM_ISA chooses for automatic.
+    setenv("RTM_ISA", "generic", 1);
+    EXPECT_EQ(prewarp(t, k, PrewarpOptions{}, ws, out).isa, Isa::generic);
+}
+
+}  // namespace
+}  // namespace rtm

@@ -1,3 +1,0 @@
-// Closes the AVX-512 part a fast kernel file opened with warp/fast_target_begin.h.
-#pragma GCC diagnostic pop
-#pragma GCC pop_options

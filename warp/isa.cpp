@@ -1,0 +1,103 @@
+#include "warp/isa.h"
+
+#include <hwy/targets.h>
+
+#include <cstdlib>
+#include <stdexcept>
+
+#include "warp/simd/avx512_tables.h"
+#include "warp/simd/hwy_two_pass.h"
+
+namespace rtm {
+
+namespace {
+
+constexpr Isa kAll[] = {Isa::avx512, Isa::avx2, Isa::sse4, Isa::neon, Isa::sve, Isa::generic};
+
+// The Highway targets that stand for `isa` (0 for avx512 and generic, which Highway does not run here).
+int64_t hwy_bits(Isa isa) {
+    switch (isa) {
+    case Isa::avx2: return HWY_AVX2;
+    case Isa::sse4: return HWY_SSE4;
+    case Isa::neon: return HWY_NEON;
+    case Isa::sve: return HWY_SVE | HWY_SVE2;
+    default: return 0;
+    }
+}
+
+}  // namespace
+
+const char* isa_name(Isa isa) {
+    switch (isa) {
+    case Isa::automatic: return "auto";
+    case Isa::avx512: return "avx512";
+    case Isa::avx2: return "avx2";
+    case Isa::sse4: return "sse4";
+    case Isa::neon: return "neon";
+    case Isa::sve: return "sve";
+    case Isa::generic: return "generic";
+    }
+    return "?";
+}
+
+bool parse_isa(std::string_view name, Isa& isa) {
+    if (name == "auto") {
+        isa = Isa::automatic;
+        return true;
+    }
+    for (Isa i : kAll)
+        if (name == isa_name(i)) {
+            isa = i;
+            return true;
+        }
+    return false;
+}
+
+std::string isa_names() {
+    std::string s;
+    for (Isa i : kAll) s += std::string(s.empty() ? "" : ", ") + isa_name(i);
+    return s;
+}
+
+bool isa_supported(Isa isa) {
+    switch (isa) {
+    case Isa::automatic:
+    case Isa::generic: return true;
+    case Isa::avx512: return fast::cpu_supported();
+    default: return (hwy::SupportedTargets() & simd::hwy_compiled_targets() & hwy_bits(isa)) != 0;
+    }
+}
+
+std::vector<Isa> supported_isas() {
+    std::vector<Isa> v;
+    for (Isa i : kAll)
+        if (isa_supported(i)) v.push_back(i);
+    return v;
+}
+
+Isa default_isa() {
+    const char* env = std::getenv("RTM_ISA");
+    if (env && *env) {
+        Isa isa;
+        if (!parse_isa(env, isa))
+            throw std::invalid_argument(std::string("RTM_ISA: unknown target \"") + env + "\"; known: auto, " +
+                                        isa_names());
+        if (isa != Isa::automatic) {
+            if (!isa_supported(isa))
+                throw std::invalid_argument(std::string("RTM_ISA: this CPU cannot run target \"") + env + "\"");
+            return isa;
+        }
+    }
+    for (Isa i : kAll)  // the first of supported_isas(), without allocating (prewarp() calls this every time)
+        if (isa_supported(i)) return i;
+    return Isa::generic;
+}
+
+Isa resolve_isa(Isa isa) {
+    if (isa == Isa::automatic) return default_isa();
+    if (!isa_supported(isa))
+        throw std::invalid_argument(std::string("isa: this CPU cannot run target \"") + isa_name(isa) + "\"");
+    return isa;
+}
+
+}  // namespace rtm

@@ -1,0 +1,42 @@
+// Which SIMD target runs the pre-warp kernels: the one user-facing choice of the kernels (PrewarpOptions::isa),
+// its names on the command line (--isa) and in the RTM_ISA environment variable, and what this CPU and build
+// support.
+//
+// Targets: avx512 (the hand-written AVX-512 kernels of warp/simd/, needing AVX-512 F/BW/DQ/VL/VBMI/VNNI and BMI2),
+// avx2 and sse4 on x86-64, neon and sve on ARM (kernels written once over Google Highway, warp/simd/hwy_*), and
+// generic (the reference kernels, warp/reference/, which every other target matches bit for bit). A target covers
+// what its kernels implement (fast_prewarp_covers, warp/simd/schedule.h); a pre-warp it does not cover runs on the
+// reference kernels, and PrewarpStats::isa says which ran.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace rtm {
+
+enum class Isa { automatic, avx512, avx2, sse4, neon, sve, generic };
+
+// "avx512", "avx2", "sse4", "neon", "sve", "generic" ("auto" for automatic).
+const char* isa_name(Isa isa);
+
+// The target named `name` (one of isa_name's, "auto" included); false for any other name.
+bool parse_isa(std::string_view name, Isa& isa);
+
+// "avx512, avx2, sse4, neon, sve, generic": the names, for messages.
+std::string isa_names();
+
+// The targets this CPU and this build can run, fastest first, generic last. Honours hwy::SetSupportedTargetsForTest
+// (the tests force each Highway target in turn).
+std::vector<Isa> supported_isas();
+bool isa_supported(Isa isa);
+
+// The target `automatic` stands for: RTM_ISA when it is set and not empty, else the first of supported_isas().
+// Throws std::invalid_argument naming RTM_ISA and its value when that names no target or one this CPU lacks.
+Isa default_isa();
+
+// `isa` itself, or default_isa() for automatic. Throws std::invalid_argument naming the target when this CPU or
+// build cannot run it.
+Isa resolve_isa(Isa isa);
+
+}  // namespace rtm

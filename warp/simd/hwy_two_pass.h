@@ -1,0 +1,42 @@
+// The two-pass pre-warp kernels written once over Google Highway, compiled for every SIMD target of this
+// architecture but AVX-512 (x86-64: AVX2 and SSE4; ARM: NEON and SVE) and chosen at run time (warp/isa.h). Same
+// contract as the hand-written AVX-512 kernels of warp/simd/avx512_two_pass.h, whose job they take and whose
+// scheduling (warp/simd/schedule.cpp) they share: the output of prewarp()'s two-pass lookup-table path bit for bit.
+//
+// Horizontal steps: each row is set up with the reference's own arithmetic (row_samples' positions and final row
+// coordinates, NaN where a texel does not take part) and drawn in the reference's occlusion-compatible order; where
+// a whole vector of consecutive samples are spans that follow the processing direction (no foldover), their pixels
+// are disjoint and are drawn in the lanes together, everything else sample by sample through raster_point and
+// raster_span. Vertical steps: the columns advance together, as many in the lanes of a vector as the target has;
+// each lane computes what raster_span / raster_point compute for its column, operation by operation in float (no
+// contraction: the file is compiled with -ffp-contract=off, and SSE4 has no FMA anyway), and the colour with
+// lerp8's integer formula. Pixels are written lane by lane (Highway 1.0.3 has no masked scatter).
+//
+// Not yet here (docs/BENCHMARKS.md, "SIMD targets"): the pipelined reconstruction (these targets run the reference
+// kernels for it) and vector paths for foldovers and for runs of short spans of mixed orientation.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "warp/isa.h"
+#include "warp/simd/avx512_two_pass.h"
+
+namespace rtm::simd {
+
+using HorizontalStepsFn = void (*)(const fast::TwoPassJob&, int, int, uint32_t*, float*, size_t);
+using VerticalStepsFn = void (*)(const fast::TwoPassJob&, int, int, const uint32_t*, const float*, size_t, int, int);
+
+struct TwoPassKernels {
+    HorizontalStepsFn horizontal = nullptr;
+    VerticalStepsFn vertical = nullptr;
+};
+
+// The Highway kernels compiled for `isa` (avx2, sse4, neon, sve); null pointers for any other target or one this
+// build did not compile.
+TwoPassKernels hwy_two_pass_kernels(Isa isa);
+
+// The Highway targets this file was compiled for (HWY_TARGETS).
+int64_t hwy_compiled_targets();
+
+}  // namespace rtm::simd

@@ -1,0 +1,54 @@
+// The fast pre-warp: prewarp() (warp/prewarp.h) hands the cases below to kernels written for speed, whose
+// output is bit-identical to the generic implementation's (tests/warp/fast_kernels_test.cpp compares them pixel by
+// pixel over random reliefs, views, sizes and thread counts).
+//
+// Covered: the lookup-table path (not --exact) with the point filter, without depth output (displ_out), without
+// surface-discontinuity marks or threshold, margins (keep_outliers) or not; on the avx512 target (a CPU with AVX-512
+// F, BW, DQ, VL, VBMI, VNNI and BMI2: the hand-written kernels warp/simd/avx512_*) both reconstructions, on the
+// Highway targets (avx2, sse4, neon, sve: warp/simd/hwy_two_pass.h) the two-pass one. Everything else stays with
+// the generic implementation, which remains the reference.
+//
+// Still texels (PrewarpOptions::copy_still_runs): the row warps copy runs of 16 spans one pixel wide on pixel
+// centres (what zero displacement gives) instead of interpolating them; with the option off they interpolate them
+// too, so that the copy can be measured. The output is the same either way. The copies are not counted
+// (PrewarpStats::still_copied stays 0 here; tests/objects/skips_test.cpp relies on that).
+//
+// Scheduling lives here, kernels in warp/simd/avx512_two_pass.cpp and warp/simd/avx512_pipelined.cpp: a kernel takes a
+// range of rows or columns and every output pixel is computed by exactly one call, or (the pipelined kernel's row
+// chunks) by the chunks whose rows reach it, the last of them in the painter's order winning in the composite, so the
+// output does not depend on the number of threads. Steady state allocates nothing: intermediate and scratch images live
+// in the PrewarpWorkspace, per-thread line buffers in thread-local storage that only grows, and the task arenas for
+// explicit thread counts are created once per count.
+#pragma once
+
+#include <vector>
+
+#include "warp/image.h"
+#include "warp/isa.h"
+#include "warp/prewarp.h"
+#include "warp/prewarp_coefficients.h"
+#include "warp/relief_texture.h"
+
+namespace rtm {
+
+// True when the kernels of target `isa` (supported by this CPU: resolve_isa, warp/isa.h) compute this pre-warp
+// (see the top of this file). `extent` is the output's margins.
+bool fast_prewarp_covers(Isa isa, const ReliefTexture& relief, const PrewarpCoefficients& k,
+                         const PrewarpOptions& options, const PrewarpExtent& extent,
+                         const Image2D<uint8_t>* displ_out);
+
+// The pre-warp of prewarp() for a case `isa` covers; `out` is resized to the relief plus the margins.
+PrewarpStats fast_prewarp(Isa isa, const ReliefTexture& relief, const PrewarpCoefficients& k,
+                          const PrewarpOptions& options, const PrewarpExtent& extent, PrewarpWorkspace& workspace,
+                          ImageRGBA8& out);
+
+// True when this CPU can run the hand-written AVX-512 kernels (the avx512 target).
+bool fast_prewarp_available();
+
+// The pipelined kernel's row chunks (warp/simd/schedule.cpp): `bounds` (n + 1 increasing rows, 0 first, the part's
+// row count last) of n chunks that took ms[0 .. n) are moved half-way towards the bounds that would give every
+// chunk the same time, each chunk's time spread evenly over its rows; every chunk keeps at least one row. Times
+// that are not all finite and positive, or more than 64 chunks (the kernel's most), leave the bounds as they are.
+void balance_row_chunks(std::vector<int>& bounds, const double* ms);
+
+}  // namespace rtm
