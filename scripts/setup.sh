@@ -5,7 +5,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   libopenimageio-dev openimageio-tools libglm-dev libosmesa6-dev libglfw3-dev python3-glad
   libtbb-dev nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libassimp-dev
-  xvfb xauth clang libclang-rt-14-dev
+  xvfb xauth clang libclang-rt-14-dev libimgui-dev
 )
 missing=()
 for p in "${packages[@]}"; do
