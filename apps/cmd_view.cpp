@@ -65,8 +65,10 @@ void run_view(const ViewArgs& a) {
     s.depth_correction = a.depth_correction;
     s.skips = !a.no_skips;
     s.vsync = !a.no_vsync;
-    // The camera's syntax before any file is read.
-    (void)a.camera.resolve(Bounds{glm::dvec3(-1), glm::dvec3(1)});
+    // The camera's syntax before any file is read (the default camera: --orbit 30,20,2.2).
+    CameraArgs ca = a.camera;
+    if (!ca.has_eye()) ca.orbit = "30,20,2.2";
+    (void)ca.resolve(Bounds{glm::dvec3(-1), glm::dvec3(1)});
     if (!a.json.empty()) check_output_file(a.json, "--json");
     if (!a.screenshot.empty()) check_output_file(a.screenshot, "--screenshot");
 
@@ -78,8 +80,6 @@ void run_view(const ViewArgs& a) {
     if (!a.scene.empty() && a.scene.find(".scene.json") == std::string::npos)
         throw IoError(a.scene + ": --scene expects NAME.scene.json");
     std::unique_ptr<viewer::Loaded> loaded = viewer::open_file(file);
-    CameraArgs ca = a.camera;
-    if (!ca.has_eye()) ca.orbit = "30,20,2.2";
     o.camera = ca.resolve(loaded->bounds());
     if (!ca.orbit.empty()) {
         const glm::dvec3 v = parse_vec3(ca.orbit, "--orbit");
