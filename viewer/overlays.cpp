@@ -51,7 +51,7 @@ glm::vec4 draw_insets(ImDrawList* list, const FrameReport& report, float display
     constexpr float kMax = 240.f, kGap = 8.f, kLabel = 16.f;
     float right = display_w - kGap;
     glm::vec4 box(0.f);
-    float x0 = display_w, y0 = display_h;
+    float x0 = display_w, y0 = display_h, x1 = 0, y1 = 0;
     for (const DrawnQuad& q : report.quads) {
         if (q.texture_width <= 0 || q.texture_height <= 0) continue;
         const float aspect = float(q.texture_width) / float(q.texture_height);
@@ -85,9 +85,12 @@ glm::vec4 draw_insets(ImDrawList* list, const FrameReport& report, float display
             else
                 list->AddCircle(ImVec2(ex, ey), 5.f, IM_COL32(255, 0, 255, 255), 0, 2.f);  // beyond the inset
         }
-        x0 = std::min(x0, p0.x - 2);
-        y0 = std::min(y0, p0.y - kLabel - 2);
-        box = {x0, y0, display_w - kGap + 2 - x0, display_h - kGap + 2 - y0};
+        // The box reaches the epipole's circle (radius 5, line 2) where it is clamped to the inset's border.
+        x0 = std::min(x0, p0.x - 7);
+        y0 = std::min(y0, p0.y - kLabel - 7);
+        x1 = std::max(x1, std::min(display_w, p1.x + 7));
+        y1 = std::max(y1, std::min(display_h, p1.y + 7));
+        box = {x0, y0, x1 - x0, y1 - y0};
         right = p0.x - kGap - 4;
     }
     return box;
