@@ -139,7 +139,8 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
     install_callbacks(win);
     Renderer renderer;
     ImGuiSession imgui(win);
-    bool vsync = scripted ? false : s.vsync;
+    if (scripted) s.vsync = false;  // scripted runs are timed: never wait for the display
+    bool vsync = s.vsync;
     glfwSwapInterval(vsync ? 1 : 0);
 
     ViewerResult result;
