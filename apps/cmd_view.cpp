@@ -108,6 +108,8 @@ void run_view(const ViewArgs& a) {
             {"upload_ms", timing_json(r.upload_ms)},
             {"texture_map_ms", timing_json(r.texture_map_ms)},
             {"other_ms", timing_json(r.other_ms)},
+            {"overlay_ms", timing_json(r.overlay_ms)},
+            {"swap_ms", timing_json(r.swap_ms)},
             {"texels_warped", ll(r.texels_warped)},
             {"panel", {r.panel.x, r.panel.y, r.panel.z, r.panel.w}},
             {"insets", {r.insets.x, r.insets.y, r.insets.z, r.insets.w}},

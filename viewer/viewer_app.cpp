@@ -361,8 +361,11 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
                 s.fly ? fly.frame(bounds) : orbit.frame();
             }
         }
+        const auto t_overlay = Clock::now();
         ImGui::Render();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        if (scripted) glFinish();  // timed apart from the swap (which would wait for it anyway)
+        const double overlay_ms = ms_since(t_overlay);
         result.panel = panel_box * scale;
         result.insets = inset_box * scale;
 
@@ -372,7 +375,9 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
             write_rgba8(file, read_framebuffer(W, H));
             if (!scripted) std::fprintf(stderr, "screenshot: %s\n", file.c_str());
         }
+        const auto t_swap = Clock::now();
         ctx->swap_buffers();
+        const double swap_ms = ms_since(t_swap);
 
         FrameSample fs;
         fs.frame_ms = ms_since(t_frame);
@@ -386,6 +391,8 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
             result.texture_map_ms.push_back(fs.stages.texture_map_ms);
             result.other_ms.push_back(fs.other_ms());
             result.texels_warped.push_back(fs.texels_warped);
+            result.overlay_ms.push_back(overlay_ms);
+            result.swap_ms.push_back(swap_ms);
         }
         result.frames = frame + 1;
         result.width = W;

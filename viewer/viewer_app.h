@@ -33,6 +33,7 @@ struct ViewerResult {
     int frames = 0;
     double fps = 0;                  // frames after the first tenth, over their wall time
     std::vector<double> frame_ms, prewarp_ms, upload_ms, texture_map_ms, other_ms;
+    std::vector<double> overlay_ms, swap_ms;  // parts of other_ms: the panel and overlays drawn, the buffer swap
     std::vector<long long> texels_warped;
     glm::vec4 panel{0.f}, insets{0.f};  // the last frame's rectangles (x, y, w, h) in framebuffer pixels, top-left
     int width = 0, height = 0;
