@@ -22,7 +22,8 @@ void OrbitCamera::zoom(double notches) { dist = std::clamp(dist * std::pow(0.9, 
 glm::dvec3 OrbitCamera::eye(const Bounds& b) const {
     // The formula of --orbit (apps/cli_common.cpp, CameraArgs::resolve).
     const double a = glm::radians(az), e = glm::radians(el);
-    return b.centre() + radius_of(b) * dist * glm::dvec3(std::sin(a) * std::cos(e), std::sin(e), std::cos(a) * std::cos(e));
+    const glm::dvec3 dir(std::sin(a) * std::cos(e), std::sin(e), std::cos(a) * std::cos(e));
+    return b.centre() + radius_of(b) * dist * dir;
 }
 
 glm::dvec3 FlyCamera::forward() const {

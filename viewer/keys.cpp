@@ -98,7 +98,8 @@ std::vector<int> parse_key_script(const std::string& text) {
             throw std::invalid_argument("unknown key \"" + item + "\" (letters, digits, Space, Esc, Tab, F1..F12)");
         keys.push_back(k);
     }
-    if (!text.empty() && text.back() == ',') throw std::invalid_argument("empty key name at the end of \"" + text + "\"");
+    if (!text.empty() && text.back() == ',')
+        throw std::invalid_argument("empty key name at the end of \"" + text + "\"");
     return keys;
 }
 

@@ -160,7 +160,8 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
 
     for (int frame = 0; !scripted || frame < o.frames; ++frame) {
         const auto t_frame = Clock::now();
-        const double dt = scripted ? 1.0 / (path ? path->fps : 60.0) : std::chrono::duration<double>(t_frame - t_prev).count();
+        const double dt = scripted ? 1.0 / (path ? path->fps : 60.0)
+                                   : std::chrono::duration<double>(t_frame - t_prev).count();
         t_prev = t_frame;
         if (frame == warm) t_warm = t_frame;
         ctx->poll_events();
