@@ -138,10 +138,26 @@ same r2_left split_left
 blank split split_right 0 0 161 240
 blank v_flat flat_right 0 0 161 240
 same flat_right split_right
+view kX --relief "$M" --orbit 30,20,2.2 --size $S --keys X
+view split_mm --relief "$M" --orbit 30,20,2.2 --size $S --split micromesh
+same split_mm kX exact
 view truth --relief "$M" --orbit 30,20,2.2 --size $S --split truth
 blank truth truth_left 159 0 161 240
 same r2_left truth_left
 differ split truth
+
+# The screenshot key writes a PNG named by the time in the working folder, the same image as --screenshot.
+mkdir "$T/shots"
+rtm_abs=$(cd "$(dirname "$RTM")" && pwd)/$(basename "$RTM")
+m_abs=$(cd "$(dirname "$M")" && pwd)/$(basename "$M")
+if (cd "$T/shots" && "$rtm_abs" view --relief "$m_abs" --orbit 30,20,2.2 --size $S --keys P --frames 1 2>"$T/err") &&
+    f=$(ls "$T/shots"/rtm-view-*.png 2>/dev/null | head -1) && [ -n "$f" ]; then
+  passes=$((passes + 1))
+  cp "$f" "$T/keyP.png"
+  same v_two-pass keyP
+else
+  echo "FAIL: the screenshot key wrote no rtm-view-*.png: $(cat "$T/err")"; fails=$((fails + 1))
+fi
 
 # The fly camera starts where the orbit camera is; a W press moves it.
 view fly --relief "$M" --orbit 30,20,2.2 --size $S --fly
