@@ -351,16 +351,18 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
             pc.path_duration = path ? path->duration() : 0;
             pc.playing = &playing;
             const double before = path_time;
-            panel_box = draw_panel(s, pc, req);
+            KeyRequests buttons;  // the panel's buttons, apart from this frame's keys (already applied)
+            panel_box = draw_panel(s, pc, buttons);
             if (path_time != before) path_active = true;  // scrubbed
-            if (req.toggle_play && path) {
+            if (buttons.toggle_play && path) {
                 playing = !playing;
                 path_active = true;
             }
-            if (req.frame) {
+            if (buttons.frame) {
                 path_active = false;
                 s.fly ? fly.frame(bounds) : orbit.frame();
             }
+            req.screenshot = req.screenshot || buttons.screenshot;
         }
         const auto t_overlay = Clock::now();
         ImGui::Render();
