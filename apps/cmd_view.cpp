@@ -1,147 +1,157 @@
-// rtm view: the interactive viewer (GLFW window). Drag with the left button to orbit, scroll to zoom; keys:
-// 1 flat, 2 two-pass, 3 pipelined, 4 micromesh; W side polygons on/off; D depth correction on/off; K skips
-// on/off; L pyramid level auto/0; F coverage filter on/off (two-pass); Esc or Q quits. With --frames N --screenshot IMG it renders N frames, writes
-// the last one and exits (for tests under Xvfb). Timing of the last second goes to the window title.
-#include <GLFW/glfw3.h>
-
+// rtm view: the interactive viewer (viewer/viewer_app.h; keys in viewer/keys.h, guide in docs/VIEWER.md). This file
+// only parses the command line: what to open, the camera, the settings, and the scripted options for tests
+// (--frames N --screenshot IMG, --keys, --camera-path, --json).
 #include <algorithm>
-#include <chrono>
-#include <cmath>
-#include <cstdio>
 #include <memory>
 
 #include "cli_common.h"
-#include "objects/bounds.h"
-#include "formats/relief_manifest.h"
-#include "objects/render_relief.h"
-#include "texmap/camera_rig.h"
-#include "texmap/gl_context.h"
 #include "formats/image_io.h"
+#include "viewer/keys.h"
+#include "viewer/loaded.h"
+#include "viewer/viewer_app.h"
 
 namespace rtm::cli {
 
 namespace {
 
 struct ViewArgs {
-    std::string relief, screenshot;
+    std::string relief, object, scene, file, screenshot, json, camera_path, keys, method = "two-pass", level = "0",
+                                                                                  split, filter = "point";
     CameraArgs camera;
-    int frames = 0;
-};
-
-// Orbit state around the bounds' centre, in the --orbit convention.
-struct Orbit {
-    double az = 30, el = 20, dist = 2.2;
-    bool dragging = false;
-    double last_x = 0, last_y = 0;
+    int frames = 0, threads = 0;
+    bool panel = false, insets = false, outlines = false, fly = false, no_sidewalls = false, depth_correction = false,
+         no_skips = false, no_vsync = false;
+    double discontinuity = -1;
 };
 
 void run_view(const ViewArgs& a) {
-    if (a.relief.empty()) throw UsageError("view needs --relief M");
+    const int given = int(!a.relief.empty()) + int(!a.object.empty()) + int(!a.scene.empty()) + int(!a.file.empty());
+    if (given != 1) throw UsageError("view needs one of --relief M, --object O, --scene S or a FILE");
     if (a.frames < 0) throw UsageError("--frames: expected N >= 0, found " + std::to_string(a.frames));
     if (!a.screenshot.empty() && a.frames == 0) throw UsageError("--screenshot needs --frames N");
-    ReliefQuad quad(load_relief(a.relief));
-    const Bounds bounds = relief_bounds(quad.relief());
+    if (!a.json.empty() && a.frames == 0) throw UsageError("--json needs --frames N");
+    if (a.threads < 0) throw UsageError("--threads: expected N >= 0, found " + std::to_string(a.threads));
+    if (!(a.discontinuity >= 0 || a.discontinuity == -1))
+        throw UsageError("--discontinuity: expected a threshold >= 0, found " + std::to_string(a.discontinuity));
+    viewer::ViewerOptions o;
+    viewer::ViewSettings& s = o.settings;
+    try {
+        s.method = parse_render_method(a.method);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(std::string("--method: ") + e.what());
+    }
+    s.level = parse_level(a.level);
+    s.coverage = parse_filter(a.filter, s.method == RenderMethod::pipelined ? Reconstruction::pipelined
+                                                                            : Reconstruction::two_pass) ==
+                 Filter::coverage;
+    if (!a.split.empty()) {
+        try {
+            viewer::parse_split(a.split, s);
+        } catch (const std::invalid_argument& e) {
+            throw UsageError(std::string("--split: ") + e.what());
+        }
+    }
+    try {
+        o.keys = viewer::parse_key_script(a.keys);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(std::string("--keys: ") + e.what());
+    }
+    s.threads = a.threads;
+    s.discontinuity = a.discontinuity;
+    s.panel = a.panel;
+    s.insets = a.insets;
+    s.outlines = a.outlines;
+    s.side_polygons = !a.no_sidewalls;
+    s.depth_correction = a.depth_correction;
+    s.skips = !a.no_skips;
+    s.vsync = !a.no_vsync;
+    // The camera's syntax before any file is read (the default camera: --orbit 30,20,2.2).
     CameraArgs ca = a.camera;
     if (!ca.has_eye()) ca.orbit = "30,20,2.2";
-    Camera cam = ca.resolve(bounds);
-    Orbit orbit;
+    (void)ca.resolve(Bounds{glm::dvec3(-1), glm::dvec3(1)});
+    if (!a.json.empty()) check_output_file(a.json, "--json");
+    if (!a.screenshot.empty()) check_output_file(a.screenshot, "--screenshot");
+
+    const std::string file = !a.relief.empty() ? a.relief : !a.object.empty() ? a.object
+                                                        : !a.scene.empty()  ? a.scene
+                                                                            : a.file;
+    if (!a.object.empty() && a.object.find(".object.json") == std::string::npos)
+        throw IoError(a.object + ": --object expects NAME.object.json");
+    if (!a.scene.empty() && a.scene.find(".scene.json") == std::string::npos)
+        throw IoError(a.scene + ": --scene expects NAME.scene.json");
+    std::unique_ptr<viewer::Loaded> loaded = viewer::open_file(file);
+    o.camera = ca.resolve(loaded->bounds());
     if (!ca.orbit.empty()) {
-        const glm::dvec3 o = parse_vec3(ca.orbit, "--orbit");
-        orbit = {o.x, o.y, o.z};
+        const glm::dvec3 v = parse_vec3(ca.orbit, "--orbit");
+        o.orbit = {v.x, v.y, v.z};
     }
-    const bool use_orbit = ca.eye.empty();
+    o.start_fly = !ca.eye.empty() || a.fly;
+    if (a.fly && ca.eye.empty()) o.camera.eye = o.orbit.eye(loaded->bounds());
+    o.frames = a.frames;
+    o.screenshot = a.screenshot;
+    o.camera_path = a.camera_path;
 
-    auto ctx = GlContext::create_window(cam.width, cam.height, "rtm view: " + a.relief, a.frames == 0,
-                                        {.pin_llvmpipe_threads = true});
-    Renderer renderer;
-    GLFWwindow* win = static_cast<GLFWwindow*>(ctx->native_window());
-    glfwSetWindowUserPointer(win, &orbit);
-    glfwSetMouseButtonCallback(win, [](GLFWwindow* w, int button, int action, int) {
-        auto* o = static_cast<Orbit*>(glfwGetWindowUserPointer(w));
-        if (button == GLFW_MOUSE_BUTTON_LEFT) o->dragging = action == GLFW_PRESS;
-        glfwGetCursorPos(w, &o->last_x, &o->last_y);
-    });
-    glfwSetCursorPosCallback(win, [](GLFWwindow* w, double x, double y) {
-        auto* o = static_cast<Orbit*>(glfwGetWindowUserPointer(w));
-        if (o->dragging) {
-            o->az -= 0.3 * (x - o->last_x);
-            o->el = std::clamp(o->el + 0.3 * (y - o->last_y), -89.0, 89.0);
-        }
-        o->last_x = x;
-        o->last_y = y;
-    });
-    glfwSetScrollCallback(win, [](GLFWwindow* w, double, double dy) {
-        auto* o = static_cast<Orbit*>(glfwGetWindowUserPointer(w));
-        o->dist = std::clamp(o->dist * std::pow(0.9, dy), 0.05, 1000.0);
-    });
-
-    RenderSettings rs;
-    rs.method = RenderMethod::two_pass;
-    rs.prewarp.keep_outliers = true;
-    bool prev_keys[512] = {};
-    bool coverage = false;
-    auto pressed = [&](int key) {
-        const bool down = glfwGetKey(win, key) == GLFW_PRESS;
-        const bool edge = down && !prev_keys[key];
-        prev_keys[key] = down;
-        return edge;
-    };
-    ImageRGBA8 last;
-    auto t_title = std::chrono::steady_clock::now();
-    int frames_since = 0;
-    double work_ms = 0;
-    for (int frame = 0; a.frames == 0 || frame < a.frames; ++frame) {
-        ctx->poll_events();
-        if (ctx->should_close() || pressed(GLFW_KEY_ESCAPE) || pressed(GLFW_KEY_Q)) break;
-        if (pressed(GLFW_KEY_1)) rs.method = RenderMethod::flat;
-        if (pressed(GLFW_KEY_2)) rs.method = RenderMethod::two_pass;
-        if (pressed(GLFW_KEY_3)) rs.method = RenderMethod::pipelined;
-        if (pressed(GLFW_KEY_4)) rs.method = RenderMethod::micromesh;
-        if (pressed(GLFW_KEY_W)) rs.prewarp.keep_outliers = !rs.prewarp.keep_outliers;
-        if (pressed(GLFW_KEY_D)) rs.draw.depth_correction = !rs.draw.depth_correction;
-        if (pressed(GLFW_KEY_K)) rs.draw.skips = !rs.draw.skips;
-        if (pressed(GLFW_KEY_L)) rs.draw.level = rs.draw.level < 0 ? 0 : -1;
-        if (pressed(GLFW_KEY_F)) coverage = !coverage;
-        // The coverage filter exists for the two-pass reconstruction only.
-        rs.prewarp.filter = coverage && rs.method == RenderMethod::two_pass ? Filter::coverage : Filter::point;
-        if (use_orbit) {
-            cam.eye = orbit_eye(bounds.centre(), bounds.radius(), {orbit.az, orbit.el, orbit.dist});
-            cam.fit_clip_planes(bounds.centre(), std::max(bounds.radius(), 1e-12));
-        }
-        cam.width = ctx->width();
-        cam.height = ctx->height();
-        StageTimes st;
-        DrawReport rep;
-        last = render_relief_frame(quad, &renderer, cam, rs, st, &rep);
-        ctx->swap_buffers();
-        work_ms += st.total_ms;
-        ++frames_since;
-        const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_title).count();
-        if (since > 1.0) {
-            char title[256];
-            std::snprintf(title, sizeof title, "rtm view: %s | %s%s%s%s | level %d | %.1f fps, %.2f ms/frame",
-                          a.relief.c_str(), to_string(rs.method).c_str(), rs.prewarp.keep_outliers ? " +walls" : "",
-                          rs.draw.depth_correction ? " +depth" : "",
-                          rs.prewarp.filter == Filter::coverage ? " +coverage" : "", rep.level, frames_since / since,
-                          work_ms / frames_since);
-            glfwSetWindowTitle(win, title);
-            t_title = std::chrono::steady_clock::now();
-            frames_since = 0;
-            work_ms = 0;
-        }
+    const viewer::ViewerResult r = viewer::run_viewer(std::move(loaded), o);
+    if (!a.json.empty()) {
+        auto ll = [](const std::vector<long long>& v) {
+            std::vector<double> d(v.begin(), v.end());
+            return timing_json(d);
+        };
+        nlohmann::json j = {
+            {"command", "view"},
+            {"file", file},
+            {"method", a.method},
+            {"frames", r.frames},
+            {"fps", r.fps},
+            {"frame_ms", timing_json(r.frame_ms)},
+            {"prewarp_ms", timing_json(r.prewarp_ms)},
+            {"upload_ms", timing_json(r.upload_ms)},
+            {"texture_map_ms", timing_json(r.texture_map_ms)},
+            {"other_ms", timing_json(r.other_ms)},
+            {"overlay_ms", timing_json(r.overlay_ms)},
+            {"swap_ms", timing_json(r.swap_ms)},
+            {"texels_warped", ll(r.texels_warped)},
+            {"panel", {r.panel.x, r.panel.y, r.panel.z, r.panel.w}},
+            {"insets", {r.insets.x, r.insets.y, r.insets.z, r.insets.w}},
+            {"size", {r.width, r.height}},
+            {"renderer", r.renderer},
+        };
+        write_json(a.json, j);
     }
-    if (!a.screenshot.empty()) write_rgba8(a.screenshot, last);
 }
 
 }  // namespace
 
 void add_view_command(CLI::App& app) {
     auto a = std::make_shared<ViewArgs>();
-    CLI::App* sub = app.add_subcommand("view", "Interactive viewer (GLFW window)");
-    sub->add_option("--relief", a->relief, "Relief texture manifest")->required();
+    CLI::App* sub = app.add_subcommand("view", "Interactive viewer (GLFW window, Dear ImGui panel)");
+    sub->add_option("file", a->file, "A file opened by its kind (NAME.relief.json)");
+    sub->add_option("--relief", a->relief, "Relief texture manifest");
+    sub->add_option("--object", a->object, "Six-face object manifest (not viewable by this build yet)");
+    sub->add_option("--scene", a->scene, "Scene manifest (not viewable by this build yet)");
+    a->camera.size = "1280x720";
     a->camera.add_to(*sub);
-    sub->add_option("--frames", a->frames, "Render N frames and exit (0 = until closed)")->capture_default_str();
+    sub->add_option("--method", a->method, "flat, two-pass, pipelined, micromesh or raycast")->capture_default_str();
+    sub->add_option("--level", a->level, "Relief texture pyramid level N or auto")->capture_default_str();
+    sub->add_option("--filter", a->filter, "Pre-warp resampling: point or coverage (two-pass only)")
+        ->capture_default_str();
+    sub->add_option("--threads", a->threads, "Pre-warp threads (0 = all)")->capture_default_str();
+    sub->add_option("--discontinuity", a->discontinuity, "Mark discontinuities with this threshold");
+    sub->add_flag("--no-sidewalls", a->no_sidewalls, "Do not draw the side polygons");
+    sub->add_flag("--depth-correction", a->depth_correction, "Per-fragment depth from the displacement");
+    sub->add_flag("--no-skips", a->no_skips, "Always pre-warp and upload everything");
+    sub->add_flag("--panel", a->panel, "Show the panel");
+    sub->add_flag("--insets", a->insets, "Show the pre-warped textures with their epipoles");
+    sub->add_flag("--outlines", a->outlines, "Outline the texture-mapped quads and side polygons");
+    sub->add_flag("--fly", a->fly, "Start with the fly camera");
+    sub->add_option("--split", a->split, "Split view: the right half with METHOD, or 'truth' (error heat map)");
+    sub->add_flag("--no-vsync", a->no_vsync, "Start with vsync off (scripted runs always run without it)");
+    sub->add_option("--frames", a->frames, "Render N frames in a hidden window and exit (0 = until closed)")
+        ->capture_default_str();
     sub->add_option("--screenshot", a->screenshot, "Write the last frame to IMG (with --frames)");
+    sub->add_option("--camera-path", a->camera_path, "Play a camera path (JSON keyframes, docs/VIEWER.md)");
+    sub->add_option("--keys", a->keys, "Key presses applied before the first frame, e.g. \"2,G,I\"");
+    sub->add_option("--json", a->json, "Write frame times and the panel's rectangle as JSON (with --frames)");
     sub->callback([a] { run_view(*a); });
 }
 

@@ -58,6 +58,8 @@ public:
     double prewarp(const glm::dvec3& eye, const PrewarpOptions& options, bool with_displ = false);
     const ImageRGBA8& prewarped() const { return prewarped_; }
     const PrewarpStats& last_stats() const { return stats_; }
+    // The texture the last draw() mapped on the quad (pre-warp or flat); null before the first draw.
+    const GlTexture* texture() const { return texture_.get(); }
     // The micro-polygon mesh of this relief (ground truth), built on first use.
     const MicroMesh& micromesh();
     // The per-pixel methods' textures and programs for this relief (level 0), made on first use.

@@ -1,35 +1,185 @@
 #!/usr/bin/env bash
-# The interactive viewer under Xvfb: N frames, a screenshot, equal to the headless render of the same camera.
+# The interactive viewer under Xvfb (one server for the whole script): each kind of file, screenshots equal to the
+# headless render of the same camera and settings, the keys and panel toggles changing what is drawn where they
+# should (and only there), the camera path frame by frame, and a missing display.
 . "$(dirname "$0")/lib.bash"
 M=$SRC/media/facade.relief.json
-if ! command -v xvfb-run >/dev/null; then
-  echo "xvfb-run is missing (scripts/setup.sh installs it)"
+S=320x240
+if ! command -v Xvfb >/dev/null || ! command -v oiiotool >/dev/null; then
+  echo "Xvfb or oiiotool is missing (scripts/setup.sh installs them)"
   exit 1
 fi
-# Without a display the viewer says so and exits 1.
+
+# Without a display the viewer says so in one line naming DISPLAY, exits 1 and writes nothing.
 env -u DISPLAY -u WAYLAND_DISPLAY "$RTM" view --relief "$M" --frames 1 --screenshot "$T/x.png" 2>"$T/err"
 st=$?
-if [ "$st" != 1 ] || ! grep -q "display" "$T/err" || [ -e "$T/x.png" ]; then
+if [ "$st" != 1 ] || ! grep -q "DISPLAY" "$T/err" || [ "$(grep -c '' "$T/err")" != 1 ] || [ -e "$T/x.png" ]; then
   echo "FAIL: no display: exit $st, $(cat "$T/err")"; fails=$((fails + 1))
 else passes=$((passes + 1)); fi
 
-if xvfb-run -a "$RTM" view --relief "$M" --orbit 30,20,2.2 --size 320x240 --frames 3 --screenshot "$T/view.png" \
-    2>"$T/err"; then
-  passes=$((passes + 1))
-else
-  echo "FAIL: view under Xvfb: $(cat "$T/err")"; fails=$((fails + 1))
-fi
-expect_ok render --relief "$M" --orbit 30,20,2.2 --size 320x240 --out "$T/render.png"
-# Same camera, same code path, another framebuffer: identical up to llvmpipe's rounding (PSNR well above 40 dB).
-if "$RTM" diff "$T/render.png" "$T/view.png" >"$T/diff"; then
-  psnr=$(awk '/^psnr/ {print $2}' "$T/diff")
-  iou=$(awk '/^iou/ {print $2}' "$T/diff")
-  if awk -v p="$psnr" -v i="$iou" 'BEGIN { exit !((p == "inf" || p > 40) && i > 0.999) }'; then
+Xvfb -displayfd 3 -screen 0 1280x1024x24 -nolisten tcp 3>"$T/display" 2>/dev/null &
+XVFB=$!
+trap 'kill $XVFB 2>/dev/null; rm -rf "$T"' EXIT
+for _ in $(seq 100); do [ -s "$T/display" ] && break; sleep 0.1; done
+export DISPLAY=:$(head -1 "$T/display")
+
+# view NAME ARGS...: a scripted run writing $T/NAME.png (and $T/NAME.json).
+view() {
+  local name=$1
+  shift
+  if "$RTM" view "$@" --frames "${FRAMES:-2}" --screenshot "$T/$name.png" --json "$T/$name.json" 2>"$T/err"; then
     passes=$((passes + 1))
   else
-    echo "FAIL: viewer and render differ: psnr $psnr iou $iou"; fails=$((fails + 1))
+    echo "FAIL: rtm view $* exited $?: $(cat "$T/err")"; fails=$((fails + 1))
   fi
+}
+render() {
+  local name=$1
+  shift
+  expect_ok render --relief "$M" --size $S --out "$T/$name.png" "$@"
+}
+# psnr_of A B: the PSNR of B against A ("inf" when equal), with the coverage IoU in $iou.
+compare() {
+  "$RTM" diff "$T/$1.png" "$T/$2.png" >"$T/diff" || { echo "FAIL: diff $1 $2"; fails=$((fails + 1)); }
+  psnr=$(awk '/^psnr/ {print $2}' "$T/diff")
+  iou=$(awk '/^iou/ {print $2}' "$T/diff")
+}
+# same A B [MIN_PSNR]: equal up to llvmpipe's rounding (the issue's bar: PSNR >= 40 dB over common pixels,
+# IoU >= 0.99); "exact" asks for identical images.
+same() {
+  compare "$1" "$2"
+  local min=${3:-40}
+  if [ "$min" = exact ]; then
+    if [ "$psnr" = inf ] && [ "$iou" = 1 ]; then passes=$((passes + 1)); return; fi
+  elif awk -v p="$psnr" -v i="$iou" -v m="$min" 'BEGIN { exit !((p == "inf" || p >= m) && i >= 0.99) }'; then
+    passes=$((passes + 1)); return
+  fi
+  echo "FAIL: $1 and $2 should be the same ($min): psnr $psnr iou $iou"; fails=$((fails + 1))
+}
+differ() {
+  compare "$1" "$2"
+  if [ "$psnr" = inf ] && [ "$iou" = 1 ]; then
+    echo "FAIL: $1 and $2 should differ"; fails=$((fails + 1))
+  else passes=$((passes + 1)); fi
+}
+# blank IN OUT X Y W H: IN with the rectangle painted opaque black (whole pixels covering it).
+blank() {
+  local x y w h
+  read -r x y w h <<<"$(awk -v x="$3" -v y="$4" -v w="$5" -v h="$6" 'BEGIN {
+    x0 = int(x); y0 = int(y); x1 = int(x + w); if (x1 < x + w) x1++; y1 = int(y + h); if (y1 < y + h) y1++;
+    print x0, y0, x1 - x0, y1 - y0 }')"
+  oiiotool "$T/$1.png" --fill:color=0,0,0,1 "${w}x${h}+${x}+${y}" -o "$T/$2.png"
+}
+rect() { python3 -c "import json,sys; print(*json.load(open(sys.argv[1]))[sys.argv[2]])" "$T/$1.json" "$2"; }
+
+# A relief, given by flag and by its kind: the same pixels as rtm render, for each method.
+for m in two-pass flat pipelined micromesh raycast; do
+  view "v_$m" --relief "$M" --orbit 30,20,2.2 --size $S --method "$m"
+  render "r_$m" --orbit 30,20,2.2 --method "$m"
+  same "r_$m" "v_$m"
+done
+view file "$M" --orbit 30,20,2.2 --size $S
+same v_two-pass file exact
+view eye --relief "$M" --eye 1.9,1.6,2.4 --size $S --level auto --depth-correction
+render r_eye --eye 1.9,1.6,2.4 --level auto --depth-correction
+same r_eye eye
+# Objects, scenes and meshes are not viewable by this build yet: one line naming the file, exit 1.
+echo '{}' >"$T/a.object.json"
+echo '{}' >"$T/a.scene.json"
+: >"$T/a.obj"
+for f in "$T/a.object.json" "$T/a.scene.json" "$T/a.obj"; do
+  expect_fail 1 "a\.(object\.json|scene\.json|obj): .*this build" -- view "$f" --frames 1
+done
+expect_fail 2 "^rtm: --keys: unknown key \"nope\"" -- view --relief "$M" --keys nope --frames 1
+expect_fail 2 "^rtm: --split: raycast" -- view --relief "$M" --split raycast --frames 1
+echo '{"keys": []}' >"$T/bad_path.json"
+expect_fail 1 "bad_path.json: \"keys\"" -- view --relief "$M" --camera-path "$T/bad_path.json" --frames 1
+
+# Keys do what the flags do.
+view k1 --relief "$M" --orbit 30,20,2.2 --size $S --keys 1
+same v_flat k1 exact
+view k3 --relief "$M" --orbit 30,20,2.2 --size $S --keys 3
+same v_pipelined k3 exact
+view kG --relief "$M" --orbit 30,20,2.2 --size $S --keys G
+view nowalls --relief "$M" --orbit 30,20,2.2 --size $S --no-sidewalls
+same nowalls kG exact
+differ v_two-pass kG
+
+# The panel changes the image inside its rectangle only.
+view panel --relief "$M" --orbit 30,20,2.2 --size 640x480 --panel
+view plain --relief "$M" --orbit 30,20,2.2 --size 640x480
+view kH --relief "$M" --orbit 30,20,2.2 --size 640x480 --keys H
+differ plain panel
+read -r px py pw ph <<<"$(rect panel panel)"
+if awk -v w="$pw" -v h="$ph" 'BEGIN { exit !(w > 100 && w < 640 && h > 100) }'; then passes=$((passes + 1))
+else echo "FAIL: panel rectangle $px $py $pw $ph"; fails=$((fails + 1)); fi
+blank panel panel_out "$px" "$py" "$pw" "$ph"
+blank plain plain_out "$px" "$py" "$pw" "$ph"
+same plain_out panel_out exact
+blank kH kH_out "$px" "$py" "$pw" "$ph"
+same plain_out kH_out exact
+# The insets likewise, in their rectangle; the key I shows the same insets as --insets.
+view insets --relief "$M" --orbit 30,20,2.2 --size 640x480 --insets
+view kI --relief "$M" --orbit 30,20,2.2 --size 640x480 --keys I
+same insets kI exact
+differ plain insets
+read -r ix iy iw ih <<<"$(rect insets insets)"
+blank insets insets_out "$ix" "$iy" "$iw" "$ih"
+blank plain plain_out2 "$ix" "$iy" "$iw" "$ih"
+same plain_out2 insets_out exact
+view outlines --relief "$M" --orbit 30,20,2.2 --size 640x480 --outlines
+differ plain outlines
+
+# The split view: the left half is the current method, the right half the other one.
+view split --relief "$M" --orbit 30,20,2.2 --size $S --split flat
+blank split split_left 159 0 161 240
+blank v_two-pass r2_left 159 0 161 240
+same r2_left split_left
+blank split split_right 0 0 161 240
+blank v_flat flat_right 0 0 161 240
+same flat_right split_right
+view kX --relief "$M" --orbit 30,20,2.2 --size $S --keys X
+view split_mm --relief "$M" --orbit 30,20,2.2 --size $S --split micromesh
+same split_mm kX exact
+view truth --relief "$M" --orbit 30,20,2.2 --size $S --split truth
+blank truth truth_left 159 0 161 240
+same r2_left truth_left
+differ split truth
+
+# The screenshot key writes a PNG named by the time in the working folder, the same image as --screenshot.
+mkdir "$T/shots"
+rtm_abs=$(cd "$(dirname "$RTM")" && pwd)/$(basename "$RTM")
+m_abs=$(cd "$(dirname "$M")" && pwd)/$(basename "$M")
+if (cd "$T/shots" && "$rtm_abs" view --relief "$m_abs" --orbit 30,20,2.2 --size $S --keys P --frames 1 2>"$T/err") &&
+    f=$(ls "$T/shots"/rtm-view-*.png 2>/dev/null | head -1) && [ -n "$f" ]; then
+  passes=$((passes + 1))
+  cp "$f" "$T/keyP.png"
+  same v_two-pass keyP
 else
-  echo "FAIL: diff failed"; fails=$((fails + 1))
+  echo "FAIL: the screenshot key wrote no rtm-view-*.png: $(cat "$T/err")"; fails=$((fails + 1))
 fi
+
+# The fly camera starts where the orbit camera is; a W press moves it.
+view fly --relief "$M" --orbit 30,20,2.2 --size $S --fly
+same v_two-pass fly
+view flyW --relief "$M" --orbit 30,20,2.2 --size $S --fly --keys W
+differ fly flyW
+view kC --relief "$M" --orbit 30,20,2.2 --size $S --keys C,W
+same flyW kC exact
+
+# The camera path: frame i shows time i / fps, the same from run to run; frame 10 (t = 9/30 s) is the second key.
+cat >"$T/path.json" <<'JSON'
+{ "fps": 30, "keys": [ { "t": 0, "orbit": [30, 20, 2.2] },
+                       { "t": 0.3, "eye": [0.4, 1.9, 3.1], "look_at": [1.28, 1.28, 0.1] } ] }
+JSON
+FRAMES=10 view path1 --relief "$M" --size $S --camera-path "$T/path.json"
+FRAMES=10 view path2 --relief "$M" --size $S --camera-path "$T/path.json"
+same path1 path2 exact
+render r_path --eye 0.4,1.9,3.1 --look-at 1.28,1.28,0.1
+same r_path path1
+FRAMES=1 view path0 --relief "$M" --size $S --camera-path "$T/path.json"
+same v_two-pass path0
+FRAMES=5 view path_mid --relief "$M" --size $S --camera-path "$T/path.json"
+differ path0 path_mid
+differ path1 path_mid
 finish

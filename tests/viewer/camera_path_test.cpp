@@ -1,0 +1,61 @@
+// Camera paths: exact at the keys, linear between them, clamped outside, and errors that name the field.
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include "formats/image_io.h"
+#include "viewer/camera_path.h"
+#include "viewer/cameras.h"
+
+namespace rtm::viewer {
+namespace {
+
+const Bounds kBox{glm::dvec3(0), glm::dvec3(2, 2, 0.5)};
+
+TEST(CameraPath, ExactAtKeysLinearBetween) {
+    const CameraPath p = parse_camera_path(R"({"fps": 10, "keys": [
+        {"t": 0, "eye": [0, 0, 5], "look_at": [0, 0, 0]},
+        {"t": 2, "eye": [4, 0, 5]},
+        {"t": 3, "orbit": [30, 20, 2.2]}, {"t": 4, "orbit": [50, 40, 1.2]}]})",
+                                           "p.json");
+    EXPECT_EQ(p.fps, 10);
+    EXPECT_EQ(p.duration(), 4);
+    glm::dvec3 e, l;
+    p.at(0, kBox, e, l);
+    EXPECT_EQ(e, glm::dvec3(0, 0, 5));
+    EXPECT_EQ(l, glm::dvec3(0));
+    p.at(1, kBox, e, l);  // halfway; the second key looks at the centre by default
+    EXPECT_EQ(e, glm::dvec3(2, 0, 5));
+    EXPECT_EQ(l, 0.5 * kBox.centre());
+    p.at(3, kBox, e, l);
+    EXPECT_EQ(e, (OrbitCamera{30, 20, 2.2}.eye(kBox)));
+    p.at(3.5, kBox, e, l);  // between two orbit keys: the orbit parameters are interpolated
+    EXPECT_NEAR(glm::length(e - OrbitCamera{40, 30, 1.7}.eye(kBox)), 0.0, 1e-12);
+    p.at(99, kBox, e, l);
+    EXPECT_EQ(e, (OrbitCamera{50, 40, 1.2}.eye(kBox)));
+    p.at(-1, kBox, e, l);
+    EXPECT_EQ(e, glm::dvec3(0, 0, 5));
+}
+
+TEST(CameraPath, ErrorsNameTheFileAndField) {
+    auto message = [](const std::string& text) {
+        try {
+            parse_camera_path(text, "bad.json");
+        } catch (const IoError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_NE(message("{").find("bad.json: not valid JSON"), std::string::npos);
+    EXPECT_NE(message(R"({"keys": []})").find("\"keys\""), std::string::npos);
+    EXPECT_NE(message(R"({"keys": [{"t": 1, "orbit": [0,0,1]}]})").find("t = 0"), std::string::npos);
+    EXPECT_NE(message(R"({"keys": [{"t": 0, "orbit": [0,0,1]}, {"t": 0, "orbit": [0,0,1]}]})").find("keys[1]"),
+              std::string::npos);
+    EXPECT_NE(message(R"({"keys": [{"t": 0, "orbit": [0,0,0]}]})").find("distance"), std::string::npos);
+    EXPECT_NE(message(R"({"keys": [{"t": 0, "eye": [0,0]}]})").find("\"eye\""), std::string::npos);
+    EXPECT_NE(message(R"({"keys": [{"t": 0}]})").find("exactly one"), std::string::npos);
+    EXPECT_NE(message(R"({"fps": 0, "keys": [{"t": 0, "eye": [0,0,1]}]})").find("\"fps\""), std::string::npos);
+}
+
+}  // namespace
+}  // namespace rtm::viewer

@@ -1,0 +1,109 @@
+#include "viewer/camera_path.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "formats/image_io.h"
+#include "viewer/cameras.h"
+
+namespace rtm::viewer {
+
+namespace {
+
+glm::dvec3 vec3_field(const nlohmann::json& j, const char* field, const std::string& where) {
+    const nlohmann::json& v = j.at(field);
+    if (!v.is_array() || v.size() != 3) throw IoError(where + ": \"" + field + "\" must be an array of 3 numbers");
+    glm::dvec3 r;
+    for (int i = 0; i < 3; ++i) {
+        if (!v[size_t(i)].is_number()) throw IoError(where + ": \"" + field + "\" must be an array of 3 numbers");
+        r[i] = v[size_t(i)].get<double>();
+        if (!std::isfinite(r[i])) throw IoError(where + ": \"" + field + "\" has a value that is not finite");
+    }
+    return r;
+}
+
+glm::dvec3 key_eye(const PathKey& k, const Bounds& b) {
+    if (!k.is_orbit) return k.eye;
+    OrbitCamera o{k.orbit.x, k.orbit.y, k.orbit.z};
+    return o.eye(b);
+}
+
+}  // namespace
+
+CameraPath parse_camera_path(const std::string& text, const std::string& name) {
+    nlohmann::json j;
+    try {
+        j = nlohmann::json::parse(text);
+    } catch (const std::exception& e) {
+        throw IoError(name + ": not valid JSON: " + e.what());
+    }
+    if (!j.is_object()) throw IoError(name + ": expected a JSON object with \"keys\"");
+    CameraPath p;
+    if (j.contains("fps")) {
+        if (!j["fps"].is_number() || !(j["fps"].get<double>() > 0) || !std::isfinite(j["fps"].get<double>()))
+            throw IoError(name + ": \"fps\" must be a number > 0");
+        p.fps = j["fps"].get<double>();
+    }
+    if (!j.contains("keys") || !j["keys"].is_array() || j["keys"].empty())
+        throw IoError(name + ": \"keys\" must be a non-empty array");
+    for (size_t i = 0; i < j["keys"].size(); ++i) {
+        const nlohmann::json& k = j["keys"][i];
+        const std::string where = name + ": keys[" + std::to_string(i) + "]";
+        if (!k.is_object()) throw IoError(where + ": expected an object");
+        PathKey key;
+        if (!k.contains("t") || !k["t"].is_number() || !std::isfinite(k["t"].get<double>()))
+            throw IoError(where + ": \"t\" (seconds) is missing or not a number");
+        key.t = k["t"].get<double>();
+        if (i == 0 && key.t != 0) throw IoError(where + ": the first key must be at t = 0");
+        if (i > 0 && !(key.t > p.keys.back().t)) throw IoError(where + ": \"t\" must increase from key to key");
+        if (k.contains("orbit") == k.contains("eye"))
+            throw IoError(where + ": expected exactly one of \"orbit\" and \"eye\"");
+        if (k.contains("orbit")) {
+            key.is_orbit = true;
+            key.orbit = vec3_field(k, "orbit", where);
+            if (!(key.orbit.z > 0)) throw IoError(where + ": the orbit distance must be > 0");
+        } else {
+            key.eye = vec3_field(k, "eye", where);
+            if (k.contains("look_at")) {
+                key.look_at = vec3_field(k, "look_at", where);
+                key.has_look_at = true;
+            }
+        }
+        p.keys.push_back(key);
+    }
+    return p;
+}
+
+CameraPath load_camera_path(const std::string& path) {
+    std::ifstream f(path);
+    if (!f) throw IoError(path + ": cannot read the camera path");
+    std::stringstream ss;
+    ss << f.rdbuf();
+    return parse_camera_path(ss.str(), path);
+}
+
+void CameraPath::at(double t, const Bounds& b, glm::dvec3& eye, glm::dvec3& look_at) const {
+    if (keys.empty()) return;
+    t = std::clamp(t, 0.0, duration());
+    size_t i = 0;
+    while (i + 1 < keys.size() && keys[i + 1].t <= t) ++i;
+    const PathKey& k0 = keys[i];
+    const PathKey& k1 = keys[std::min(i + 1, keys.size() - 1)];
+    const double s = &k0 == &k1 ? 0.0 : (t - k0.t) / (k1.t - k0.t);
+    auto target = [&](const PathKey& k) { return k.has_look_at ? k.look_at : b.centre(); };
+    if (k0.is_orbit && k1.is_orbit) {
+        PathKey mid = k0;
+        mid.orbit = k0.orbit + s * (k1.orbit - k0.orbit);
+        eye = key_eye(mid, b);
+        look_at = b.centre();
+        return;
+    }
+    eye = key_eye(k0, b) + s * (key_eye(k1, b) - key_eye(k0, b));
+    look_at = target(k0) + s * (target(k1) - target(k0));
+}
+
+}  // namespace rtm::viewer

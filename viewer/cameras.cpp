@@ -1,0 +1,70 @@
+#include "viewer/cameras.h"
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace rtm::viewer {
+
+namespace {
+double radius_of(const Bounds& b) { return std::max(b.radius(), 1e-12); }
+}  // namespace
+
+void OrbitCamera::drag(double dx, double dy) {
+    az -= 0.3 * dx;
+    el = std::clamp(el + 0.3 * dy, -89.0, 89.0);
+}
+
+void OrbitCamera::zoom(double notches) { dist = std::clamp(dist * std::pow(0.9, notches), 0.05, 1000.0); }
+
+glm::dvec3 OrbitCamera::eye(const Bounds& b) const {
+    // The formula of --orbit (apps/cli_common.cpp, CameraArgs::resolve).
+    const double a = glm::radians(az), e = glm::radians(el);
+    const glm::dvec3 dir(std::sin(a) * std::cos(e), std::sin(e), std::cos(a) * std::cos(e));
+    return b.centre() + radius_of(b) * dist * dir;
+}
+
+glm::dvec3 FlyCamera::forward() const {
+    const double y = glm::radians(yaw), p = glm::radians(pitch);
+    return {std::sin(y) * std::cos(p), std::sin(p), -std::cos(y) * std::cos(p)};
+}
+
+glm::dvec3 FlyCamera::right() const {
+    const double y = glm::radians(yaw);
+    return {std::cos(y), 0.0, std::sin(y)};
+}
+
+void FlyCamera::look(double dx, double dy) {
+    yaw += 0.2 * dx;
+    pitch = std::clamp(pitch - 0.2 * dy, -89.0, 89.0);
+}
+
+void FlyCamera::move(const glm::dvec3& axes, double seconds) {
+    eye += speed * seconds * (axes.z * forward() + axes.x * right() + axes.y * glm::dvec3(0, 1, 0));
+}
+
+void FlyCamera::scroll_speed(double notches) { speed = std::clamp(speed * std::pow(1.25, notches), 1e-9, 1e12); }
+
+void FlyCamera::look_from(const glm::dvec3& from, const glm::dvec3& target) {
+    eye = from;
+    const glm::dvec3 d = target - from;
+    const double len = glm::length(d);
+    if (!(len > 0)) return;
+    pitch = glm::degrees(std::asin(std::clamp(d.y / len, -1.0, 1.0)));
+    yaw = glm::degrees(std::atan2(d.x, -d.z));
+}
+
+void FlyCamera::frame(const Bounds& b) { eye = b.centre() - forward() * (2.2 * radius_of(b)); }
+
+Camera make_camera(const Camera& base, const glm::dvec3& eye, const glm::dvec3& look_at, const Bounds& b) {
+    Camera c = base;
+    c.eye = eye;
+    c.look_at = look_at;
+    c.z_near = c.z_far = 0.0;
+    c.fit_clip_planes(b.centre(), radius_of(b));
+    return c;
+}
+
+}  // namespace rtm::viewer
