@@ -184,35 +184,4 @@ std::string relative_to_manifest(const std::string& manifest_path, const std::st
     return rel.empty() ? file : rel.string();
 }
 
-void write_text_atomic(const std::string& path, const std::string& text) {
-    static std::atomic<unsigned> counter{0};
-    const fs::path p(path);
-    // Appends rather than `"." + std::string&&`, which trips GCC 12's false -Wrestrict (GCC PR 105329).
-    std::string tmp_name(1, '.');
-    tmp_name += p.filename().string();
-    tmp_name += ".tmp" + std::to_string(::getpid()) + "-" + std::to_string(counter.fetch_add(1));
-    const std::string tmp = (p.parent_path() / tmp_name).string();
-    auto remove_tmp = [&] {
-        std::error_code ignore;
-        fs::remove(tmp, ignore);
-    };
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) fail(path, std::string("cannot write: ") + std::strerror(errno));
-        out << text;
-        out.flush();
-        if (!out) {
-            const int err = errno;
-            out.close();
-            remove_tmp();
-            fail(path, std::string("cannot write: ") + std::strerror(err));
-        }
-    }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-        const int err = errno;
-        remove_tmp();
-        fail(path, std::string("cannot write: rename from temporary file failed: ") + std::strerror(err));
-    }
-}
-
 }  // namespace rtm::manifest_json

@@ -1,6 +1,6 @@
 // What the readers of the project's JSON manifests share: the one-line error (the file's path, then what is
 // wrong), short descriptions of hostile values, reading a small text file, parsing JSON with errors that name the
-// field, typed field getters, path resolution and an atomic text write. Used by the object manifest
+// field, typed field getters, and path resolution (writers use formats/atomic_file.h). Used by the object manifest
 // (formats/object_manifest.h); the relief manifest's reader has its own copies of the same rules.
 #pragma once
 
@@ -38,7 +38,5 @@ glm::dvec3 get_vec3(const std::string& path, const json& j, const std::string& w
 std::string resolve(const std::string& manifest_path, const std::string& file);
 // A relative path from the manifest's folder to `file` (for writers).
 std::string relative_to_manifest(const std::string& manifest_path, const std::string& file);
-// Writes via a temporary file in the same folder and a rename: never a partial file.
-void write_text_atomic(const std::string& path, const std::string& text);
 
 }  // namespace rtm::manifest_json

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "formats/image_io.h"
+#include "formats/atomic_file.h"
 #include "formats/manifest_json.h"
 #include "formats/relief_manifest.h"
 
@@ -280,7 +281,7 @@ void write_object_manifest(const std::string& path, const std::string& name, con
         o << " }" << (f + 1 < kFaceCount ? "," : "") << "\n";
     }
     o << "  }\n}\n";
-    write_text_atomic(path, o.str());
+    write_text_atomically(path, o.str());
 }
 
 }  // namespace rtm

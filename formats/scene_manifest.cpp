@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "formats/atomic_file.h"
 #include "formats/manifest_json.h"
 
 namespace rtm {
@@ -205,7 +206,7 @@ void write_scene_manifest(const std::string& path, const SceneManifest& m) {
         for (const SceneCameraKey& k : m.path_keys) keys.push_back(camera_json(k));
         out["camera_path"] = {{"frames", m.path_frames}, {"keys", keys}};
     }
-    write_text_atomic(path, out.dump(2) + "\n");
+    write_text_atomically(path, out.dump(2) + "\n");
 }
 
 SceneCameraKey camera_path_frame(const std::vector<SceneCameraKey>& keys, int k, int n) {

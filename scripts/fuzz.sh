@@ -12,7 +12,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${RTM_FUZZ_SECONDS:-60}
-targets=${RTM_FUZZ_TARGETS:-"fuzz_relief_manifest fuzz_relief_loader fuzz_object_manifest"}
+targets=${RTM_FUZZ_TARGETS:-"fuzz_relief_manifest fuzz_relief_loader fuzz_object_manifest fuzz_scene_manifest"}
 B=build-fuzz
 
 echo "== libFuzzer targets (clang, address + undefined), ${seconds} s each"
@@ -66,12 +66,14 @@ seed_dir() {
     fuzz_relief_manifest) echo fuzz/corpus/relief_manifest ;;
     fuzz_relief_loader) echo "$seeds" ;;
     fuzz_object_manifest) echo fuzz/corpus/object_manifest ;;
+    fuzz_scene_manifest) echo fuzz/corpus/scene_manifest ;;
   esac
 }
 extra_flags() {
   case $1 in
     fuzz_relief_manifest) echo "-dict=fuzz/relief_manifest.dict" ;;
     fuzz_object_manifest) echo "-dict=fuzz/object_manifest.dict" ;;
+    fuzz_scene_manifest) echo "-dict=fuzz/scene_manifest.dict" ;;
   esac
 }
 

@@ -100,7 +100,7 @@ inline bool ok_bit(const fast::TwoPassJob& job, int x) { return (job.col_ok[x >>
 
 namespace fast {
 
-void horizontal_steps(const TwoPassJob& job, int s0, int s1, uint32_t* band_c, float* band_v, size_t stride) {
+void horizontal_steps(const TwoPassJob& job, int s0, int s1, uint32_t* band_c, float* band_v, size_t stride, float*) {
     const ReliefTexture& t = *job.relief;
     const int ow = job.out->width;
     LineStorage& ls = thread_line();

@@ -63,7 +63,9 @@ inline int step_row(const TwoPassJob& job, int s) {
 }
 
 // Steps [s0, s1) warped horizontally into band rows 0 .. s1 - s0 - 1 (colour and v, `stride` elements apart).
-void horizontal_steps(const TwoPassJob& job, int s0, int s1, uint32_t* band_c, float* band_v, size_t stride);
+// `scratch` (the Highway kernels' row scratch, warp/simd/hwy_two_pass.h) is not used here.
+void horizontal_steps(const TwoPassJob& job, int s0, int s1, uint32_t* band_c, float* band_v, size_t stride,
+                      float* scratch = nullptr);
 
 // The vertical pass over steps [s0, s1) (band rows as written by horizontal_steps) for output columns [x0, x1),
 // x0 a multiple of 16, in step order for each column range. The call with s0 = 0 first clears those columns of

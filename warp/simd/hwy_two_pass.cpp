@@ -20,16 +20,12 @@ HWY_BEFORE_NAMESPACE();
 namespace rtm::simd::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-// Per-thread scratch of one row (only grows).
+// Scratch of one row: positions, row coordinates and packed colours of the source width, in the caller's memory.
 struct RowScratch {
-    std::vector<float> pos, v;
-    std::vector<uint32_t> color;
+    float* pos;
+    float* v;
+    uint32_t* color;
 };
-
-inline RowScratch& row_scratch() {
-    static thread_local RowScratch s;
-    return s;
-}
 
 inline uint32_t pack(Rgba8 c) { return uint32_t(c.r) | uint32_t(c.g) << 8 | uint32_t(c.b) << 16 | uint32_t(c.a) << 24; }
 
@@ -168,16 +164,12 @@ void WarpRow(const float* pos, const uint32_t* col, const float* attr, int n, in
 // The horizontal pass of steps [s0, s1): for each, the reference's row_samples (lookup-table path) and
 // warp_line_to (WarpRow) into one band row (colour with alpha 255 where written, 0 elsewhere; the final row
 // coordinate).
-void HorizontalSteps(const fast::TwoPassJob& job, int s0, int s1, uint32_t* band_c, float* band_v, size_t stride) {
+void HorizontalSteps(const fast::TwoPassJob& job, int s0, int s1, uint32_t* band_c, float* band_v, size_t stride,
+                     float* scratch) {
     const ReliefTexture& t = *job.relief;
     const PrewarpTables& tab = *job.ref_tables;
     const int w = t.width, h = t.height, ow = job.out->width;
-    RowScratch& s = row_scratch();
-    if (s.pos.size() < size_t(w)) {
-        s.pos.resize(size_t(w));
-        s.v.resize(size_t(w));
-        s.color.resize(size_t(w));
-    }
+    const RowScratch s{scratch, scratch + w, reinterpret_cast<uint32_t*>(scratch + 2 * size_t(w))};
     const float ou = float(job.extent.left), ov = float(job.extent.bottom);
     const float nan = std::numeric_limits<float>::quiet_NaN();
     long long dropped = 0;
@@ -197,7 +189,7 @@ void HorizontalSteps(const fast::TwoPassJob& job, int s0, int s1, uint32_t* band
         uint32_t* rc = band_c + size_t(st - s0) * stride;
         float* rv = band_v + size_t(st - s0) * stride;
         std::memset(rc, 0, size_t(ow) * 4);
-        WarpRow(s.pos.data(), s.color.data(), s.v.data(), w, job.split_u, ow, rc, rv);
+        WarpRow(s.pos, s.color, s.v, w, job.split_u, ow, rc, rv);
     }
     if (dropped) *job.dropped += dropped;
 }

@@ -24,7 +24,9 @@
 
 namespace rtm::simd {
 
-using HorizontalStepsFn = void (*)(const fast::TwoPassJob&, int, int, uint32_t*, float*, size_t);
+// The horizontal pass of steps [s0, s1) into one band; `scratch` holds 3 * source width floats that no other call
+// uses at the same time (one per band slot: the kernels then allocate nothing, whichever thread runs them).
+using HorizontalStepsFn = void (*)(const fast::TwoPassJob&, int, int, uint32_t*, float*, size_t, float* scratch);
 using VerticalStepsFn = void (*)(const fast::TwoPassJob&, int, int, const uint32_t*, const float*, size_t, int, int);
 
 struct TwoPassKernels {

@@ -176,7 +176,9 @@ PrewarpStats fast_two_pass(const simd::TwoPassKernels& kernels, const ReliefText
     const int stride = (ow + 15) / 16 * 16;
     const int band = kBandRows, slots = kBandSlots;
     ensure_size(ws.mid_color, stride, 4 + band * slots + 1);
-    ensure_size(ws.mid_v, stride, 4 + band * slots + 1);
+    // After the bands: one row scratch (3 source widths of floats) per band slot, for the Highway kernels.
+    const size_t scratch_rows = (3 * size_t(w) + size_t(stride) - 1) / size_t(stride);
+    ensure_size(ws.mid_v, stride, 4 + band * slots + int(scratch_rows) * slots + 1);
     uint32_t* mc = aligned64(reinterpret_cast<uint32_t*>(ws.mid_color.pixels.data()));
     float* mv = aligned64(ws.mid_v.pixels.data());
     fast::TwoPassJob job;
@@ -203,7 +205,7 @@ PrewarpStats fast_two_pass(const simd::TwoPassKernels& kernels, const ReliefText
     const int bands = (h + band - 1) / band;
     auto horizontal = [&](int b) {
         kernels.horizontal(job, b * band, std::min(h, (b + 1) * band), band_c(b % slots), band_v(b % slots),
-                               size_t(stride));
+                           size_t(stride), mv + (size_t(4 + band * slots) + (b % slots) * scratch_rows) * stride);
     };
     auto vertical = [&](int b, int x0, int x1) {
         kernels.vertical(job, b * band, std::min(h, (b + 1) * band), band_c(b % slots), band_v(b % slots),
