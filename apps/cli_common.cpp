@@ -102,8 +102,8 @@ std::vector<std::string> parse_relief_names(const std::string& text, const std::
 void parse_size(const std::string& text, const std::string& flag, int& w, int& h) {
     int a = 0, b = 0;
     char x = 0, extra = 0;
-    if (std::sscanf(text.c_str(), "%d%c%d%c", &a, &x, &b, &extra) != 3 || (x != 'x' && x != 'X') || a <= 0 ||
-        b <= 0 || a > 16384 || b > 16384)
+    if (std::sscanf(text.c_str(), "%d%c%d%c", &a, &x, &b, &extra) != 3 || (x != 'x' && x != 'X') || a <= 0 || b <= 0 ||
+        a > 16384 || b > 16384)
         throw UsageError(flag + ": expected WxH with 1 <= W, H <= 16384, found \"" + text + "\"");
     w = a;
     h = b;
@@ -156,9 +156,9 @@ Camera CameraArgs::resolve(const Bounds& bounds) const {
         throw UsageError(std::string(eye.empty() ? "--orbit" : "--eye") + ": the eye " + fmt(cam.eye) +
                          " has a coordinate beyond +-1e30");
     if (too_far(cam.look_at))
-        throw UsageError(
-            "--look-at: " + std::string(look_at.empty() ? "the default, the centre of what is rendered, " : "") +
-            fmt(cam.look_at) + " has a coordinate beyond +-1e30");
+        throw UsageError("--look-at: " +
+                         std::string(look_at.empty() ? "the default, the centre of what is rendered, " : "") +
+                         fmt(cam.look_at) + " has a coordinate beyond +-1e30");
     if (too_far(cam.up)) throw UsageError("--up: " + fmt(cam.up) + " has a coordinate beyond +-1e30");
     // Camera::check() is the one judge of a usable camera; it names the setting, which names the flag.
     if (const CameraProblem p = cam.check(); p.field != CameraField::none) {
@@ -202,7 +202,8 @@ nlohmann::json timing_json(std::vector<double> ms) {
     double sum = 0;
     for (double x : ms) sum += x;
     const size_t n = ms.size();
-    return {{"min", ms.front()}, {"median", rtm::median(ms)}, {"mean", sum / double(n)}, {"max", ms.back()}, {"count", n}};
+    return {
+        {"min", ms.front()}, {"median", rtm::median(ms)}, {"mean", sum / double(n)}, {"max", ms.back()}, {"count", n}};
 }
 
 }  // namespace rtm::cli

@@ -51,8 +51,7 @@ void parse_range(const std::string& text, double& lo, double& hi) {
 
 void bake_mesh(const BakeArgs& a) {
     if (a.size < 1 || a.size > 16384)
-        throw UsageError("--size: expected N texels along the longest side, 1..16384, found " +
-                         std::to_string(a.size));
+        throw UsageError("--size: expected N texels along the longest side, 1..16384, found " + std::to_string(a.size));
     if (!a.planes.empty() && a.size_given)
         throw UsageError("--size applies to the six-face bake; with --planes each plane gives its size");
     const auto start = Clock::now();
@@ -80,8 +79,7 @@ void bake_mesh(const BakeArgs& a) {
         std::fprintf(stderr, "\rbake: %d of %d faces", done, total);
     });
     for (const std::string& w : obj.warnings) std::fprintf(stderr, "rtm: warning: %s: %s\n", a.mesh.c_str(), w.c_str());
-    const std::string manifest =
-        write_object(a.out, name, obj, std::filesystem::path(a.mesh).filename().string());
+    const std::string manifest = write_object(a.out, name, obj, std::filesystem::path(a.mesh).filename().string());
     if (shown) std::fprintf(stderr, "\n");
     std::printf("%s\n", manifest.c_str());
 }

@@ -42,9 +42,14 @@ void run(const Args& a) {
     if (!a.json.empty()) {
         nlohmann::json j = nlohmann::json::array();
         for (const FilterMeasurement& m : rows)
-            j.push_back({{"relief", m.relief}, {"view", m.view}, {"filter", m.filter}, {"ms", m.ms},
-                         {"fast_ms", m.fast_ms}, {"color_rmse", m.error.color_rmse},
-                         {"coverage_mae", m.error.coverage_mae}, {"iou", m.error.iou}});
+            j.push_back({{"relief", m.relief},
+                         {"view", m.view},
+                         {"filter", m.filter},
+                         {"ms", m.ms},
+                         {"fast_ms", m.fast_ms},
+                         {"color_rmse", m.error.color_rmse},
+                         {"coverage_mae", m.error.coverage_mae},
+                         {"iou", m.error.iou}});
         write_json(a.json, j);
     }
 }
@@ -53,8 +58,7 @@ void run(const Args& a) {
 
 void add_bench_filter_command(CLI::App& app) {
     auto a = std::make_shared<Args>();
-    CLI::App* sub =
-        app.add_subcommand("bench-filter", "Coverage (Fant-style) against point filtering: time and error");
+    CLI::App* sub = app.add_subcommand("bench-filter", "Coverage (Fant-style) against point filtering: time and error");
     sub->add_option("--reliefs", a->reliefs, "Procedural reliefs, e.g. bricks,ridges (default: all four)");
     sub->add_option("--size", a->size, "Relief size in texels")->capture_default_str();
     sub->add_option("--samples", a->samples, "Truth rays per pixel side")->capture_default_str();

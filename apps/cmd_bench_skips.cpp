@@ -24,10 +24,16 @@ void run(const Args& a) {
     if (!a.json.empty()) {
         nlohmann::json j = nlohmann::json::array();
         for (const SkipMeasurement& m : rows)
-            j.push_back({{"skip", m.skip}, {"scenario", m.scenario}, {"fired", m.fired},
-                         {"ms_without", m.ms_without}, {"ms_with", m.ms_with},
-                         {"prewarp_upload_ms_without", m.work_without}, {"prewarp_upload_ms_with", m.work_with}, {"iou_without", m.iou_without},
-                         {"iou_with", m.iou_with}, {"same_picture", m.same_picture},
+            j.push_back({{"skip", m.skip},
+                         {"scenario", m.scenario},
+                         {"fired", m.fired},
+                         {"ms_without", m.ms_without},
+                         {"ms_with", m.ms_with},
+                         {"prewarp_upload_ms_without", m.work_without},
+                         {"prewarp_upload_ms_with", m.work_with},
+                         {"iou_without", m.iou_without},
+                         {"iou_with", m.iou_with},
+                         {"same_picture", m.same_picture},
                          {"psnr_without", std::isfinite(m.psnr_without) ? nlohmann::json(m.psnr_without) : nullptr},
                          {"psnr_with", std::isfinite(m.psnr_with) ? nlohmann::json(m.psnr_with) : nullptr}});
         write_json(a.json, {{"command", "bench-skips"}, {"rows", j}});

@@ -57,8 +57,8 @@ void run_compare(const CompareArgs& a) {
                      {"psnr", std::isfinite(r.error.psnr) ? nlohmann::json(r.error.psnr) : nlohmann::json(nullptr)},
                      {"rmse", r.error.rmse},
                      {"iou", r.error.iou},
-                     {"psnr_vs_micromesh",
-                      std::isfinite(r.vs_micromesh.psnr) ? nlohmann::json(r.vs_micromesh.psnr) : nlohmann::json(nullptr)},
+                     {"psnr_vs_micromesh", std::isfinite(r.vs_micromesh.psnr) ? nlohmann::json(r.vs_micromesh.psnr)
+                                                                              : nlohmann::json(nullptr)},
                      {"iou_vs_micromesh", r.vs_micromesh.iou}});
     write_json(a.out + "/compare.json", {{"relief", a.relief}, {"rows", j}});
     write_text_atomically(a.out + "/compare.md", md);

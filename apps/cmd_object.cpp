@@ -37,7 +37,8 @@ void run_render_object(const ObjectRenderArgs& a) {
         throw UsageError(std::string("--method: ") + e.what());
     }
     if (method == RenderMethod::raycast)
-        throw UsageError("--method: raycast is not available for --object; known: flat, two-pass, pipelined, micromesh");
+        throw UsageError(
+            "--method: raycast is not available for --object; known: flat, two-pass, pipelined, micromesh");
     const Filter filter = parse_filter(a.filter, method == RenderMethod::pipelined ? Reconstruction::pipelined
                                                                                    : Reconstruction::two_pass);
     const int level = parse_level(a.level);

@@ -26,7 +26,8 @@ struct PrewarpArgs {
 };
 
 void run_prewarp(const PrewarpArgs& a) {
-    if (a.relief.empty() == a.object.empty()) throw UsageError("prewarp needs exactly one of --relief M and --object O");
+    if (a.relief.empty() == a.object.empty())
+        throw UsageError("prewarp needs exactly one of --relief M and --object O");
     if (!a.object.empty())
         return run_prewarp_object({a.object, a.eye, a.out, a.method, a.level, a.json, a.filter, a.exact, a.repeat,
                                    a.threads});
@@ -35,8 +36,8 @@ void run_prewarp(const PrewarpArgs& a) {
     try {
         opt.method = parse_reconstruction(a.method);
     } catch (const std::invalid_argument&) {
-        throw UsageError("--method: unknown method \"" + a.method + "\" for prewarp; known: " +
-                         reconstruction_names_list());
+        throw UsageError("--method: unknown method \"" + a.method +
+                         "\" for prewarp; known: " + reconstruction_names_list());
     }
     const int level_arg = parse_level(a.level);
     if (a.repeat < 1) throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
@@ -116,8 +117,9 @@ void add_prewarp_command(CLI::App& app) {
     sub->add_option("--level", a->level, "Relief texture pyramid level N or auto")->capture_default_str();
     sub->add_option("--repeat", a->repeat, "Run N times after one warm-up, for timing")->capture_default_str();
     sub->add_option("--threads", a->threads, "Threads (0 = all)")->capture_default_str();
-    sub->add_option("--isa", a->isa, "SIMD target: auto, avx512, avx2, sse4, neon, sve or generic (the reference "
-                                     "kernels); auto follows RTM_ISA, else the fastest")
+    sub->add_option("--isa", a->isa,
+                    "SIMD target: auto, avx512, avx2, sse4, neon, sve or generic (the reference "
+                    "kernels); auto follows RTM_ISA, else the fastest")
         ->capture_default_str();
     sub->add_option("--json", a->json, "Write figures as JSON");
     sub->callback([a] { run_prewarp(*a); });

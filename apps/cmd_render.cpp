@@ -23,7 +23,6 @@ namespace rtm::cli {
 
 namespace {
 
-
 struct RenderArgs {
     std::string relief, object, scene, mesh, frames_dir, out, json, method = "two-pass", level = "0", filter = "point";
     CameraArgs camera;
@@ -170,7 +169,8 @@ void add_render_command(CLI::App& app) {
     sub->add_option("--method", a->method,
                     "flat, two-pass, pipelined, micromesh, raycast, or a per-pixel method: parallax, "
                     "parallax-offset-limiting, steep-parallax, parallax-occlusion, relief-mapping, interval-mapping, "
-                    "protruded-displacement, quadric-silhouettes (on a cylinder patch)")->capture_default_str();
+                    "protruded-displacement, quadric-silhouettes (on a cylinder patch)")
+        ->capture_default_str();
     sub->add_flag("--exact", a->exact, "Pre-warp with unquantized displacement and double-precision coordinates");
     sub->add_option("--filter", a->filter, "Pre-warp resampling: point or coverage (Fant-style, two-pass only)")
         ->capture_default_str();

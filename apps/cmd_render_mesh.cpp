@@ -45,8 +45,8 @@ void run_render_mesh(const std::string& mesh_path, const CameraArgs& camera, con
                           {"texels", 0},
                           {"level", 0},
                           {"skips", nlohmann::json::array()},
-                          {"bounds", {{"min", {mesh.lo.x, mesh.lo.y, mesh.lo.z}},
-                                      {"max", {mesh.hi.x, mesh.hi.y, mesh.hi.z}}}},
+                          {"bounds",
+                           {{"min", {mesh.lo.x, mesh.lo.y, mesh.lo.z}}, {"max", {mesh.hi.x, mesh.hi.y, mesh.hi.z}}}},
                           {"eye", {cam.eye.x, cam.eye.y, cam.eye.z}},
                           {"size", {cam.width, cam.height}}});
     }

@@ -51,7 +51,8 @@ void run_render_scene(const SceneRenderArgs& a) {
     if (!a.frames_dir.empty() && (a.camera.has_eye() || a.path_frame >= 0))
         throw UsageError("--frames renders the scene's camera path: give no CAMERA and no --camera-path");
     if (a.camera.has_eye() && a.path_frame >= 0) throw UsageError("give either a CAMERA or --camera-path, not both");
-    if (a.frames_dir.empty() && a.out.empty() && a.json.empty()) throw UsageError("render --scene needs --out or --json");
+    if (a.frames_dir.empty() && a.out.empty() && a.json.empty())
+        throw UsageError("render --scene needs --out or --json");
     if (a.camera.has_eye()) (void)a.camera.resolve(Bounds{glm::dvec3(-1), glm::dvec3(1)});  // syntax, before reading
     if (!a.json.empty()) check_output_file(a.json, "--json");
 

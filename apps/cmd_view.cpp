@@ -41,9 +41,9 @@ void run_view(const ViewArgs& a) {
         throw UsageError(std::string("--method: ") + e.what());
     }
     s.level = parse_level(a.level);
-    s.coverage = parse_filter(a.filter, s.method == RenderMethod::pipelined ? Reconstruction::pipelined
-                                                                            : Reconstruction::two_pass) ==
-                 Filter::coverage;
+    s.coverage = parse_filter(a.filter, s.method == RenderMethod::pipelined
+                                            ? Reconstruction::pipelined
+                                            : Reconstruction::two_pass) == Filter::coverage;
     if (!a.split.empty()) {
         try {
             viewer::parse_split(a.split, s);
@@ -72,9 +72,10 @@ void run_view(const ViewArgs& a) {
     if (!a.json.empty()) check_output_file(a.json, "--json");
     if (!a.screenshot.empty()) check_output_file(a.screenshot, "--screenshot");
 
-    const std::string file = !a.relief.empty() ? a.relief : !a.object.empty() ? a.object
-                                                        : !a.scene.empty()  ? a.scene
-                                                                            : a.file;
+    const std::string file = !a.relief.empty()   ? a.relief
+                             : !a.object.empty() ? a.object
+                             : !a.scene.empty()  ? a.scene
+                                                 : a.file;
     if (!a.object.empty() && a.object.find(".object.json") == std::string::npos)
         throw IoError(a.object + ": --object expects NAME.object.json");
     if (!a.scene.empty() && a.scene.find(".scene.json") == std::string::npos)

@@ -25,8 +25,8 @@ std::string bake_height_map(const HeightBakeOptions& o, const std::string& out_d
     for (size_t p = 0; p < height.pixels.size(); ++p) {
         const float v = height.pixels[p];
         if (!(v >= 0.0f && v <= 1.0f))
-            throw IoError(o.height_path + ": height " + num(v) + " at texel (" + std::to_string(p % size_t(w)) +
-                          ", " + std::to_string(p / size_t(w)) + ") is outside 0..1 (a float image must be " +
+            throw IoError(o.height_path + ": height " + num(v) + " at texel (" + std::to_string(p % size_t(w)) + ", " +
+                          std::to_string(p / size_t(w)) + ") is outside 0..1 (a float image must be " +
                           "normalized; the world range is given by --range)");
     }
     const double texel = o.texel.value_or(1.0 / w);
@@ -60,8 +60,8 @@ std::string bake_height_map(const HeightBakeOptions& o, const std::string& out_d
     m.geometry.origin = glm::dvec3(0.0);
     m.geometry.a = glm::dvec3(texel, 0.0, 0.0);
     m.geometry.b = glm::dvec3(0.0, texel, 0.0);
-    const std::string manifest =
-        (std::filesystem::path(out_dir.empty() ? "." : out_dir) / (m.name + ".relief.json")).string();
+    const std::string manifest = (std::filesystem::path(out_dir.empty() ? "." : out_dir) / (m.name + ".relief.json"))
+                                     .string();
     write_relief(manifest, m, color, height);
     return manifest;
 }

@@ -12,10 +12,10 @@ namespace rtm {
 
 struct HeightBakeOptions {
     std::string height_path;
-    std::string color_path;            // empty: grey levels from the height
-    std::optional<double> range_min;   // default 0
-    std::optional<double> range_max;   // default a tenth of the relief's width (texel * width / 10)
-    std::optional<double> texel;       // world units per texel; default 1 / width (a relief one unit wide)
+    std::string color_path;           // empty: grey levels from the height
+    std::optional<double> range_min;  // default 0
+    std::optional<double> range_max;  // default a tenth of the relief's width (texel * width / 10)
+    std::optional<double> texel;      // world units per texel; default 1 / width (a relief one unit wide)
 };
 
 // Writes DIR/NAME.relief.json with NAME_color.png and NAME_disp.png beside it (NAME: the height image's stem) and

@@ -138,8 +138,7 @@ std::string reader_exception() {
 // PNG's IDAT is left to libpng, which streams it and says more about a file cut short in its pixel data.
 class ContainerCheck {
 public:
-    explicit ContainerCheck(const std::string& path)
-        : path_(path), f_(std::fopen(path.c_str(), "rb"), &std::fclose) {
+    explicit ContainerCheck(const std::string& path) : path_(path), f_(std::fopen(path.c_str(), "rb"), &std::fclose) {
         std::error_code ec;
         size_ = fs::file_size(path, ec);
         if (ec) f_.reset();
@@ -163,10 +162,9 @@ private:
         if (claimed <= size_ - std::min(size_, from)) return;
         std::string printable;
         for (char c : name) printable += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
-        fail(path_, std::string("cannot read as an image: ") + format + " " + what + " \"" + printable +
-                        "\" at byte " + std::to_string(pos) + " claims " + std::to_string(claimed) +
-                        " bytes, more than the " + std::to_string(size_ - std::min(size_, from)) +
-                        " left in the file (truncated or corrupt)");
+        fail(path_, std::string("cannot read as an image: ") + format + " " + what + " \"" + printable + "\" at byte " +
+                        std::to_string(pos) + " claims " + std::to_string(claimed) + " bytes, more than the " +
+                        std::to_string(size_ - std::min(size_, from)) + " left in the file (truncated or corrupt)");
     }
     void png() {
         unsigned char h[8];
@@ -201,8 +199,8 @@ private:
                 unsigned char n[4];
                 if (!read_string(pos, type) || !read_at(pos, n, 4)) return;
                 pos += 4;
-                const int32_t claimed =
-                    int32_t(uint32_t(n[0]) | uint32_t(n[1]) << 8 | uint32_t(n[2]) << 16 | uint32_t(n[3]) << 24);
+                const int32_t claimed = int32_t(uint32_t(n[0]) | uint32_t(n[1]) << 8 | uint32_t(n[2]) << 16 |
+                                                uint32_t(n[3]) << 24);
                 if (claimed < 0) return;  // OpenEXR refuses that itself
                 check("OpenEXR", "attribute", name, at, std::uintmax_t(claimed), pos);
                 pos += std::uintmax_t(claimed);
@@ -314,8 +312,8 @@ void write_atomic(const std::string& path, int width, int height, int nch, OIIO:
     auto out = OIIO::ImageOutput::create(path);
     if (!out) {
         std::string msg = one_line(OIIO::geterror());
-        fail(path, "cannot write: no image writer for this file name" +
-                       (msg.empty() ? std::string() : " (" + msg + ")"));
+        fail(path,
+             "cannot write: no image writer for this file name" + (msg.empty() ? std::string() : " (" + msg + ")"));
     }
     int channels = nch;
     OIIO::stride_t xstride = OIIO::stride_t(nch) * OIIO::stride_t(data_type.size());
@@ -382,8 +380,7 @@ void write_rgba8(const std::string& path, const ImageRGBA8& img) {
     if (img.pixels.size() != size_t(std::max(img.width, 0)) * size_t(std::max(img.height, 0)))
         fail(path, "cannot write: image claims " + std::to_string(img.width) + "x" + std::to_string(img.height) +
                        " but holds " + std::to_string(img.pixels.size()) + " pixels");
-    write_atomic(path, img.width, img.height, 4, OIIO::TypeDesc::UINT8, OIIO::TypeDesc::UINT8, img.pixels.data(),
-                 true);
+    write_atomic(path, img.width, img.height, 4, OIIO::TypeDesc::UINT8, OIIO::TypeDesc::UINT8, img.pixels.data(), true);
 }
 
 void write_gray(const std::string& path, const ImageF& img) {
@@ -396,8 +393,7 @@ void write_gray(const std::string& path, const ImageF& img) {
         clamped[i] = std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f;
     }
     // 16 bits per sample; a format without 16-bit support (JPEG, ...) falls back to what it supports.
-    write_atomic(path, img.width, img.height, 1, OIIO::TypeDesc::UINT16, OIIO::TypeDesc::FLOAT, clamped.data(),
-                 false);
+    write_atomic(path, img.width, img.height, 1, OIIO::TypeDesc::UINT16, OIIO::TypeDesc::FLOAT, clamped.data(), false);
 }
 
 }  // namespace rtm

@@ -100,8 +100,8 @@ std::string read_text(const std::string& path, const std::string& kind) {
     const std::uintmax_t size = fs::file_size(path, ec);
     if (ec) fail(path, "cannot open " + kind + ": " + ec.message());
     if (size > kMaxManifestBytes)
-        fail(path, kind + " is " + std::to_string(size) + " bytes, expected at most " +
-                       std::to_string(kMaxManifestBytes));
+        fail(path,
+             kind + " is " + std::to_string(size) + " bytes, expected at most " + std::to_string(kMaxManifestBytes));
     std::ifstream in(path, std::ios::binary);
     if (!in) fail(path, "cannot open " + kind + ": " + std::strerror(errno));
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

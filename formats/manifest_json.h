@@ -17,11 +17,11 @@ using nlohmann::json;
 
 // Throws rtm::IoError "<path>: <what>", control characters shown as '?' so the message stays one line.
 [[noreturn]] void fail(const std::string& path, const std::string& what);
-std::string fmt_double(double v);                        // shortest round-trip form; nan, inf, -inf
+std::string fmt_double(double v);  // shortest round-trip form; nan, inf, -inf
 std::string fmt_list(std::initializer_list<std::string> items);
 std::string fmt_vec(const glm::dvec3& v);
-std::string describe(const json& v);                     // one short line, never recursing into containers
-std::string quoted(const std::string& s);                // JSON-quoted, truncated, one line
+std::string describe(const json& v);       // one short line, never recursing into containers
+std::string quoted(const std::string& s);  // JSON-quoted, truncated, one line
 // The text of a manifest file of the given kind ("object manifest"), at most 1 MiB, not empty.
 std::string read_text(const std::string& path, const std::string& kind);
 json parse(const std::string& path, const std::string& text);

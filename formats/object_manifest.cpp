@@ -73,23 +73,23 @@ void parse_face(const std::string& path, const json& j, int f, const Box& box, O
     e.color_path = resolve(path, get_file_name(path, j, where, "color"));
     e.displacement_path = resolve(path, get_file_name(path, j, where, "displacement"));
     const json& r = required(path, j, where, "displacement_range", "an array of 2 finite numbers [lo, hi]");
-    const std::vector<double> range =
-        get_numbers(path, j, where, "displacement_range", 2, "an array of 2 finite numbers [lo, hi]");
+    const std::vector<double> range = get_numbers(path, j, where, "displacement_range", 2,
+                                                  "an array of 2 finite numbers [lo, hi]");
     if (const std::string why = range_problem(range[0], range[1], depth); !why.empty())
         fail(path, where + "field \"displacement_range\" " + why + ", found " + describe(r));
     e.range_min = range[0];
     e.range_max = range[1];
     if (auto it = j.find("discontinuity"); it != j.end()) {
         if (!(it->is_number() && std::isfinite(it->get<double>()) && it->get<double>() >= 0.0))
-            fail(path, where + "field \"discontinuity\" must be a finite number >= 0 (world units), found " +
-                           describe(*it));
+            fail(path,
+                 where + "field \"discontinuity\" must be a finite number >= 0 (world units), found " + describe(*it));
         e.discontinuity = it->get<double>();
     }
 }
 
 // World displacement from the normalized image, as load_relief maps it.
-ImageF world_displacement(const std::string& path, const std::string& where, const ImageF& disp, double lo,
-                          double hi, const std::string& disp_name) {
+ImageF world_displacement(const std::string& path, const std::string& where, const ImageF& disp, double lo, double hi,
+                          const std::string& disp_name) {
     ImageF world(disp.width, disp.height);
     for (int row = 0; row < disp.height; ++row)
         for (int x = 0; x < disp.width; ++x) {
@@ -131,8 +131,8 @@ ObjectManifest parse_object_manifest(const std::string& path) {
     for (int i = 0; i < 3; ++i) {
         const double ext = m.box.hi[i] - m.box.lo[i];
         if (!(ext > 0.0) || !std::isfinite(ext))
-            fail(path, std::string("field \"box\" must have min < max on every axis, found min ") +
-                           fmt_vec(m.box.lo) + " and max " + fmt_vec(m.box.hi) + " (axis " + kAxisNames[i] + ")");
+            fail(path, std::string("field \"box\" must have min < max on every axis, found min ") + fmt_vec(m.box.lo) +
+                           " and max " + fmt_vec(m.box.hi) + " (axis " + kAxisNames[i] + ")");
     }
     const json& faces = required(path, j, "", "faces", "an object with the six faces \"+x\" ... \"-z\"");
     if (!faces.is_object())
@@ -183,8 +183,8 @@ SixFaceObject load_object(const std::string& path, ObjectManifest* manifest_out)
             if (!(off <= tol))
                 fail(path, where + "the relief's frame (origin " + fmt_vec(e.geometry.origin) + ", a " +
                                fmt_vec(e.geometry.a) + ", b " + fmt_vec(e.geometry.b) +
-                               ") is not the box face's (origin " + fmt_vec(g.origin) + ", a " + fmt_vec(g.a) +
-                               ", b " + fmt_vec(g.b) + ")");
+                               ") is not the box face's (origin " + fmt_vec(g.origin) + ", a " + fmt_vec(g.a) + ", b " +
+                               fmt_vec(g.b) + ")");
         }
         for (int which = 0; which < 2; ++which) {
             const int axis = face_step_axis(f, which);
@@ -195,8 +195,8 @@ SixFaceObject load_object(const std::string& path, ObjectManifest* manifest_out)
             } else if (std::abs(s - spacing[axis]) > 1e-6 * spacing[axis]) {
                 fail(path, std::string("faces \"") + kFaceKeys[size_t(spacing_face[axis])] + "\" and \"" +
                                kFaceKeys[size_t(f)] + "\" differ in texel spacing along " + kAxisNames[axis] + ": " +
-                               fmt_double(spacing[axis]) + " vs " + fmt_double(s) + " (face \"" +
-                               kFaceKeys[size_t(f)] + "\" is " + size_str(color.width, color.height) + ")");
+                               fmt_double(spacing[axis]) + " vs " + fmt_double(s) + " (face \"" + kFaceKeys[size_t(f)] +
+                               "\" is " + size_str(color.width, color.height) + ")");
             }
         }
         const ImageF world = world_displacement(path, where, disp, e.range_min, e.range_max, disp_name);
@@ -244,9 +244,8 @@ void write_object_manifest(const std::string& path, const std::string& name, con
                 spacing[axis] = s;
                 spacing_face[axis] = f;
             } else if (std::abs(s - spacing[axis]) > 1e-6 * spacing[axis]) {
-                fail(path, std::string("cannot write: faces \"") + kFaceKeys[size_t(spacing_face[axis])] +
-                               "\" and \"" + kFaceKeys[size_t(f)] + "\" differ in texel spacing along " +
-                               kAxisNames[axis]);
+                fail(path, std::string("cannot write: faces \"") + kFaceKeys[size_t(spacing_face[axis])] + "\" and \"" +
+                               kFaceKeys[size_t(f)] + "\" differ in texel spacing along " + kAxisNames[axis]);
             }
         }
     }

@@ -24,12 +24,12 @@
 namespace rtm {
 
 struct ObjectFaceEntry {
-    std::string relief_path;        // set when the face is given as a relief manifest (then the rest comes from it)
-    std::string color_path;         // resolved against the manifest's folder
+    std::string relief_path;  // set when the face is given as a relief manifest (then the rest comes from it)
+    std::string color_path;   // resolved against the manifest's folder
     std::string displacement_path;
     double range_min = 0.0, range_max = 0.0;
     std::optional<double> discontinuity;
-    ReliefGeometry geometry;        // relief form only: the relief manifest's own frame (checked when loaded)
+    ReliefGeometry geometry;  // relief form only: the relief manifest's own frame (checked when loaded)
 };
 
 struct ObjectManifest {

@@ -58,19 +58,14 @@ std::string truncate(std::string s, size_t n = 60) {
 // A short one-line description of a JSON value for error messages.
 std::string describe(const json& v) {
     switch (v.type()) {
-        case json::value_t::null:
-            return "null";
-        case json::value_t::boolean:
-            return v.get<bool>() ? "true" : "false";
+        case json::value_t::null: return "null";
+        case json::value_t::boolean: return v.get<bool>() ? "true" : "false";
         case json::value_t::number_integer:
-        case json::value_t::number_unsigned:
-            return v.dump();
-        case json::value_t::number_float:
-            return fmt_double(v.get<double>());
+        case json::value_t::number_unsigned: return v.dump();
+        case json::value_t::number_float: return fmt_double(v.get<double>());
         case json::value_t::string:
             return "the string " + truncate(v.dump(-1, ' ', false, json::error_handler_t::replace));
-        case json::value_t::object:
-            return "an object with " + std::to_string(v.size()) + " fields";
+        case json::value_t::object: return "an object with " + std::to_string(v.size()) + " fields";
         case json::value_t::array: {
             if (v.size() > 8) return "an array of " + std::to_string(v.size()) + " elements";
             std::string s = "[";
@@ -88,8 +83,7 @@ std::string describe(const json& v) {
             }
             return s + "]";
         }
-        default:
-            return "an unsupported value";
+        default: return "an unsupported value";
     }
 }
 
@@ -159,10 +153,10 @@ json parse_json(const std::string& path, const std::string& text) {
             if (const size_t a = msg.find('\''), b = msg.rfind('\''); a != std::string::npos && b > a)
                 token = truncate(msg.substr(a + 1, b - a - 1), 40);
             // The key is quoted through JSON so that control characters in it cannot break the line.
-            const std::string where =
-                last_key.empty()
-                    ? std::string("the manifest")
-                    : "field " + truncate(json(last_key).dump(-1, ' ', false, json::error_handler_t::replace));
+            const std::string where = last_key.empty()
+                                          ? std::string("the manifest")
+                                          : "field " + truncate(json(last_key).dump(-1, ' ', false,
+                                                                                    json::error_handler_t::replace));
             fail(path, where + " must hold finite numbers, found " + token + ", which overflows a double");
         }
         fail(path, "malformed JSON: " + strip(e.what()));
@@ -272,8 +266,8 @@ ReliefManifest parse_relief_manifest(const std::string& path) {
     // Required fields, in the order of docs/FORMATS.md.
     m.color_path = resolve(path, get_file_name(path, j, "color"));
     m.displacement_path = resolve(path, get_file_name(path, j, "displacement"));
-    const std::vector<double> range =
-        get_numbers(path, j, "displacement_range", 2, "an array of 2 finite numbers [min, max]");
+    const std::vector<double> range = get_numbers(path, j, "displacement_range", 2,
+                                                  "an array of 2 finite numbers [min, max]");
     if (range[0] > range[1])
         fail(path, "field \"displacement_range\" must be [min, max] with min <= max, found [" + fmt_double(range[0]) +
                        ", " + fmt_double(range[1]) + "]");
@@ -364,8 +358,9 @@ void write_relief(const std::string& manifest_path, const ReliefManifest& m, con
     if (!std::isfinite(m.range_min) || !std::isfinite(m.range_max) || m.range_min > m.range_max)
         fail(manifest_path, "cannot write: displacement_range must be 2 finite numbers with min <= max, found [" +
                                 fmt_double(m.range_min) + ", " + fmt_double(m.range_max) + "]");
-    const std::pair<const char*, glm::dvec3> vectors[] = {
-        {"origin", m.geometry.origin}, {"a", m.geometry.a}, {"b", m.geometry.b}};
+    const std::pair<const char*, glm::dvec3> vectors[] = {{"origin", m.geometry.origin},
+                                                          {"a", m.geometry.a},
+                                                          {"b", m.geometry.b}};
     for (const auto& [key, v] : vectors)
         if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
             fail(manifest_path,

@@ -82,7 +82,8 @@ SceneItem parse_item(const std::string& path, const json& j, size_t index) {
     const std::string where = "item " + std::to_string(index) + ": ";
     if (!j.is_object()) fail(path, where + "must be an object, found " + describe(j));
     const json& type = required(path, j, where, "type", "\"relief\" or \"polygon\"");
-    if (!type.is_string()) fail(path, where + "field \"type\" must be \"relief\" or \"polygon\", found " + describe(type));
+    if (!type.is_string())
+        fail(path, where + "field \"type\" must be \"relief\" or \"polygon\", found " + describe(type));
     const std::string& kind = type.get_ref<const std::string&>();
     SceneItem item;
     item.transform = parse_transform(path, j, where);
@@ -111,8 +112,9 @@ SceneItem parse_item(const std::string& path, const json& j, size_t index) {
         if (j.contains("color")) {
             const std::vector<double> c = get_numbers(path, j, where, "color", 3, "[r, g, b], each in 0..1");
             for (double v : c)
-                if (v < 0 || v > 1) fail(path, where + "field \"color\" must be [r, g, b], each in 0..1, found " +
-                                                   describe(j["color"]));
+                if (v < 0 || v > 1)
+                    fail(path,
+                         where + "field \"color\" must be [r, g, b], each in 0..1, found " + describe(j["color"]));
             item.color = {c[0], c[1], c[2]};
         }
     } else {
@@ -213,13 +215,12 @@ SceneCameraKey camera_path_frame(const std::vector<SceneCameraKey>& keys, int k,
     if (keys.size() < 2) throw std::invalid_argument("a camera path needs at least 2 keys");
     if (n < 2) throw std::invalid_argument("a camera path needs at least 2 frames, found " + std::to_string(n));
     if (k < 0 || k >= n)
-        throw std::invalid_argument("frame " + std::to_string(k) + " is outside the path's 0.." + std::to_string(n - 1));
+        throw std::invalid_argument("frame " + std::to_string(k) + " is outside the path's 0.." +
+                                    std::to_string(n - 1));
     const double t = double(k) * double(keys.size() - 1) / double(n - 1);
     const size_t i = std::min(size_t(t), keys.size() - 2);
     const double s = t - double(i);
-    auto key = [&](long j) -> const SceneCameraKey& {
-        return keys[size_t(std::clamp(j, 0L, long(keys.size()) - 1))];
-    };
+    auto key = [&](long j) -> const SceneCameraKey& { return keys[size_t(std::clamp(j, 0L, long(keys.size()) - 1))]; };
     // Uniform Catmull-Rom through p1 and p2 with tangents from their neighbours.
     auto spline = [&](const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p2, const glm::dvec3& p3) {
         const double s2 = s * s, s3 = s2 * s;

@@ -59,8 +59,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     for (int f = 0; f < kFaceCount; ++f) {
         const ObjectFaceEntry& e = m.faces[size_t(f)];
         const double depth = m.box.extent()[face_axis(f)];
-        if (!(e.range_min <= e.range_max && e.range_max <= 0.0 && e.range_min >= -depth * (1 + 1e-9)) ||
-            !(depth > 0) || !std::isfinite(depth) || e.color_path.empty() || e.displacement_path.empty()) {
+        if (!(e.range_min <= e.range_max && e.range_max <= 0.0 && e.range_min >= -depth * (1 + 1e-9)) || !(depth > 0) ||
+            !std::isfinite(depth) || e.color_path.empty() || e.displacement_path.empty()) {
             std::fprintf(stderr, "FINDING: parse_object_manifest accepted an invalid face %s: range [%g, %g]\n",
                          kFaceKeys[size_t(f)], e.range_min, e.range_max);
             std::abort();

@@ -28,7 +28,7 @@ namespace {
 using namespace rtm;
 
 // 16 entries: bits 1..4 of byte 0. "" leaves the extension off, so OpenImageIO has to guess from the contents.
-constexpr const char* kExtensions[16] = {"png", "ppm", "pgm", "pfm", "jpg", "tif", "exr", "bmp",
+constexpr const char* kExtensions[16] = {"png", "ppm", "pgm", "pfm", "jpg",  "tif", "exr", "bmp",
                                          "tga", "hdr", "gif", "sgi", "webp", "psd", "dds", ""};
 constexpr int kWidth = 6, kHeight = 4;
 

@@ -58,8 +58,8 @@ bool expect_ok_or_io_error(const std::string& path, const std::function<void()>&
     } catch (const IoError& e) {
         const std::string msg = e.what();
         if (msg.rfind(path + ": ", 0) == 0 && msg.find('\n') == std::string::npos) return false;
-        std::fprintf(stderr, "FINDING: rtm::IoError message is not one line starting with \"%s: \": %s\n",
-                     path.c_str(), msg.c_str());
+        std::fprintf(stderr, "FINDING: rtm::IoError message is not one line starting with \"%s: \": %s\n", path.c_str(),
+                     msg.c_str());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "FINDING: exception other than rtm::IoError (%s): %s\n", typeid(e).name(), e.what());
     } catch (...) {

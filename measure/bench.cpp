@@ -30,7 +30,6 @@ namespace rtm {
 
 namespace {
 
-
 std::string read_first_line(const char* path) {
     std::ifstream f(path);
     std::string line;
@@ -72,8 +71,7 @@ std::vector<double> repeat_timed(const BenchConfig& c, Fn&& once) {
     once();
     std::vector<double> ms;
     const auto t0 = Clock::now();
-    while (int(ms.size()) < c.max_repeats &&
-           (int(ms.size()) < c.min_repeats || ms_since(t0) < c.min_seconds * 1000.0))
+    while (int(ms.size()) < c.max_repeats && (int(ms.size()) < c.min_repeats || ms_since(t0) < c.min_seconds * 1000.0))
         ms.push_back(once());
     return ms;
 }
@@ -198,7 +196,8 @@ void bench_objects(const BenchConfig& c, Renderer& renderer, int threads, BenchR
             const Bounds b = object.bounds();
             const double az = glm::radians(v.az), el = glm::radians(v.el), d = 2.5 * b.radius();
             cam.look_at = b.centre();
-            cam.eye = b.centre() + d * glm::dvec3(std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el));
+            cam.eye = b.centre() +
+                      d * glm::dvec3(std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el));
             cam.width = c.view_width;
             cam.height = c.view_height;
             cam.fit_clip_planes(b.centre(), b.radius());
@@ -253,7 +252,8 @@ void bench_objects(const BenchConfig& c, Renderer& renderer, int threads, BenchR
             r.single_ratio = single > 0 ? r.total_ms / single : 0.0;
             res.objects.push_back(r);
             char buf[256];
-            std::snprintf(buf, sizeof buf, "object: %s 6x%d^2, %s, in %dx%d: %.3f ms a frame (%.0f fps, %.1fx the relief)",
+            std::snprintf(buf, sizeof buf,
+                          "object: %s 6x%d^2, %s, in %dx%d: %.3f ms a frame (%.0f fps, %.1fx the relief)",
                           r.object.c_str(), r.size, r.view.c_str(), c.view_width, c.view_height, r.total_ms, r.fps,
                           r.single_ratio);
             progress(buf);
@@ -315,8 +315,7 @@ BenchResult run_bench(const BenchConfig& c) {
                     row.size = size;
                     row.method = method;
                     row.path = v.exact ? CoordinatePath::exact : CoordinatePath::lut;
-                    row.kernel =
-                        st.isa != Isa::generic ? BenchKernel::fast : BenchKernel::reference;
+                    row.kernel = st.isa != Isa::generic ? BenchKernel::fast : BenchKernel::reference;
                     row.isa = isa_name(st.isa);
                     row.threads = v.threads;
                     row.texels = st.texels;
@@ -344,9 +343,8 @@ BenchResult run_bench(const BenchConfig& c) {
                     char buf[256];
                     std::snprintf(buf, sizeof buf, "%s %d^2 %s %s %s %d thread%s: %.3f ms, %.0f Mtexel/s (%.1fx bound)",
                                   name.c_str(), size, to_string(row.method).c_str(), to_string(row.path).c_str(),
-                                  row.isa.c_str(),
-                                  v.threads, v.threads == 1 ? "" : "s", row.ms_median, row.mtexels_per_s,
-                                  row.bound_ratio);
+                                  row.isa.c_str(), v.threads, v.threads == 1 ? "" : "s", row.ms_median,
+                                  row.mtexels_per_s, row.bound_ratio);
                     progress(buf);
                 }
             }
@@ -429,8 +427,7 @@ std::vector<PipelinedRatio> pipelined_ratios(const BenchResult& r) {
     auto find = [&](const std::string& relief, int size, Reconstruction method, BenchKernel kernel, int threads) {
         for (const BenchRow& x : r.rows)
             if (x.relief == relief && x.size == size && x.method == method && x.path == CoordinatePath::lut &&
-                x.kernel == kernel &&
-                (threads == 0 || x.threads == threads))
+                x.kernel == kernel && (threads == 0 || x.threads == threads))
                 return &x;
         return static_cast<const BenchRow*>(nullptr);
     };
@@ -443,8 +440,8 @@ std::vector<PipelinedRatio> pipelined_ratios(const BenchResult& r) {
         if (x.method != two_pass || x.path != CoordinatePath::lut) continue;
         bool seen = false;
         for (const PipelinedRatio& p : out) seen = seen || (p.relief == x.relief && p.size == x.size);
-        const bool pipelined_too =
-            find(x.relief, x.size, pipelined, fast, 0) || find(x.relief, x.size, pipelined, reference, 0);
+        const bool pipelined_too = find(x.relief, x.size, pipelined, fast, 0) ||
+                                   find(x.relief, x.size, pipelined, reference, 0);
         if (seen || !pipelined_too) continue;
         PipelinedRatio p;
         p.relief = x.relief;
@@ -474,12 +471,13 @@ std::vector<PipelinedRatio> pipelined_ratios(const BenchResult& r) {
 std::string bench_isa_markdown(const BenchResult& r) {
     std::vector<std::string> isas;  // in the order of the rows
     for (const BenchRow& x : r.rows)
-        if (x.path == CoordinatePath::lut && std::find(isas.begin(), isas.end(), x.isa) == isas.end()) isas.push_back(x.isa);
+        if (x.path == CoordinatePath::lut && std::find(isas.begin(), isas.end(), x.isa) == isas.end())
+            isas.push_back(x.isa);
     if (isas.size() < 2) return "";
     auto find = [&](const BenchRow& like, const std::string& isa, int threads) {
         for (const BenchRow& x : r.rows)
-            if (x.relief == like.relief && x.size == like.size && x.method == like.method && x.path == CoordinatePath::lut &&
-                x.isa == isa && x.threads == threads)
+            if (x.relief == like.relief && x.size == like.size && x.method == like.method &&
+                x.path == CoordinatePath::lut && x.isa == isa && x.threads == threads)
                 return &x;
         return static_cast<const BenchRow*>(nullptr);
     };
@@ -544,8 +542,7 @@ std::string bench_markdown(const BenchResult& r) {
                 times += buf;
             }
             if (std::isnan(p.row_pixels_per_texel))
-                std::snprintf(buf, sizeof buf, "| %s | %d^2 | | | | | %s |\n", p.relief.c_str(), p.size,
-                              times.c_str());
+                std::snprintf(buf, sizeof buf, "| %s | %d^2 | | | | | %s |\n", p.relief.c_str(), p.size, times.c_str());
             else
                 std::snprintf(buf, sizeof buf, "| %s | %d^2 | %.2f | %.2f | %.2f | %.2f | %s |\n", p.relief.c_str(),
                               p.size, p.row_pixels_per_texel, p.two_pass_samples_per_texel,
@@ -555,7 +552,8 @@ std::string bench_markdown(const BenchResult& r) {
         }
     }
     if (!r.table1.empty() || !r.gl_renderer.empty()) {
-        s << "\n### Table 1: one relief quad in a " << "512x512 view\n\n";
+        s << "\n### Table 1: one relief quad in a "
+          << "512x512 view\n\n";
         s << "OpenGL: " << r.gl_renderer << "  \n";
         s << "Median milliseconds per frame (every frame pre-warps and uploads the whole texture; side polygons on); "
              "percentages of the frame as in the paper's Table 1. Read-back of the image is not part of the frame.\n\n";
@@ -568,9 +566,8 @@ std::string bench_markdown(const BenchResult& r) {
                           "| %s | %d^2 | %s | %d | %.3f (%.1f%%) | %.3f (%.1f%%) | %.3f (%.1f%%) | %.3f (%.1f%%) | "
                           "%.3f | %.0f | %.3f |\n",
                           t.relief.c_str(), t.size, to_string(t.method).c_str(), t.threads, t.prewarp_ms,
-                          pct(t.prewarp_ms),
-                          t.upload_ms, pct(t.upload_ms), t.texture_map_ms, pct(t.texture_map_ms), t.other_ms,
-                          pct(t.other_ms), t.total_ms, t.fps, t.readback_ms);
+                          pct(t.prewarp_ms), t.upload_ms, pct(t.upload_ms), t.texture_map_ms, pct(t.texture_map_ms),
+                          t.other_ms, pct(t.other_ms), t.total_ms, t.fps, t.readback_ms);
             s << buf;
         }
     }
@@ -590,9 +587,10 @@ std::string bench_markdown(const BenchResult& r) {
                 std::snprintf(b, sizeof b, "%s%s %.2f", per.empty() ? "" : ", ", face.c_str(), ms);
                 per += b;
             }
-            std::snprintf(buf, sizeof buf, "| %s | 6x%d^2 | %s (%g,%g) | %.3f (%s) | %.3f | %.3f | %.3f | %.0f | %.1f |\n",
-                          o.object.c_str(), o.size, o.view.c_str(), o.az, o.el, o.prewarp_ms, per.c_str(),
-                          o.upload_ms, o.texture_map_ms, o.total_ms, o.fps, o.single_ratio);
+            std::snprintf(buf, sizeof buf,
+                          "| %s | 6x%d^2 | %s (%g,%g) | %.3f (%s) | %.3f | %.3f | %.3f | %.0f | %.1f |\n",
+                          o.object.c_str(), o.size, o.view.c_str(), o.az, o.el, o.prewarp_ms, per.c_str(), o.upload_ms,
+                          o.texture_map_ms, o.total_ms, o.fps, o.single_ratio);
             s << buf;
         }
     }
@@ -666,9 +664,15 @@ nlohmann::json bench_json(const BenchResult& r) {
                         {"fps", o.fps},
                         {"relief_frame_ratio", o.single_ratio}});
     }
-    return {{"command", "bench"}, {"machine", r.machine},       {"gl_renderer", r.gl_renderer},
-            {"load_before", r.load_before}, {"load_after", r.load_after}, {"view", r.view},
-            {"rows", rows},             {"pipelined_vs_two_pass", ratios}, {"table1", t1},
+    return {{"command", "bench"},
+            {"machine", r.machine},
+            {"gl_renderer", r.gl_renderer},
+            {"load_before", r.load_before},
+            {"load_after", r.load_after},
+            {"view", r.view},
+            {"rows", rows},
+            {"pipelined_vs_two_pass", ratios},
+            {"table1", t1},
             {"objects", objs}};
 }
 

@@ -19,19 +19,19 @@
 namespace rtm {
 
 struct BenchConfig {
-    std::vector<int> sizes;             // square reliefs, texels per side
-    std::vector<std::string> reliefs;   // procedural relief names (procedural/procedural_media.h)
+    std::vector<int> sizes;            // square reliefs, texels per side
+    std::vector<std::string> reliefs;  // procedural relief names (procedural/procedural_media.h)
     std::vector<Reconstruction> methods = {Reconstruction::two_pass, Reconstruction::pipelined};
-    std::vector<int> threads;           // thread counts of the lookup-table fast kernels
+    std::vector<int> threads;  // thread counts of the lookup-table fast kernels
     // SIMD targets of the lookup-table kernels (warp/isa.h), each measured at every thread count; empty: the one
     // PrewarpOptions::isa's automatic picks. With more than one, the report compares them (bench_markdown).
     std::vector<Isa> isas;
-    bool exact = true;                  // also --exact (double precision, generic kernels) at the largest thread count
+    bool exact = true;  // also --exact (double precision, generic kernels) at the largest thread count
     int exact_max_size = 1024;
-    bool reference = true;              // also the generic lookup-table kernels (fast = false), one thread
+    bool reference = true;  // also the generic lookup-table kernels (fast = false), one thread
     int reference_max_size = 1024;
-    double min_seconds = 0.25;          // per configuration: repeat at least this long ...
-    int min_repeats = 3;                // ... and at least this often (after one warm-up), at most max_repeats
+    double min_seconds = 0.25;  // per configuration: repeat at least this long ...
+    int min_repeats = 3;        // ... and at least this often (after one warm-up), at most max_repeats
     int max_repeats = 400;
     CompareView view = orbit_view(30.0, 20.0);  // the eye (orbit convention, about the relief's bounds)
     bool table1 = true;
@@ -63,11 +63,11 @@ struct BenchRow {
     int out_width = 0, out_height = 0;
     int repeats = 0;
     double ms_min = 0, ms_median = 0;
-    double mtexels_per_s = 0;    // texels / median time
-    double prewarps_per_s = 0;   // 1 / median time
+    double mtexels_per_s = 0;                  // texels / median time
+    double prewarps_per_s = 0;                 // 1 / median time
     double bytes_read = 0, bytes_written = 0;  // what the passes read and write (their buffers, once each)
-    double bound_ms = 0;         // median time of a streaming copy of the same bytes with the same threads
-    double bound_ratio = 0;      // ms_median / bound_ms
+    double bound_ms = 0;     // median time of a streaming copy of the same bytes with the same threads
+    double bound_ratio = 0;  // ms_median / bound_ms
     // The reference kernels' work counts (PrewarpStats; 0 for the fast kernels, which do not count).
     long long row_pixels = 0, column_samples = 0;
 };
@@ -77,9 +77,9 @@ struct BenchRow {
 struct PipelinedRatio {
     std::string relief;
     int size = 0;
-    double row_pixels_per_texel = 0;          // the same row warp in both
-    double two_pass_samples_per_texel = 0;    // column samples: one per surviving intermediate pixel
-    double pipelined_samples_per_texel = 0;   // column samples: every pixel of the row warp
+    double row_pixels_per_texel = 0;         // the same row warp in both
+    double two_pass_samples_per_texel = 0;   // column samples: one per surviving intermediate pixel
+    double pipelined_samples_per_texel = 0;  // column samples: every pixel of the row warp
     // (threads, pipelined ms / two-pass ms), lookup tables, the fast kernels (the generic ones on a CPU without)
     std::vector<std::pair<int, double>> time_ratio;
 };
@@ -100,11 +100,11 @@ struct Table1Row {
 // A frame of a six-face object (paper section 4.1) in the same view size as Table 1, next to the single relief frame
 // of Table 1 (two-pass, the first relief) measured in the same run.
 struct ObjectFrameRow {
-    std::string object;  // synthetic object (procedural/synthetic_object.h)
-    std::string view;    // "one face", "two faces", "three faces"
+    std::string object;                   // synthetic object (procedural/synthetic_object.h)
+    std::string view;                     // "one face", "two faces", "three faces"
     double az = 0, el = 0, distance = 0;  // orbit about the box's bounding sphere
-    int size = 0;        // texels per face side
-    int faces = 0;       // faces drawn
+    int size = 0;                         // texels per face side
+    int faces = 0;                        // faces drawn
     int frames = 0;
     std::vector<std::pair<std::string, double>> face_prewarp_ms;  // per face drawn: median pre-warp time
     double prewarp_ms = 0, upload_ms = 0, texture_map_ms = 0, total_ms = 0, fps = 0;
@@ -112,10 +112,10 @@ struct ObjectFrameRow {
 };
 
 struct BenchResult {
-    std::string machine;        // CPU model, cores, memory
-    std::string gl_renderer;    // the OpenGL context of Table 1, or why there is none
+    std::string machine;                  // CPU model, cores, memory
+    std::string gl_renderer;              // the OpenGL context of Table 1, or why there is none
     std::string load_before, load_after;  // /proc/loadavg at the start and the end
-    std::string view;           // the eye used
+    std::string view;                     // the eye used
     std::vector<BenchRow> rows;
     std::vector<Table1Row> table1;
     std::vector<ObjectFrameRow> objects;

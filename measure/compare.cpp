@@ -105,8 +105,8 @@ std::string comparison_markdown(const std::string& title, const std::vector<Comp
                           r.ms, r.vs_micromesh.psnr, r.vs_micromesh.iou);
         } else {
             std::snprintf(buf, sizeof buf, "| %s | %s | %.2f | %.2f | %.2f | %.2f | %.4f | %.2f | %.4f |\n",
-                          r.view.c_str(), r.method.c_str(), r.ms, r.prewarp_ms, r.error.psnr, r.error.rmse,
-                          r.error.iou, r.vs_micromesh.psnr, r.vs_micromesh.iou);
+                          r.view.c_str(), r.method.c_str(), r.ms, r.prewarp_ms, r.error.psnr, r.error.rmse, r.error.iou,
+                          r.vs_micromesh.psnr, r.vs_micromesh.iou);
         }
         s += buf;
     }

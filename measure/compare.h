@@ -13,7 +13,7 @@
 namespace rtm {
 
 struct CompareView {
-    std::string name;  // e.g. "az45_el20"
+    std::string name;                                   // e.g. "az45_el20"
     double azimuth = 0, elevation = 0, distance = 2.2;  // the --orbit convention
 };
 
@@ -34,9 +34,9 @@ std::vector<CompareMethod> default_compare_methods();
 
 struct CompareRow {
     std::string view, method;
-    double ms = 0;        // median total frame time (raycast: one run)
+    double ms = 0;  // median total frame time (raycast: one run)
     double prewarp_ms = 0;
-    DiffResult error;     // against raycast
+    DiffResult error;         // against raycast
     DiffResult vs_micromesh;  // against the micro-polygon mesh
 };
 

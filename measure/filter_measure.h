@@ -15,16 +15,16 @@ namespace rtm {
 
 struct FilterMeasurement {
     std::string relief, view, filter;
-    double ms = 0;          // median pre-warp time (generic reference kernel, lookup tables, `threads` threads)
-    double fast_ms = 0;     // median time of the fastest kernel that computes it (point: the fast kernels)
-    PrewarpError error;     // against the truth
+    double ms = 0;       // median pre-warp time (generic reference kernel, lookup tables, `threads` threads)
+    double fast_ms = 0;  // median time of the fastest kernel that computes it (point: the fast kernels)
+    PrewarpError error;  // against the truth
 };
 
 struct FilterMeasureOptions {
     std::vector<std::string> reliefs = procedural_names();
-    int size = 256;          // procedural relief size
-    int samples = 8;         // truth rays per pixel side
-    int repeat = 5;          // timed pre-warps per measurement (median)
+    int size = 256;   // procedural relief size
+    int samples = 8;  // truth rays per pixel side
+    int repeat = 5;   // timed pre-warps per measurement (median)
     int threads = 1;
     std::function<void(const std::string&)> progress;  // one line per step; may be empty
     // Called with every picture: (relief, view, "truth" | "point" | "coverage", image); may be empty.

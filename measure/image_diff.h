@@ -10,11 +10,11 @@
 namespace rtm {
 
 struct DiffResult {
-    double rmse = 0.0;          // over RGB, 0..255 scale, pixels covered in both; NaN if none (but some in either)
-    double psnr = 0.0;          // 20*log10(255/rmse); +infinity when rmse == 0; NaN when rmse is
-    double iou = 1.0;           // |covered in both| / |covered in either|; 1 when both are empty
+    double rmse = 0.0;  // over RGB, 0..255 scale, pixels covered in both; NaN if none (but some in either)
+    double psnr = 0.0;  // 20*log10(255/rmse); +infinity when rmse == 0; NaN when rmse is
+    double iou = 1.0;   // |covered in both| / |covered in either|; 1 when both are empty
     long long both = 0, either = 0, only_ref = 0, only_test = 0;
-    double max_error = 0.0;     // largest per-pixel RGB distance among pixels covered in both
+    double max_error = 0.0;  // largest per-pixel RGB distance among pixels covered in both
     std::string to_string() const;
 };
 

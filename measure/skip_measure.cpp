@@ -40,7 +40,9 @@ struct Scenario {
     int threads = 0;        // PrewarpOptions::threads (0 = all)
 };
 
-Camera orbit(const ReliefQuad& q, double az, double el, double d) { return compare_camera(q, {"s", az, el, d}, 512, 512); }
+Camera orbit(const ReliefQuad& q, double az, double el, double d) {
+    return compare_camera(q, {"s", az, el, d}, 512, 512);
+}
 
 }  // namespace
 
@@ -56,8 +58,7 @@ std::vector<SkipMeasurement> measure_skips(int frames, const std::function<void(
                   }});
     sc.push_back({"subpixel-parallax", "bumps 600 radii away", to_relief(make_bumps(256)),
                   [](const ReliefQuad& q, int, int) { return orbit(q, 30, 20, 600); }});
-    sc.push_back({"reuse-prewarp", "facade, eye drifting 1e-5 radii per frame",
-                  to_relief(make_facade(256)),
+    sc.push_back({"reuse-prewarp", "facade, eye drifting 1e-5 radii per frame", to_relief(make_facade(256)),
                   [](const ReliefQuad& q, int i, int) { return orbit(q, 30 + 1e-4 * i, 15, 2.2); }});
     // Side polygons off: their margins change with the view, and a texture of another size goes up whole.
     for (int n : {256, 1024})
@@ -138,7 +139,8 @@ std::vector<SkipMeasurement> measure_skips(int frames, const std::function<void(
         m.iou_without = d0.iou;
         m.iou_with = d1.iou;
         m.same_picture = last[0] == last[1];
-        if (progress) progress(s.skip + ": " + std::to_string(m.ms_without) + " -> " + std::to_string(m.ms_with) + " ms");
+        if (progress)
+            progress(s.skip + ": " + std::to_string(m.ms_without) + " -> " + std::to_string(m.ms_with) + " ms");
         out.push_back(m);
     }
     return out;
@@ -152,10 +154,9 @@ std::string skip_table_markdown(const std::vector<SkipMeasurement>& rows) {
     char buf[512];
     for (const SkipMeasurement& m : rows) {
         std::snprintf(buf, sizeof buf,
-                      "| %s | %s | %s | %.3f | %.3f | %.2f | %.2f | %.2f | %.2f | %.4f | %.4f | %s |\n",
-                      m.skip.c_str(), m.scenario.c_str(), m.fired ? "yes" : "no", m.work_without, m.work_with,
-                      m.ms_without, m.ms_with, m.psnr_without, m.psnr_with, m.iou_without, m.iou_with,
-                      m.same_picture ? "yes" : "no");
+                      "| %s | %s | %s | %.3f | %.3f | %.2f | %.2f | %.2f | %.2f | %.4f | %.4f | %s |\n", m.skip.c_str(),
+                      m.scenario.c_str(), m.fired ? "yes" : "no", m.work_without, m.work_with, m.ms_without, m.ms_with,
+                      m.psnr_without, m.psnr_with, m.iou_without, m.iou_with, m.same_picture ? "yes" : "no");
         s += buf;
     }
     return s;

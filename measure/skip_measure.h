@@ -11,12 +11,12 @@ namespace rtm {
 
 struct SkipMeasurement {
     std::string skip, scenario;
-    double ms_with = 0, ms_without = 0;       // median frame time (pre-warp + upload + texture mapping)
-    double work_with = 0, work_without = 0;   // median pre-warp + upload time: the work the skips target
-    double psnr_with = 0, psnr_without = 0;   // against micromesh, last frame
+    double ms_with = 0, ms_without = 0;      // median frame time (pre-warp + upload + texture mapping)
+    double work_with = 0, work_without = 0;  // median pre-warp + upload time: the work the skips target
+    double psnr_with = 0, psnr_without = 0;  // against micromesh, last frame
     double iou_with = 0, iou_without = 0;
-    bool fired = false;                       // the skip fired in the measured frames
-    bool same_picture = false;                // the last frame with skips is the one without, pixel for pixel
+    bool fired = false;         // the skip fired in the measured frames
+    bool same_picture = false;  // the last frame with skips is the one without, pixel for pixel
 };
 
 // Runs every scenario (a few seconds). `progress` gets one line per scenario; may be empty.

@@ -109,8 +109,7 @@ glm::dmat4 relief_view_clip(const ReliefGeometry& g, int width, int height, doub
     const glm::dvec3 f = g.f();
     const glm::dvec3 da = glm::cross(g.b, f) / glm::dot(g.a, glm::cross(g.b, f));
     const glm::dvec3 db = glm::cross(f, g.a) / glm::dot(g.b, glm::cross(f, g.a));
-    const double margin =
-        1e-3 * std::max({glm::length(g.a) * width, glm::length(g.b) * height, d_hi - d_lo});
+    const double margin = 1e-3 * std::max({glm::length(g.a) * width, glm::length(g.b) * height, d_hi - d_lo});
     const double depth = (d_hi - d_lo) + 2.0 * margin;
     glm::dmat4 m(0.0);  // m[column][row]
     auto set_row = [&](int row, const glm::dvec3& dir, double scale, double offset) {
@@ -125,12 +124,11 @@ glm::dmat4 relief_view_clip(const ReliefGeometry& g, int width, int height, doub
     return m;
 }
 
-BakedFace bake_view(MeshRenderer& renderer, const ReliefGeometry& g, int width, int height, double d_lo,
-                    double d_hi) {
+BakedFace bake_view(MeshRenderer& renderer, const ReliefGeometry& g, int width, int height, double d_lo, double d_hi) {
     const glm::dvec3 f = g.f();
     const glm::dvec4 plane(f, -glm::dot(f, g.origin));
-    MeshFrame frame = renderer.render(relief_view_clip(g, width, height, d_lo, d_hi), width, height,
-                                      Rgba8{0, 0, 0, 0}, plane);
+    MeshFrame frame = renderer.render(relief_view_clip(g, width, height, d_lo, d_hi), width, height, Rgba8{0, 0, 0, 0},
+                                      plane);
     BakedFace face;
     face.geometry = g;
     face.color = std::move(frame.color);
@@ -202,10 +200,11 @@ std::string write_object(const std::string& dir, const std::string& name, const 
             ImageF normalized(face.displacement.width, face.displacement.height);
             const double span = face.range_hi - face.range_lo;
             for (size_t p = 0; p < normalized.pixels.size(); ++p)
-                normalized.pixels[p] =
-                    face.color.pixels[p].a == 0 || !(span > 0.0)
-                        ? 0.0f
-                        : float(std::clamp((double(face.displacement.pixels[p]) - face.range_lo) / span, 0.0, 1.0));
+                normalized.pixels[p] = face.color.pixels[p].a == 0 || !(span > 0.0)
+                                           ? 0.0f
+                                           : float(std::clamp((double(face.displacement.pixels[p]) - face.range_lo) /
+                                                                  span,
+                                                              0.0, 1.0));
             write_rgba8((d / color_file).string(), face.color);
             written.push_back((d / color_file).string());
             write_gray((d / disp_file).string(), normalized);

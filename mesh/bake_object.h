@@ -45,8 +45,8 @@ ReliefGeometry face_geometry(const BakeBox& box, const std::string& key, int* wi
 struct BakedFace {
     std::string key;
     ReliefGeometry geometry;
-    ImageRGBA8 color;     // alpha 255 seen, 0 empty
-    ImageF displacement;  // world units along f, <= 0; 0 where empty
+    ImageRGBA8 color;                       // alpha 255 seen, 0 empty
+    ImageF displacement;                    // world units along f, <= 0; 0 where empty
     double range_lo = 0.0, range_hi = 0.0;  // over the seen texels; [0, 0] when none
 };
 
@@ -64,8 +64,7 @@ class MeshRenderer;
 glm::dmat4 relief_view_clip(const ReliefGeometry& g, int width, int height, double d_lo, double d_hi);
 // One view along -f of what lies in the slab [d_lo, d_hi]: colour (alpha 255 seen, 0 empty), displacement clamped
 // to the slab (0 where empty) and the range seen ([0, 0] when nothing). key is left empty.
-BakedFace bake_view(MeshRenderer& renderer, const ReliefGeometry& g, int width, int height, double d_lo,
-                    double d_hi);
+BakedFace bake_view(MeshRenderer& renderer, const ReliefGeometry& g, int width, int height, double d_lo, double d_hi);
 
 // Renders the six views through MeshRenderer; needs a current GlContext. `progress(done, 6)` after each face.
 BakedObject bake_object(const TriangleMesh& mesh, int n, const std::function<void(int, int)>& progress = {});

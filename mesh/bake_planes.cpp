@@ -68,9 +68,8 @@ std::vector<BakePlane> parse_bake_planes(const std::string& path) {
         if (const std::string why = b.geometry.validate(); !why.empty()) fail(path, where + ": " + why);
         const json* size = p.contains("size") ? &p["size"] : nullptr;
         if (!size || !size->is_array() || size->size() != 2 || !(*size)[0].is_number_integer() ||
-            !(*size)[1].is_number_integer() || (*size)[0].get<long long>() < 1 ||
-            (*size)[0].get<long long>() > 16384 || (*size)[1].get<long long>() < 1 ||
-            (*size)[1].get<long long>() > 16384)
+            !(*size)[1].is_number_integer() || (*size)[0].get<long long>() < 1 || (*size)[0].get<long long>() > 16384 ||
+            (*size)[1].get<long long>() < 1 || (*size)[1].get<long long>() > 16384)
             fail(path, where + ": field \"size\" must be [w, h], integers in 1..16384");
         b.width = int((*size)[0].get<long long>());
         b.height = int((*size)[1].get<long long>());
@@ -122,10 +121,10 @@ std::vector<std::string> bake_planes(const TriangleMesh& mesh, const std::vector
             ImageF normalized(v.displacement.width, v.displacement.height);
             const double span = v.range_hi - v.range_lo;
             for (size_t k = 0; k < normalized.pixels.size(); ++k)
-                normalized.pixels[k] =
-                    v.color.pixels[k].a == 0 || !(span > 0.0)
-                        ? 0.0f
-                        : float(std::clamp((double(v.displacement.pixels[k]) - v.range_lo) / span, 0.0, 1.0));
+                normalized.pixels[k] = v.color.pixels[k].a == 0 || !(span > 0.0)
+                                           ? 0.0f
+                                           : float(std::clamp((double(v.displacement.pixels[k]) - v.range_lo) / span,
+                                                              0.0, 1.0));
             const std::string manifest = (d / (m.name + ".relief.json")).string();
             // write_relief's images: NAME_color.png and NAME_disp.png beside the manifest.
             written.push_back((d / (m.name + "_color.png")).string());

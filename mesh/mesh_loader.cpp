@@ -71,9 +71,8 @@ ImageRGBA8 decode_embedded(const aiTexture& t) {
     hint.erase(std::remove_if(hint.begin(), hint.end(), [](char c) { return !std::isalnum((unsigned char)c); }),
                hint.end());
     if (hint.empty()) hint = "png";
-    const fs::path tmp = fs::temp_directory_path() /
-                         ("rtm_embedded_" + std::to_string(::getpid()) + "_" +
-                          std::to_string(reinterpret_cast<uintptr_t>(&t)) + "." + hint);
+    const fs::path tmp = fs::temp_directory_path() / ("rtm_embedded_" + std::to_string(::getpid()) + "_" +
+                                                      std::to_string(reinterpret_cast<uintptr_t>(&t)) + "." + hint);
     struct Remove {
         fs::path p;
         ~Remove() {
@@ -224,8 +223,8 @@ TriangleMesh load_mesh(const std::string& path) {
         fail(path, "cannot read mesh: " + why);
     Assimp::Importer importer;
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-    const unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType |
-                           aiProcess_ValidateDataStructure | aiProcess_JoinIdenticalVertices;
+    const unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure |
+                           aiProcess_JoinIdenticalVertices;
     const aiScene* scene = importer.ReadFile(path, flags);
     if (!scene || !scene->mRootNode || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE)) {
         std::string why = importer.GetErrorString();

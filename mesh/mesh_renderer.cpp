@@ -243,9 +243,8 @@ MeshFrame MeshRenderer::render(const glm::dmat4& clip_from_world, int width, int
         const size_t mi = size_t(std::max(p.material, 0));
         const bool tex = p.use_texture && mi < m.textures.size() && m.textures[mi] != 0;
         // Vertex colours without a texture stand alone (mesh/triangle_mesh.h).
-        const glm::vec4 base = (p.use_vertex_color && !tex) || mi >= m.materials.size()
-                                   ? glm::vec4(1.0f)
-                                   : m.materials[mi].base_color;
+        const glm::vec4 base = (p.use_vertex_color && !tex) || mi >= m.materials.size() ? glm::vec4(1.0f)
+                                                                                        : m.materials[mi].base_color;
         glUniform4f(m.u_base, base.r, base.g, base.b, base.a);
         glUniform1i(m.u_use_texture, tex ? 1 : 0);
         glUniform1i(m.u_use_vertex_color, p.use_vertex_color ? 1 : 0);

@@ -34,7 +34,9 @@ inline ColAttr attr_lerp(const ColAttr& a, const ColAttr& b, double t) {
 
 template <class Body>
 void run_parallel(int n, int threads, const Body& body) {
-    auto loop = [&] { tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const auto& r) { body(r.begin(), r.end()); }); };
+    auto loop = [&] {
+        tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const auto& r) { body(r.begin(), r.end()); });
+    };
     if (threads > 0) {
         tbb::task_arena arena(threads);
         arena.execute(loop);
@@ -49,7 +51,8 @@ int FaceSwap::source_of(int target) const {
     int src = -1;
     for (int i = 0; i < 3; ++i) {
         // glm is column-major: m[column][row]; row `target` of the matrix.
-        if (std::abs(m[i][target]) > 1e-12 * (std::abs(m[0][target]) + std::abs(m[1][target]) + std::abs(m[2][target]))) {
+        if (std::abs(m[i][target]) >
+            1e-12 * (std::abs(m[0][target]) + std::abs(m[1][target]) + std::abs(m[2][target]))) {
             if (src >= 0) return -1;
             src = i;
         }
@@ -107,8 +110,8 @@ long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geo
     // Which of F's final coordinates the pass along G's rows computes: the one G's rows spread along (u_i for a
     // row that runs along F's u or whose displacement does; else v_i), so that no row collapses onto one pixel.
     const int first = first_pass_coordinate(swap);
-    const int n1 = first == 0 ? width : height;   // pass 1's output length (F's columns, or F's rows from the bottom)
-    const int n2 = first == 0 ? height : width;   // pass 2's
+    const int n1 = first == 0 ? width : height;  // pass 1's output length (F's columns, or F's rows from the bottom)
+    const int n2 = first == 0 ? height : width;  // pass 2's
     // The eye's foot on G's plane, in G's texel units: where G's occlusion-compatible order converges.
     const glm::dvec3 rel = kf.eye - g.geometry.origin;
     const double foot_u = glm::dot(rel, g.geometry.a) / glm::dot(g.geometry.a, g.geometry.a);

@@ -10,12 +10,12 @@
 // along G's rows to one of F's final coordinates (carrying the other, d' and G's own displacement), then a pass along
 // the intermediate columns to the other. The row pass computes the coordinate G's rows spread along: F's u when G's
 // rows run along F's u (or run along F's normal while G's displacement feeds F's u), else F's v. (Always computing u
-// first would collapse a row of G that runs along F's v onto one column.) Each pass keeps G's occlusion-compatible order: samples lie on G's
-// parallel sampling rays, so along a line of G the ray nearer to the eye's foot on G's plane can hide the farther
-// one, never the reverse, whichever side of G's plane the eye is on; the lines are warped from the borders towards
-// that foot. Spans are not drawn across G's marked discontinuities (section 4.1.1). The output is z-tested on d'
-// (along F's normal; for a viewer in front of F a larger d' is nearer on the same ray), so several adjacent faces
-// accumulate into one buffer whatever their order. Two-pass reconstruction with point sampling.
+// first would collapse a row of G that runs along F's v onto one column.) Each pass keeps G's occlusion-compatible
+// order: samples lie on G's parallel sampling rays, so along a line of G the ray nearer to the eye's foot on G's plane
+// can hide the farther one, never the reverse, whichever side of G's plane the eye is on; the lines are warped from the
+// borders towards that foot. Spans are not drawn across G's marked discontinuities (section 4.1.1). The output is
+// z-tested on d' (along F's normal; for a viewer in front of F a larger d' is nearer on the same ray), so several
+// adjacent faces accumulate into one buffer whatever their order. Two-pass reconstruction with point sampling.
 #pragma once
 
 #include <glm/mat3x3.hpp>

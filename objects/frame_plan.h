@@ -20,9 +20,9 @@ namespace rtm {
 // How draw() chooses what to do for a frame. Each "skip" keeps the cost proportional to what the viewer sees;
 // `skips` in the report lists those that fired (names as in kSkipNames).
 struct DrawOptions {
-    bool depth_correction = false;  // section 4.2
-    int level = 0;                  // relief texture pyramid level; -1 = auto (texel density ~ pixel density)
-    bool skips = true;              // enable the skips below (off: always pre-warp and upload everything)
+    bool depth_correction = false;    // section 4.2
+    int level = 0;                    // relief texture pyramid level; -1 = auto (texel density ~ pixel density)
+    bool skips = true;                // enable the skips below (off: always pre-warp and upload everything)
     double subpixel_parallax = 0.25;  // pixels: below this largest parallax, draw as a plain texture (far away)
     double reuse_tolerance = 0.05;    // texels: below this largest motion since the last pre-warp, reuse it
 };

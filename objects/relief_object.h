@@ -5,8 +5,9 @@
 // with their axes swapped (objects/face_swap.h, Figure 15), then F itself is pre-warped over them with the single
 // relief's kernels (warp/prewarp.h), keeping the adjacent samples only where F left a hole (the paper's order). The
 // result is texture-mapped onto F's quad, after closing the cracks one pixel wide that the line warp leaves where a
-// surface seen by F meets one seen by an adjacent face (half a texel is missing on each side of a discontinuity). Samples of F that leave its quad are not lost: they land on the
-// neighbouring visible face when that face pre-warps F, so no side polygons are needed (nor drawn) for an object.
+// surface seen by F meets one seen by an adjacent face (half a texel is missing on each side of a discontinuity).
+// Samples of F that leave its quad are not lost: they land on the neighbouring visible face when that face pre-warps F,
+// so no side polygons are needed (nor drawn) for an object.
 //
 // Skips (names as for a single relief, objects/relief_quad.h): back-facing (the faces not visible: not pre-warped,
 // not drawn), outside-frustum (per visible face), subpixel-parallax (per visible face: when the box's whole depth
@@ -42,8 +43,8 @@ struct ObjectFacePrewarp {
     Image2D<uint8_t> displ;     // with depth correction: depth along F's normal, quantized by depth_quant (255 none)
     Quantizer depth_quant;
     PrewarpCoefficients k;
-    double prewarp_ms = 0.0;    // adjacent faces and the face itself
-    long long texels = 0;       // source texels visited (the face and its adjacent faces)
+    double prewarp_ms = 0.0;        // adjacent faces and the face itself
+    long long texels = 0;           // source texels visited (the face and its adjacent faces)
     long long adjacent_pixels = 0;  // pixels filled by adjacent faces' samples
     long long crack_pixels = 0;     // one-pixel cracks closed between the face's and the adjacent faces' samples
 };

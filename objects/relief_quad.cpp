@@ -99,9 +99,9 @@ double ReliefQuad::prewarp(const glm::dvec3& eye, const PrewarpOptions& options,
 void ReliefQuad::draw(Renderer& renderer, const Camera& cam, RenderMethod method, const PrewarpOptions& options,
                       StageTimes& times, const DrawOptions& d, DrawReport* report) {
     const auto t_start = Clock::now();
-    const FramePlan plan =
-        plan_frame(cam, method, options, d, relief_, [this](int i) -> const ReliefTexture& { return level_texture(i); },
-                   last_prewarp_);
+    const FramePlan plan = plan_frame(
+        cam, method, options, d, relief_, [this](int i) -> const ReliefTexture& { return level_texture(i); },
+        last_prewarp_);
     DrawReport rep;
     rep.level = plan.level;
     rep.skips = plan.skips;

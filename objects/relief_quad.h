@@ -78,15 +78,15 @@ private:
     PrewarpWorkspace workspace_;
     ImageRGBA8 prewarped_;
     long long prewarp_version_ = 0;  // counts the pre-warps into prewarped_
-    Image2D<uint8_t> displ_;  // quantized displacement seen at each pre-warped pixel (depth correction)
+    Image2D<uint8_t> displ_;         // quantized displacement seen at each pre-warped pixel (depth correction)
     PrewarpStats stats_;
     std::vector<PlaneRect> wall_content_;  // margin_content of prewarped_ (side polygons on), made with it
     std::unique_ptr<GlTexture> texture_, displ_texture_;
     ImageRGBA8 flat_;  // source colours of level flat_level_ as an ordinary texture (alpha 0 where empty)
     int flat_level_ = -1;
     std::unique_ptr<MicroMesh> micromesh_;
-    LastPrewarp last_prewarp_;   // what prewarped_ was made for (reuse when the eye barely moved)
-    UploadedTexture uploaded_;  // what texture_ holds (partial upload)
+    LastPrewarp last_prewarp_;                // what prewarped_ was made for (reuse when the eye barely moved)
+    UploadedTexture uploaded_;                // what texture_ holds (partial upload)
     std::unique_ptr<PerPixelQuad> perpixel_;  // the per-pixel methods' textures and programs, made on first use
     // count_still_texels per pyramid level, [level][exact]; -1 = not counted yet (they do not depend on the view).
     std::vector<std::array<long long, 2>> still_texels_;

@@ -13,14 +13,24 @@ namespace rtm {
 
 // After raycast: the per-pixel methods (perpixel/perpixel_method.h), by the same names, in the same order.
 enum class RenderMethod {
-    flat, two_pass, pipelined, micromesh, raycast,
-    parallax, parallax_offset_limiting, steep_parallax, parallax_occlusion, relief_mapping, interval_mapping,
-    protruded_displacement, quadric_silhouettes
+    flat,
+    two_pass,
+    pipelined,
+    micromesh,
+    raycast,
+    parallax,
+    parallax_offset_limiting,
+    steep_parallax,
+    parallax_occlusion,
+    relief_mapping,
+    interval_mapping,
+    protruded_displacement,
+    quadric_silhouettes
 };
 
 RenderMethod parse_render_method(const std::string& s);  // throws std::invalid_argument naming s and the known ones
 std::string to_string(RenderMethod m);
-std::vector<RenderMethod> render_methods();  // all of them, in the order of the table
+std::vector<RenderMethod> render_methods();                     // all of them, in the order of the table
 std::optional<PerPixelMethod> perpixel_method(RenderMethod m);  // nullopt for the other methods
 
 // "two-pass" or "pipelined" (to_string(Reconstruction)); throws std::invalid_argument naming s and the known ones.

@@ -26,11 +26,11 @@ struct ScenePolygon {
 
 // What one frame of a scene did, for --json and the benchmarks.
 struct SceneFrameReport {
-    int quads = 0;       // relief quads in the scene
-    int drawn = 0;       // relief quads drawn (as relief or as a plain texture)
-    int prewarped = 0;   // relief quads pre-warped this frame
-    long long texels_warped = 0;           // texels of the levels pre-warped this frame
-    std::map<std::string, int> skips;      // skip name -> quads it fired for
+    int quads = 0;                                     // relief quads in the scene
+    int drawn = 0;                                     // relief quads drawn (as relief or as a plain texture)
+    int prewarped = 0;                                 // relief quads pre-warped this frame
+    long long texels_warped = 0;                       // texels of the levels pre-warped this frame
+    std::map<std::string, int> skips;                  // skip name -> quads it fired for
     std::vector<std::vector<std::string>> quad_skips;  // per relief quad, in manifest order: the skips that fired
     StageTimes times;
 };

@@ -37,8 +37,7 @@ void check_steps(const char* what, int n) {
 
 void check_nonneg(const char* what, float x) {
     if (!(x >= 0.0f) || !std::isfinite(x))
-        throw std::invalid_argument(std::string(what) + ": expected a finite value >= 0, found " +
-                                    std::to_string(x));
+        throw std::invalid_argument(std::string(what) + ": expected a finite value >= 0, found " + std::to_string(x));
 }
 
 void check_finite(const char* what, float x) {

@@ -127,8 +127,8 @@ void PerPixelQuad::draw(Renderer& renderer, const Camera& cam, const ReliefTextu
     const glm::dvec3 E = cam.eye, f = g.f();
     const double range = t.quant.max - t.quant.min;
     // A zero range (flat relief) still needs a finite V.z: a slab a millionth of the quad's size.
-    const double depth_range =
-        std::max(range, 1e-6 * std::max(glm::length(g.a) * t.width, glm::length(g.b) * t.height));
+    const double depth_range = std::max(range,
+                                        1e-6 * std::max(glm::length(g.a) * t.width, glm::length(g.b) * t.height));
     const glm::dvec3 top = g.origin + f * t.quant.max - E;  // eye-relative origin of the top polygon
     const glm::dvec3 aw = g.a * double(t.width), bh = g.b * double(t.height);
     // The top polygon; for protruded displacement mapping the base polygon and the four side faces instead
@@ -223,8 +223,7 @@ void PerPixelQuad::draw(Renderer& renderer, const Camera& cam, const ReliefTextu
     check_gl(("PerPixelQuad::draw " + to_string(m)).c_str());
 }
 
-void PerPixelQuad::draw_quadric(const Camera& cam, const ReliefTexture& t, const PerPixelSettings& s,
-                                unsigned prog) {
+void PerPixelQuad::draw_quadric(const Camera& cam, const ReliefTexture& t, const PerPixelSettings& s, unsigned prog) {
     const QuadricSilhouettesSettings& q = s.quadric_silhouettes;
     const CylinderPatch patch = cylinder_patch_for(t, q.angle);
     std::vector<QuadricVertex> vertices;
@@ -244,8 +243,8 @@ void PerPixelQuad::draw_quadric(const Camera& cam, const ReliefTexture& t, const
         glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, quadric_ebo_);
         const GLsizei stride = sizeof(QuadricVertex);
         const size_t offsets[6] = {offsetof(QuadricVertex, position), offsetof(QuadricVertex, normal),
-                                   offsetof(QuadricVertex, tangent), offsetof(QuadricVertex, binormal),
-                                   offsetof(QuadricVertex, st), offsetof(QuadricVertex, quadric)};
+                                   offsetof(QuadricVertex, tangent),  offsetof(QuadricVertex, binormal),
+                                   offsetof(QuadricVertex, st),       offsetof(QuadricVertex, quadric)};
         const GLint sizes[6] = {3, 3, 3, 3, 2, 2};
         for (GLuint i = 0; i < 6; ++i) {
             glEnableVertexAttribArray(i);
@@ -275,8 +274,7 @@ void PerPixelQuad::draw_quadric(const Camera& cam, const ReliefTexture& t, const
     glBindTexture(GL_TEXTURE_2D, color_->id());
     glBindVertexArray(quadric_vao_);
     glBindBuffer(GL_ARRAY_BUFFER, quadric_vbo_);
-    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(QuadricVertex)), vertices.data(),
-                 GL_STREAM_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(QuadricVertex)), vertices.data(), GL_STREAM_DRAW);
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(uint32_t)), indices.data(),
                  GL_STREAM_DRAW);
     glDrawElements(GL_TRIANGLES, GLsizei(indices.size()), GL_UNSIGNED_INT, nullptr);

@@ -135,8 +135,7 @@ std::string perpixel_fragment_shader(PerPixelMethod m, const PerPixelCommon& c) 
     s += "#define RTM_SHADING " + std::to_string(c.shading ? 1 : 0) + "\n";
     s += "#define RTM_SHADOWS " + std::to_string(c.shading && c.self_shadowing ? 1 : 0) + "\n";
     s += "#define RTM_ITERATIONS " + std::to_string(c.iteration_counts ? 1 : 0) + "\n";
-    s += "#define RTM_OFFSET_LIMITING " + std::to_string(m == PerPixelMethod::parallax_offset_limiting ? 1 : 0) +
-         "\n";
+    s += "#define RTM_OFFSET_LIMITING " + std::to_string(m == PerPixelMethod::parallax_offset_limiting ? 1 : 0) + "\n";
     s += "#define RTM_PROTRUDED " + std::to_string(m == PerPixelMethod::protruded_displacement ? 1 : 0) + "\n";
     s += kPrelude;
     s += perpixel_trace_glsl(m);

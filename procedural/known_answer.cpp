@@ -40,15 +40,12 @@ ProceduralRelief make(const std::string& name, int size, const std::function<dou
 }  // namespace
 
 ProceduralRelief make_step(int size) {
-    return make("step", size, [](double x, double y) {
-        return x > 0.3 && x < 0.7 && y > 0.3 && y < 0.7 ? 1.0 : 0.0;
-    });
+    return make("step", size, [](double x, double y) { return x > 0.3 && x < 0.7 && y > 0.3 && y < 0.7 ? 1.0 : 0.0; });
 }
 
 ProceduralRelief make_pyramid(int size) {
-    return make("pyramid", size, [](double x, double y) {
-        return 1.0 - std::max(std::abs(x - 0.5), std::abs(y - 0.5)) / 0.3;
-    });
+    return make("pyramid", size,
+                [](double x, double y) { return 1.0 - std::max(std::abs(x - 0.5), std::abs(y - 0.5)) / 0.3; });
 }
 
 ProceduralRelief make_sphere_cap(int size) {

@@ -12,9 +12,9 @@
 
 namespace rtm {
 
-ProceduralRelief make_step(int size);        // block [0.3, 0.7]^2 at full height
-ProceduralRelief make_pyramid(int size);     // base [0.2, 0.8]^2, apex at full height
-ProceduralRelief make_sphere_cap(int size);  // sphere of radius 0.35 centred 0.1 below the plane, scaled in z
+ProceduralRelief make_step(int size);           // block [0.3, 0.7]^2 at full height
+ProceduralRelief make_pyramid(int size);        // base [0.2, 0.8]^2, apex at full height
+ProceduralRelief make_sphere_cap(int size);     // sphere of radius 0.35 centred 0.1 below the plane, scaled in z
 std::vector<std::string> known_answer_names();  // {"step", "pyramid", "sphere-cap"}
 ProceduralRelief make_known_answer(const std::string& name, int size);  // throws std::invalid_argument
 

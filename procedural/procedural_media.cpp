@@ -438,8 +438,8 @@ FacadeSample facade_sample(double x, double y) {
             const double by = (y - 0.86) / 0.014;
             const double bx = (x - 0.84) / 0.024 + ((int(std::floor(by)) & 1) ? 0.5 : 0.0);
             const bool joint = frac(by) < 0.18 || frac(bx) < 0.08;
-            s.c =
-                joint ? Rgb{170, 165, 158} : Rgb{150, 66, 46} * (0.9 + 0.2 * hash01(int(std::floor(bx)), int(by), 73));
+            s.c = joint ? Rgb{170, 165, 158}
+                        : Rgb{150, 66, 46} * (0.9 + 0.2 * hash01(int(std::floor(bx)), int(by), 73));
             if (y >= 0.975) {
                 s.d = 0.08;
                 s.c = kStone * 1.1;

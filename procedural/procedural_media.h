@@ -24,8 +24,8 @@ ProceduralRelief make_brick_wall(int size);
 ProceduralRelief make_facade(int size);
 ProceduralRelief make_bumps(int size);
 ProceduralRelief make_ridges(int size);
-std::vector<std::string> procedural_names();               // {"bricks", "facade", "bumps", "ridges"}
-std::string procedural_names_list();                      // "bricks, facade, bumps, ridges", for messages
+std::vector<std::string> procedural_names();                          // {"bricks", "facade", "bumps", "ridges"}
+std::string procedural_names_list();                                  // "bricks, facade, bumps, ridges", for messages
 ProceduralRelief make_procedural(const std::string& name, int size);  // throws std::invalid_argument
 
 // Converts to a relief texture (quantized) directly, without files.

@@ -132,7 +132,7 @@ bool synthetic_hit(SyntheticShape s, const glm::dvec3& o, const glm::dvec3& d, d
     const int u = (best_axis + 1) % 3, v = (best_axis + 2) % 3;
     const bool check = (int(std::floor(p[u] * 5.0)) + int(std::floor(p[v] * 5.0))) & 1;
     static const double palette[7][3] = {{0.8, 0.8, 0.75}, {0.9, 0.2, 0.2}, {0.2, 0.8, 0.3}, {0.2, 0.3, 0.9},
-                                         {0.9, 0.8, 0.1}, {0.8, 0.2, 0.8}, {0.1, 0.8, 0.8}};
+                                         {0.9, 0.8, 0.1},  {0.8, 0.2, 0.8}, {0.1, 0.8, 0.8}};
     const double* c = palette[best_part == 0 ? 0 : 1 + (best_part - 1) % 6];
     const double k = (check ? 0.6 : 1.0) * (0.7 + 0.1 * best_axis);
     color = {channel(c[0] * k), channel(c[1] * k), channel(c[2] * k), 255};

@@ -22,15 +22,16 @@ namespace rtm {
 
 enum class SyntheticShape { sphere, cross_box, rounded_cube };
 
-SyntheticShape parse_synthetic_shape(const std::string& s);  // "sphere", "cross-box", "rounded-cube"; throws std::invalid_argument
+SyntheticShape parse_synthetic_shape(
+    const std::string& s);  // "sphere", "cross-box", "rounded-cube"; throws std::invalid_argument
 std::string to_string(SyntheticShape s);
 
 // The first hit of the ray origin + t*dir (t > 0, dir unit length) with the shape: its distance and colour.
 bool synthetic_hit(SyntheticShape s, const glm::dvec3& origin, const glm::dvec3& dir, double& t, Rgba8& color);
 
 struct SyntheticFace {
-    ImageRGBA8 color;      // alpha 0 where the ray missed
-    ImageF displacement;   // world units along the outward normal, <= 0 (0 where empty)
+    ImageRGBA8 color;     // alpha 0 where the ray missed
+    ImageF displacement;  // world units along the outward normal, <= 0 (0 where empty)
 };
 
 inline const Box kSyntheticBox{{-1.0, -1.0, -1.0}, {1.0, 1.0, 1.0}};

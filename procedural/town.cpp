@@ -80,13 +80,14 @@ ProceduralRelief make_roof(int w, int h) {
             double d = 0.014 * (1.0 - fy);  // a tile's lower edge stands out
             const double v = 0.85 + 0.3 * hash01(k, c, 1);
             double r = 150 * v, g = 62 * v, b = 42 * v;
-            if (fx < 0.06 || fx > 0.94) r *= 0.55, g *= 0.55, b *= 0.55;  // the gap between tiles
+            if (fx < 0.06 || fx > 0.94) r *= 0.55, g *= 0.55, b *= 0.55;    // the gap between tiles
             r *= 0.8 + 0.2 * fy, g *= 0.8 + 0.2 * fy, b *= 0.8 + 0.2 * fy;  // shade under the next row
             // The chimney: a brick block standing 0.15 out of the roof near its top right.
             const double x0 = 0.68, x1 = 0.8, y0 = 0.55 * roof_length(), y1 = 0.85 * roof_length();
             if (x >= x0 && x < x1 && y >= y0 && y < y1) {
                 d = 0.15;
-                const bool joint = std::fmod(y, 0.03) < 0.005 || std::fmod(x + (int(y / 0.03) & 1) * 0.02, 0.04) < 0.005;
+                const bool joint = std::fmod(y, 0.03) < 0.005 ||
+                                   std::fmod(x + (int(y / 0.03) & 1) * 0.02, 0.04) < 0.005;
                 r = joint ? 170 : 140, g = joint ? 165 : 70, b = joint ? 158 : 52;
                 if (y > y1 - 0.015) r = 60, g = 55, b = 52;  // the cap
             }

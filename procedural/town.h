@@ -13,8 +13,8 @@
 namespace rtm {
 
 struct TownOptions {
-    int houses = 12;       // >= 2; half on each side of the street
-    int texels = 256;      // texels across a house's front (8..2048)
+    int houses = 12;   // >= 2; half on each side of the street
+    int texels = 256;  // texels across a house's front (8..2048)
     int path_frames = 120;
 };
 

@@ -10,7 +10,8 @@ for m in flat two-pass raycast; do
   $R render --relief media/facade.relief.json $view --method "$m" --out "$D/facade_$m.png"
 done
 $R render --relief media/bricks.relief.json --orbit 60,25,1.6 --size 384x384 --method flat --out "$D/bricks_flat.png"
-$R render --relief media/bricks.relief.json --orbit 60,25,1.6 --size 384x384 --method two-pass --out "$D/bricks_two-pass.png"
+$R render --relief media/bricks.relief.json --orbit 60,25,1.6 --size 384x384 --method two-pass --out \
+    "$D/bricks_two-pass.png"
 # The pre-warped texture for the same eye as the facade view (Figure 9c).
 eye=$($R render --relief media/facade.relief.json $view --method flat --json /tmp/rtm_eye.json >/dev/null &&
       sed -n '/"eye"/,/]/p' /tmp/rtm_eye.json | tr -d ' \n' | sed 's/"eye":\[\(.*\)\],*/\1/')

@@ -1,12 +1,16 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds, and runs the whole test suite: the Release build's tests, then the same
-# tests built with AddressSanitizer and UndefinedBehaviorSanitizer (build-asan/), then the libFuzzer targets of
-# fuzz/ for RTM_FUZZ_SECONDS (default 30) each, side by side (scripts/fuzz.sh, build-fuzz/). Exit status non-zero
-# on any failure. Set RTM_SKIP_SANITIZE=1 to run only the Release suite, RTM_SKIP_FUZZ=1 to leave out the fuzzers.
+# Installs what is missing, checks the format (scripts/format.sh), builds, and runs the whole test suite: the
+# Release build's tests, then the same tests built with AddressSanitizer and UndefinedBehaviorSanitizer
+# (build-asan/), then the libFuzzer targets of fuzz/ for RTM_FUZZ_SECONDS (default 30) each, side by side
+# (scripts/fuzz.sh, build-fuzz/). Exit status non-zero on any failure. Set RTM_SKIP_SANITIZE=1 to run only the
+# Release suite, RTM_SKIP_FUZZ=1 to leave out the fuzzers.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 jobs=$(nproc)
+
+echo "== Format: .clang-format and 120 columns (scripts/format.sh --check)"
+bash scripts/format.sh --check
 
 echo "== Release build and tests"
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null

@@ -84,12 +84,12 @@ public:
                                OSMESA_CONTEXT_MINOR_VERSION,
                                3,
                                0};
-        const std::vector<int> threads_before =
-            options.pin_llvmpipe_threads ? process_threads() : std::vector<int>{};
+        const std::vector<int> threads_before = options.pin_llvmpipe_threads ? process_threads() : std::vector<int>{};
         ctx_ = OSMesaCreateContextAttribs(attribs, nullptr);
         if (!ctx_)
-            throw GlError("OSMesa: cannot create an OpenGL 3.3 core context (OSMesaCreateContextAttribs failed; is "
-                          "Mesa's libOSMesa built with llvmpipe?)");
+            throw GlError(
+                "OSMesa: cannot create an OpenGL 3.3 core context (OSMesaCreateContextAttribs failed; is "
+                "Mesa's libOSMesa built with llvmpipe?)");
         buffer_.resize(size_t(width) * size_t(height) * 4);
         try {
             make_current();
@@ -169,8 +169,7 @@ public:
         glfwWindowHint(GLFW_VISIBLE, visible ? GLFW_TRUE : GLFW_FALSE);
         glfwWindowHint(GLFW_DEPTH_BITS, 24);
         glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
-        const std::vector<int> threads_before =
-            options.pin_llvmpipe_threads ? process_threads() : std::vector<int>{};
+        const std::vector<int> threads_before = options.pin_llvmpipe_threads ? process_threads() : std::vector<int>{};
         window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
         if (!window_) {
             std::string e = take_glfw_error();

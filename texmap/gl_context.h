@@ -33,7 +33,7 @@ public:
     virtual bool should_close() { return false; }  // window closed by the user
     virtual void poll_events() {}
     virtual void* native_window() { return nullptr; }  // GLFWwindow* for the window back end
-    virtual std::string describe() const = 0;           // back end, GL_RENDERER, GL_VERSION
+    virtual std::string describe() const = 0;          // back end, GL_RENDERER, GL_VERSION
 
     static std::unique_ptr<GlContext> create_offscreen(int width, int height, const ContextOptions& options = {});
     static std::unique_ptr<GlContext> create_window(int width, int height, const std::string& title,

@@ -297,9 +297,9 @@ void GlTexture::upload_rect(const ImageRGBA8& img, int x, int row, int w, int h)
     }
     if (x < 0 || row < 0 || w < 0 || h < 0 || x > img.width - w || row > img.height - h)
         throw std::invalid_argument("GlTexture::upload_rect: rectangle x=" + std::to_string(x) +
-                                    " row=" + std::to_string(row) + " " + std::to_string(w) + "x" +
-                                    std::to_string(h) + " is outside the " + std::to_string(img.width) + "x" +
-                                    std::to_string(img.height) + " image");
+                                    " row=" + std::to_string(row) + " " + std::to_string(w) + "x" + std::to_string(h) +
+                                    " is outside the " + std::to_string(img.width) + "x" + std::to_string(img.height) +
+                                    " image");
     if (w == 0 || h == 0) return;
     glBindTexture(GL_TEXTURE_2D, id_);
     reset_unpack_state();
@@ -354,8 +354,7 @@ Renderer::Renderer() : impl_(new Impl) {
         for (int depth = 0; depth < 2; ++depth)
             for (int wall = 0; wall < 2; ++wall) {
                 const std::string fs = "#version 330 core\n#define RTM_DEPTH " + std::to_string(depth) +
-                                       "\n#define RTM_WALL " + std::to_string(wall) + "\n" +
-                                       kReliefFragmentShaderBody;
+                                       "\n#define RTM_WALL " + std::to_string(wall) + "\n" + kReliefFragmentShaderBody;
                 const std::string what = std::string(wall ? "relief side polygon" : "relief quad") +
                                          (depth ? " with depth correction" : "");
                 m.relief_program[depth][wall] = link(kReliefVertexShader, fs.c_str(), what.c_str());
@@ -383,8 +382,7 @@ Renderer::Renderer() : impl_(new Impl) {
         glEnableVertexAttribArray(0);
         glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 5 * sizeof(float), reinterpret_cast<void*>(0));
         glEnableVertexAttribArray(1);
-        glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, 5 * sizeof(float),
-                              reinterpret_cast<void*>(3 * sizeof(float)));
+        glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, 5 * sizeof(float), reinterpret_cast<void*>(3 * sizeof(float)));
 
         // Mesh: MeshVertex array and 32-bit indices, re-specified per draw.
         glGenVertexArrays(1, &m.mesh_vao);
@@ -570,8 +568,7 @@ void Renderer::draw_relief(const Camera& cam, const ReliefSurface& rs, const GlT
     glDrawArrays(GL_TRIANGLE_FAN, 0, 4);
     if (polygons.size() > 1) {
         use_program(m.relief_program[depth][1]);
-        for (size_t i = 1; i < polygons.size(); ++i)
-            glDrawArrays(GL_TRIANGLE_FAN, first[i], first[i + 1] - first[i]);
+        for (size_t i = 1; i < polygons.size(); ++i) glDrawArrays(GL_TRIANGLE_FAN, first[i], first[i + 1] - first[i]);
     }
     glBindVertexArray(0);
     check_gl("Renderer::draw_relief");
@@ -593,8 +590,7 @@ void Renderer::draw_mesh(const Camera& cam, const std::vector<MeshVertex>& verti
     glUniformMatrix4fv(m.mesh_mvp, 1, GL_FALSE, glm::value_ptr(mvp));
     glBindVertexArray(m.mesh_vao);
     glBindBuffer(GL_ARRAY_BUFFER, m.mesh_vbo);
-    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(MeshVertex)), vertices.data(),
-                 GL_STREAM_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(MeshVertex)), vertices.data(), GL_STREAM_DRAW);
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(count * sizeof(uint32_t)), indices.data(), GL_STREAM_DRAW);
     glDrawElements(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT, nullptr);
     glBindVertexArray(0);
@@ -615,8 +611,8 @@ ImageRGBA8 Renderer::read_pixels(int width, int height) {
     check_gl("Renderer::read_pixels: glReadPixels");
     // GL returns the bottom row first; ours is top first.
     ImageRGBA8 img(width, height);
-    for (int r = 0; r < height; ++r) std::copy(flipped.row(height - 1 - r), flipped.row(height - 1 - r) + width,
-                                               img.row(r));
+    for (int r = 0; r < height; ++r)
+        std::copy(flipped.row(height - 1 - r), flipped.row(height - 1 - r) + width, img.row(r));
     return img;
 }
 

@@ -47,7 +47,7 @@ struct MeshVertex {
 // kept beyond the quad, paper section 4): texel units u in [-margin_left, width + margin_right), v likewise.
 struct ReliefSurface {
     glm::dvec3 origin{0.0}, a{1, 0, 0}, b{0, 1, 0};  // the relief plane (docs/FORMATS.md)
-    int width = 0, height = 0;                        // the quad, in texels
+    int width = 0, height = 0;                       // the quad, in texels
     int margin_left = 0, margin_right = 0, margin_bottom = 0, margin_top = 0;
     // wall_low < wall_high: side polygons perpendicular to the quad, spanning these displacements along f, along
     // each border that has a margin. Their fragments show the samples that left the quad through that border:
@@ -64,7 +64,7 @@ struct ReliefSurface {
 
 class Renderer {
 public:
-    Renderer();   // compiles shaders, creates buffers
+    Renderer();  // compiles shaders, creates buffers
     ~Renderer();
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
@@ -86,8 +86,8 @@ public:
     // texels are (0, 0, 0, 0), so bilinear filtering divided by alpha gives no dark fringe at silhouettes.
     void draw_relief(const Camera& cam, const ReliefSurface& surface, const GlTexture& color);
     void draw_mesh(const Camera& cam, const std::vector<MeshVertex>& vertices, const std::vector<uint32_t>& indices);
-    void finish();                                   // glFinish, so a timer around draw calls measures them
-    ImageRGBA8 read_pixels(int width, int height);   // top row first
+    void finish();                                  // glFinish, so a timer around draw calls measures them
+    ImageRGBA8 read_pixels(int width, int height);  // top row first
 
 private:
     struct Impl;

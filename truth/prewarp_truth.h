@@ -16,8 +16,8 @@
 namespace rtm {
 
 struct PrewarpTruthOptions {
-    int samples = 8;   // S: S x S rays per pixel
-    int threads = 0;   // 0 = all; the output does not depend on it
+    int samples = 8;                       // S: S x S rays per pixel
+    int threads = 0;                       // 0 = all; the output does not depend on it
     std::function<void(double)> progress;  // fraction done, from the calling thread; may be empty
 };
 
@@ -28,10 +28,10 @@ ImageRGBA8 prewarp_truth(const ReliefTexture& t, const glm::dvec3& eye, const Pr
 // edges (the ray-cast surface stops at the outermost texel centres, the pre-warp at texel edges, so the outer
 // ring is a modelling difference, not a resampling error).
 struct PrewarpError {
-    double color_rmse = 0;     // RGB, 0..255, over pixels with alpha >= 1/2 in both
-    double coverage_mae = 0;   // mean |alpha - alpha_truth| (0..1) over pixels covered (alpha > 0) in either
-    double iou = 1;            // alpha >= 1/2 in both / in either
-    long long pixels = 0;      // pixels compared for colour
+    double color_rmse = 0;    // RGB, 0..255, over pixels with alpha >= 1/2 in both
+    double coverage_mae = 0;  // mean |alpha - alpha_truth| (0..1) over pixels covered (alpha > 0) in either
+    double iou = 1;           // alpha >= 1/2 in both / in either
+    long long pixels = 0;     // pixels compared for colour
 };
 
 PrewarpError prewarp_error(const ImageRGBA8& estimate, const ImageRGBA8& truth, const PrewarpExtent& extent,

@@ -17,7 +17,7 @@
 namespace rtm {
 
 struct RaycastOptions {
-    int threads = 0;  // 0 = all available
+    int threads = 0;                                // 0 = all available
     std::function<void(double fraction)> progress;  // called now and then from the calling thread; may be empty
     // Reference mode for tests: every ray is intersected with every cell (no DDA, no min/max mipmap), the nearest
     // hit wins. O(cells) per ray: only for small reliefs.
@@ -33,8 +33,8 @@ ImageRGBA8 raycast_relief(const ReliefTexture& t, const Camera& cam, const Rayca
 struct ReliefRayHit {
     bool hit = false;
     double t = std::numeric_limits<double>::infinity();  // ray parameter: the distance when dir is a unit vector
-    double u = 0.0, v = 0.0;                            // texture coordinates of the hit (texel units)
-    Rgba8 color{0, 0, 0, 255};                          // bilinear colour at (u, v); background on a miss
+    double u = 0.0, v = 0.0;                             // texture coordinates of the hit (texel units)
+    Rgba8 color{0, 0, 0, 255};                           // bilinear colour at (u, v); background on a miss
 };
 
 // Builds the min/max mipmap once; cast() is const and safe to call from many threads.

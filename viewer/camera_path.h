@@ -20,7 +20,7 @@ namespace rtm::viewer {
 struct PathKey {
     double t = 0;
     bool is_orbit = false;
-    glm::dvec3 orbit{0.0};                  // az, el, d when is_orbit
+    glm::dvec3 orbit{0.0};  // az, el, d when is_orbit
     glm::dvec3 eye{0.0}, look_at{0.0};
     bool has_look_at = false;
 };

@@ -11,11 +11,11 @@
 namespace rtm::viewer {
 
 struct OrbitCamera {
-    double az = 30, el = 20, dist = 2.2;  // degrees, degrees, radii
+    double az = 30, el = 20, dist = 2.2;            // degrees, degrees, radii
     void drag(double dx_pixels, double dy_pixels);  // 0.3 degree per pixel, elevation within +-89
     void zoom(double wheel_notches);                // 0.9 per notch, distance within [0.05, 1000]
     glm::dvec3 eye(const Bounds& b) const;
-    void frame() { dist = 2.2; }                    // F: back to the default distance
+    void frame() { dist = 2.2; }  // F: back to the default distance
 };
 
 struct FlyCamera {
@@ -23,11 +23,11 @@ struct FlyCamera {
     double yaw = 0, pitch = 0;  // degrees; forward = (sin yaw cos pitch, sin pitch, -cos yaw cos pitch)
     double speed = 1.0;         // world units per second
     glm::dvec3 forward() const;
-    glm::dvec3 right() const;   // horizontal, perpendicular to forward
+    glm::dvec3 right() const;                       // horizontal, perpendicular to forward
     void look(double dx_pixels, double dy_pixels);  // 0.2 degree per pixel, pitch within +-89
     // Moves by `seconds` of travel at `speed` along forward (z), right (x) and +y (y).
     void move(const glm::dvec3& axes, double seconds);
-    void scroll_speed(double wheel_notches);        // x1.25 per notch
+    void scroll_speed(double wheel_notches);  // x1.25 per notch
     // Looks from `eye` at `target` (the heading of the orbit camera it takes over from).
     void look_from(const glm::dvec3& eye, const glm::dvec3& target);
     // F: frames what is loaded: keeps the heading, backs away from the centre to 2.2 radii.

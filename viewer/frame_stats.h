@@ -23,7 +23,7 @@ public:
     void add(const FrameSample& s, double now_s);
     const std::deque<FrameSample>& samples() const { return samples_; }
     double fps() const { return fps_; }
-    FrameSample mean() const;  // over the window
+    FrameSample mean() const;                    // over the window
     std::vector<float> series(int which) const;  // 0 frame, 1 pre-warp, 2 upload, 3 texture mapping, 4 other (ms)
 
 private:

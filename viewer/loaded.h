@@ -27,11 +27,11 @@ struct DrawnQuad {
     std::string name;
     std::array<glm::dvec3, 4> corners;  // (0,0), (w,0), (w,h), (0,h) in texel units, world space
     int level = 0;
-    int width = 0, height = 0;          // the quad at that level, in texels
-    PrewarpExtent margins;              // the texture covers u in [-left, width + right), v in [-bottom, height + top)
-    unsigned texture = 0;               // GL name of the texture mapped on the quad (pre-warped, or flat)
+    int width = 0, height = 0;  // the quad at that level, in texels
+    PrewarpExtent margins;      // the texture covers u in [-left, width + right), v in [-bottom, height + top)
+    unsigned texture = 0;       // GL name of the texture mapped on the quad (pre-warped, or flat)
     int texture_width = 0, texture_height = 0;
-    bool warped = false;                // the texture is a pre-warp (else the flat texture)
+    bool warped = false;  // the texture is a pre-warp (else the flat texture)
     // The epipole (k1/k3, k2/k3) in the level's texel units; not finite when the eye is in the relief's plane.
     glm::dvec2 epipole{0.0};
     std::vector<std::array<glm::dvec3, 4>> side_polygons;  // world-space corners of each side polygon drawn
@@ -39,7 +39,7 @@ struct DrawnQuad {
 
 struct FrameReport {
     StageTimes times;
-    long long texels_warped = 0;    // source texels pre-warped this frame (0 when reused or skipped)
+    long long texels_warped = 0;     // source texels pre-warped this frame (0 when reused or skipped)
     std::vector<std::string> skips;  // names from objects/relief_quad.h
     int level = 0;
     std::vector<DrawnQuad> quads;

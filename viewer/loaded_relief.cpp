@@ -22,8 +22,9 @@ void parse_split(const std::string& text, ViewSettings& s) {
     }
     const RenderMethod m = parse_render_method(text);  // throws naming the value
     if (m == RenderMethod::raycast)
-        throw std::invalid_argument("raycast is a still, it cannot be one side of the split view; use micromesh or "
-                                    "truth");
+        throw std::invalid_argument(
+            "raycast is a still, it cannot be one side of the split view; use micromesh or "
+            "truth");
     s.split = SplitMode::method;
     s.split_method = m;
 }
@@ -129,8 +130,9 @@ std::unique_ptr<Loaded> open_file(const std::string& path) {
     if (ends_with(".object.json") || ends_with(".scene.json"))
         throw IoError(path + ": six-face objects and scenes cannot be viewed by this build yet (reliefs only)");
     if (ends_with(".json")) throw IoError(path + ": unknown kind of file; expected NAME.relief.json");
-    throw IoError(path + ": meshes are baked into objects, which this build cannot view yet; expected "
-                         "NAME.relief.json");
+    throw IoError(path +
+                  ": meshes are baked into objects, which this build cannot view yet; expected "
+                  "NAME.relief.json");
 }
 
 }  // namespace rtm::viewer

@@ -61,8 +61,8 @@ glm::vec4 draw_insets(ImDrawList* list, const FrameReport& report, float display
         list->AddRectFilled(ImVec2(p0.x - 2, p0.y - kLabel - 2), ImVec2(p1.x + 2, p1.y + 2), IM_COL32(40, 40, 40, 255));
         list->AddImage(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(q.texture)), p0, p1);
         char label[128];
-        std::snprintf(label, sizeof label, "%s L%d %dx%d", q.warped ? "pre-warp" : "flat", q.level,
-                      q.texture_width, q.texture_height);
+        std::snprintf(label, sizeof label, "%s L%d %dx%d", q.warped ? "pre-warp" : "flat", q.level, q.texture_width,
+                      q.texture_height);
         list->AddText(ImVec2(p0.x, p0.y - kLabel), IM_COL32(255, 255, 255, 255), label);
         // The quad itself within the texture's margins.
         const glm::dvec2 size(w, h);

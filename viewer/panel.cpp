@@ -12,8 +12,8 @@ namespace {
 const char* kMethods[] = {"flat", "two-pass", "pipelined", "micromesh", "raycast (still)"};
 const RenderMethod kMethodValues[] = {RenderMethod::flat, RenderMethod::two_pass, RenderMethod::pipelined,
                                       RenderMethod::micromesh, RenderMethod::raycast};
-const char* kSkips[] = {kSkipBackFacing, kSkipOutsideFrustum, kSkipSubpixelParallax, kSkipReuse,
-                        kSkipPartialUpload,  kSkipInsideSlab,     kSkipZeroRuns};
+const char* kSkips[] = {kSkipBackFacing,    kSkipOutsideFrustum, kSkipSubpixelParallax, kSkipReuse,
+                        kSkipPartialUpload, kSkipInsideSlab,     kSkipZeroRuns};
 
 // A titled separator (ImGui 1.86 has no SeparatorText).
 void section(const char* title) {
@@ -33,8 +33,9 @@ glm::vec4 draw_panel(ViewSettings& s, PanelContext& c, KeyRequests& r) {
     ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Always);
     ImGui::SetNextWindowSize(ImVec2(330, 0), ImGuiCond_Always);
     ImGui::SetNextWindowBgAlpha(0.85f);
-    ImGui::Begin("rtm view", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
-                                          ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings);
+    ImGui::Begin("rtm view", nullptr,
+                 ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                     ImGuiWindowFlags_NoSavedSettings);
     ImGui::TextWrapped("%s: %s", c.loaded_kind.c_str(), c.loaded_name.c_str());
     if (!c.status.empty()) ImGui::TextColored(ImVec4(1, 0.5f, 0.3f, 1), "%s", c.status.c_str());
 
@@ -98,8 +99,8 @@ glm::vec4 draw_panel(ViewSettings& s, PanelContext& c, KeyRequests& r) {
     section("skips");
     ImGui::Checkbox("skips on", &s.skips);
     for (const char* k : kSkips) {
-        const bool fired = c.report && std::find(c.report->skips.begin(), c.report->skips.end(), k) !=
-                                           c.report->skips.end();
+        const bool fired = c.report &&
+                           std::find(c.report->skips.begin(), c.report->skips.end(), k) != c.report->skips.end();
         ImGui::TextColored(fired ? ImVec4(0.4f, 1, 0.4f, 1) : ImVec4(0.5f, 0.5f, 0.5f, 1), "%s %s",
                            fired ? "[fired]" : "[     ]", k);
     }
@@ -131,15 +132,19 @@ glm::vec4 draw_panel(ViewSettings& s, PanelContext& c, KeyRequests& r) {
     ImGui::Checkbox("outlines", &s.outlines);
     ImGui::SameLine();
     ImGui::Checkbox("vsync", &s.vsync);
-    const char* splits[] = {"no split", "split: flat", "split: two-pass", "split: pipelined", "split: micromesh",
-                            "split: error vs truth"};
+    const char* splits[] = {"no split",         "split: flat",      "split: two-pass",
+                            "split: pipelined", "split: micromesh", "split: error vs truth"};
     int si = 0;
-    if (s.split == SplitMode::truth) si = 5;
-    else if (s.split == SplitMode::method) si = method_index(s.split_method) + 1;
+    if (s.split == SplitMode::truth)
+        si = 5;
+    else if (s.split == SplitMode::method)
+        si = method_index(s.split_method) + 1;
     ImGui::SetNextItemWidth(200);
     if (ImGui::Combo("##split", &si, splits, 6)) {
-        if (si == 0) s.split = SplitMode::off;
-        else if (si == 5) s.split = SplitMode::truth;
+        if (si == 0)
+            s.split = SplitMode::off;
+        else if (si == 5)
+            s.split = SplitMode::truth;
         else {
             s.split = SplitMode::method;
             s.split_method = kMethodValues[si - 1];

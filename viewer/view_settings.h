@@ -14,21 +14,21 @@ enum class SplitMode { off, method, truth };
 
 struct ViewSettings {
     RenderMethod method = RenderMethod::two_pass;
-    int level = 0;                 // pyramid level; -1 = auto
-    bool skips = true;             // the skips of DrawOptions
-    bool side_polygons = true;     // keep the samples that leave the quad and draw the side polygons
+    int level = 0;              // pyramid level; -1 = auto
+    bool skips = true;          // the skips of DrawOptions
+    bool side_polygons = true;  // keep the samples that leave the quad and draw the side polygons
     bool depth_correction = false;
-    bool coverage = false;         // the coverage filter (two-pass only; ignored otherwise)
-    double discontinuity = -1;     // threshold for marking discontinuities; -1 = the manifest's own
-    int threads = 0;               // pre-warp threads, 0 = all
+    bool coverage = false;      // the coverage filter (two-pass only; ignored otherwise)
+    double discontinuity = -1;  // threshold for marking discontinuities; -1 = the manifest's own
+    int threads = 0;            // pre-warp threads, 0 = all
 
-    bool panel = false;            // the Dear ImGui panel
-    bool insets = false;           // the pre-warped textures of the quads drawn, with their epipoles
-    bool outlines = false;         // outlines of the texture-mapped quads and side polygons
+    bool panel = false;     // the Dear ImGui panel
+    bool insets = false;    // the pre-warped textures of the quads drawn, with their epipoles
+    bool outlines = false;  // outlines of the texture-mapped quads and side polygons
     SplitMode split = SplitMode::off;
     RenderMethod split_method = RenderMethod::micromesh;
     bool vsync = true;
-    bool fly = false;              // fly camera instead of orbit
+    bool fly = false;  // fly camera instead of orbit
 };
 
 // Parses a --split value: a method name (flat, two-pass, pipelined, micromesh) or "truth". Throws

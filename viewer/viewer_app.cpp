@@ -72,8 +72,8 @@ void install_callbacks(GLFWwindow* win) {
 ImTextureID imgui_texture(const GlTexture& t) { return reinterpret_cast<ImTextureID>(static_cast<intptr_t>(t.id())); }
 
 bool same_view(const Camera& a, const Camera& b) {
-    return a.eye == b.eye && a.look_at == b.look_at && a.up == b.up && a.fov_deg == b.fov_deg &&
-           a.width == b.width && a.height == b.height;
+    return a.eye == b.eye && a.look_at == b.look_at && a.up == b.up && a.fov_deg == b.fov_deg && a.width == b.width &&
+           a.height == b.height;
 }
 
 // Clears the whole framebuffer (colour black, depth far) outside the renderer, for frames it draws nothing in.

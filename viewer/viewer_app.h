@@ -17,21 +17,21 @@
 namespace rtm::viewer {
 
 struct ViewerOptions {
-    Camera camera;              // the starting camera (size, field of view, up; eye and look-at if fixed)
-    bool start_fly = false;     // start with the fly camera at camera.eye looking at camera.look_at (--eye)
-    OrbitCamera orbit;          // the orbit camera's start (--orbit, or the default 30,20,2.2)
+    Camera camera;           // the starting camera (size, field of view, up; eye and look-at if fixed)
+    bool start_fly = false;  // start with the fly camera at camera.eye looking at camera.look_at (--eye)
+    OrbitCamera orbit;       // the orbit camera's start (--orbit, or the default 30,20,2.2)
     ViewSettings settings;
-    int frames = 0;             // > 0: scripted, render this many frames and return
-    std::string screenshot;     // scripted: write the last frame here
-    std::string camera_path;    // a camera path file (viewer/camera_path.h)
-    std::vector<int> keys;      // scripted key presses, applied in order before the first frame
-    double fly_step_s = 0.1;    // a scripted fly key moves the eye by this many seconds of travel
+    int frames = 0;           // > 0: scripted, render this many frames and return
+    std::string screenshot;   // scripted: write the last frame here
+    std::string camera_path;  // a camera path file (viewer/camera_path.h)
+    std::vector<int> keys;    // scripted key presses, applied in order before the first frame
+    double fly_step_s = 0.1;  // a scripted fly key moves the eye by this many seconds of travel
 };
 
 // What a run measured (scripted runs report it with --json).
 struct ViewerResult {
     int frames = 0;
-    double fps = 0;                  // frames after the first tenth, over their wall time
+    double fps = 0;  // frames after the first tenth, over their wall time
     std::vector<double> frame_ms, prewarp_ms, upload_ms, texture_map_ms, other_ms;
     std::vector<double> overlay_ms, swap_ms;  // parts of other_ms: the panel and overlays drawn, the buffer swap
     std::vector<long long> texels_warped;

@@ -17,11 +17,11 @@ constexpr Isa kAll[] = {Isa::avx512, Isa::avx2, Isa::sse4, Isa::neon, Isa::sve, 
 // The Highway targets that stand for `isa` (0 for avx512 and generic, which Highway does not run here).
 int64_t hwy_bits(Isa isa) {
     switch (isa) {
-    case Isa::avx2: return HWY_AVX2;
-    case Isa::sse4: return HWY_SSE4;
-    case Isa::neon: return HWY_NEON;
-    case Isa::sve: return HWY_SVE | HWY_SVE2;
-    default: return 0;
+        case Isa::avx2: return HWY_AVX2;
+        case Isa::sse4: return HWY_SSE4;
+        case Isa::neon: return HWY_NEON;
+        case Isa::sve: return HWY_SVE | HWY_SVE2;
+        default: return 0;
     }
 }
 
@@ -29,13 +29,13 @@ int64_t hwy_bits(Isa isa) {
 
 const char* isa_name(Isa isa) {
     switch (isa) {
-    case Isa::automatic: return "auto";
-    case Isa::avx512: return "avx512";
-    case Isa::avx2: return "avx2";
-    case Isa::sse4: return "sse4";
-    case Isa::neon: return "neon";
-    case Isa::sve: return "sve";
-    case Isa::generic: return "generic";
+        case Isa::automatic: return "auto";
+        case Isa::avx512: return "avx512";
+        case Isa::avx2: return "avx2";
+        case Isa::sse4: return "sse4";
+        case Isa::neon: return "neon";
+        case Isa::sve: return "sve";
+        case Isa::generic: return "generic";
     }
     return "?";
 }
@@ -61,10 +61,10 @@ std::string isa_names() {
 
 bool isa_supported(Isa isa) {
     switch (isa) {
-    case Isa::automatic:
-    case Isa::generic: return true;
-    case Isa::avx512: return fast::cpu_supported();
-    default: return (hwy::SupportedTargets() & simd::hwy_compiled_targets() & hwy_bits(isa)) != 0;
+        case Isa::automatic:
+        case Isa::generic: return true;
+        case Isa::avx512: return fast::cpu_supported();
+        default: return (hwy::SupportedTargets() & simd::hwy_compiled_targets() & hwy_bits(isa)) != 0;
     }
 }
 

@@ -45,10 +45,10 @@ struct LineInput {
 
 template <class P, class A = P>
 struct LineOutput {
-    int n = 0;                         // number of output pixels along the line
-    Rgba8* color = nullptr;            // pixel 0
-    std::ptrdiff_t color_stride = 1;   // in pixels, may be negative
-    A* attr = nullptr;                 // may be null
+    int n = 0;                        // number of output pixels along the line
+    Rgba8* color = nullptr;           // pixel 0
+    std::ptrdiff_t color_stride = 1;  // in pixels, may be negative
+    A* attr = nullptr;                // may be null
     std::ptrdiff_t attr_stride = 1;
 };
 

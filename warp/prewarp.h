@@ -80,9 +80,9 @@ struct PrewarpWorkspace {
 };
 
 struct PrewarpStats {
-    long long texels = 0;        // source texels visited
-    long long dropped = 0;       // texels that could not be pre-warped (1 + k3*d <= 0)
-    PrewarpExtent extent;        // the output's margins around the quad
+    long long texels = 0;   // source texels visited
+    long long dropped = 0;  // texels that could not be pre-warped (1 + k3*d <= 0)
+    PrewarpExtent extent;   // the output's margins around the quad
     // Texels the row warp copied as zero-displacement runs, without the warp arithmetic: every still texel except
     // those right after a connected moving texel in occlusion-compatible order, whose span is drawn. Counted by the
     // reference kernels only (0 from the fast kernels, which copy without counting).

@@ -21,7 +21,8 @@ sed 's/"d.pgm"/"d34.pgm"/' "$R" >"$T/r/sizes.relief.json"
 expect_fail 1 '3x4.*4x4|4x4.*3x4' -- prewarp --relief "$T/r/sizes.relief.json" --eye 0,0,1 --out "$T/o3.png"
 # Non-finite displacement range.
 sed 's/\[0.0, 0.5\]/[0.0, 1e999]/' "$R" >"$T/r/inf.relief.json"
-expect_fail 1 'inf\.relief\.json.*displacement_range' -- prewarp --relief "$T/r/inf.relief.json" --eye 0,0,1 --out "$T/o4.png"
+expect_fail 1 'inf\.relief\.json.*displacement_range' -- prewarp --relief "$T/r/inf.relief.json" --eye 0,0,1 --out \
+    "$T/o4.png"
 # Degenerate a/b: zero and parallel.
 sed 's/"a": \[0.25, 0, 0\]/"a": [0, 0, 0]/' "$R" >"$T/r/zero.relief.json"
 expect_fail 1 'zero\.relief\.json.*\ba\b' -- prewarp --relief "$T/r/zero.relief.json" --eye 0,0,1 --out "$T/o5.png"
@@ -32,7 +33,8 @@ expect_fail 2 'method.*bogus' -- render --relief "$R" --eye 0,0,1 --method bogus
 expect_fail 2 'method.*bogus' -- prewarp --relief "$R" --eye 0,0,1 --method bogus --out "$T/o8.png"
 # Filters: unknown, and coverage with the pipelined reconstruction (two-pass only).
 expect_fail 2 'filter.*blur' -- prewarp --relief "$R" --eye 0,0,1 --filter blur --out "$T/o8b.png"
-expect_fail 2 'coverage.*pipelined' -- render --relief "$R" --eye 0,0,1 --method pipelined --filter coverage --out "$T/o8c.png"
+expect_fail 2 'coverage.*pipelined' -- render --relief "$R" --eye 0,0,1 --method pipelined --filter coverage --out \
+    "$T/o8c.png"
 expect_ok prewarp --relief "$R" --eye 0.5,0.5,3 --filter coverage --out "$T/ok_cov.png"
 expect_ok render --relief "$R" --eye 0.5,0.5,3 --size 64x64 --filter coverage --out "$T/ok_render_cov.png"
 expect_fail 2 'samples.*0' -- bench-filter --samples 0
@@ -54,7 +56,8 @@ ls "$T" | grep -q '\.tmp' && { echo "FAIL: temporary file left behind"; fails=$(
 # --json of prewarp: the zero-displacement copy is reported for the brick wall (its bricks sit at displacement 0).
 B="$2/media/bricks.relief.json"
 expect_ok prewarp --relief "$B" --eye 0.3,0.2,1.5 --out "$T/bricks_pre.png" --json "$T/bricks_pre.json"
-if grep -q '"zero-displacement-runs"' "$T/bricks_pre.json" && grep -Eq '"still_texels": *[1-9]' "$T/bricks_pre.json"; then
+if grep -q '"zero-displacement-runs"' "$T/bricks_pre.json" &&
+  grep -Eq '"still_texels": *[1-9]' "$T/bricks_pre.json"; then
   passes=$((passes + 1))
 else
   echo "FAIL: prewarp --json on the brick wall does not report zero-displacement-runs: $(cat "$T/bricks_pre.json")"

@@ -131,7 +131,8 @@ reject_relief "$(edit color_empty 's/"c.ppm"/""/')" \
   "$D/color_empty.relief.json: field \"color\" must be a non-empty string"
 reject_relief "$(edit disp_array 's/"d.pgm"/["d.pgm"]/')" "$D/disp_array.relief.json: field \"displacement\""
 reject_relief "$(edit range_string 's/\[0.0, 0.5\]/"0 0.5"/')" \
-  "$D/range_string.relief.json: field \"displacement_range\" must be an array of 2 finite numbers [min, max], found the string \"0 0.5\""
+  "$D/range_string.relief.json: field \"displacement_range\" must be an array of 2 finite numbers"\
+" [min, max], found the string \"0 0.5\""
 reject_relief "$(edit origin_object 's/"origin": \[0, 0, 0\]/"origin": {"x": 0, "y": 0, "z": 0}/')" \
   "$D/origin_object.relief.json: field \"origin\" must be an array of 3 finite numbers, found an object with 3 fields"
 reject_relief "$(edit b_bool 's/"b": \[0, 0.25, 0\]/"b": [0, true, 0]/')" \
@@ -165,9 +166,11 @@ reject_relief "$(edit range_three 's/\[0.0, 0.5\]/[0, 0.5, 1]/')" \
 reject_relief "$(edit range_inverted 's/\[0.0, 0.5\]/[0.5, 0.0]/')" \
   "$D/range_inverted.relief.json: field \"displacement_range\" must be [min, max] with min <= max, found [0.5, 0.0]"
 reject_relief "$(edit range_beyond_float 's/\[0.0, 0.5\]/[-1e300, 1e300]/')" \
-  "$D/range_beyond_float.relief.json: field \"displacement_range\" [-1e+300, 1e+300] gives displacements too large for single precision"
+  "$D/range_beyond_float.relief.json: field \"displacement_range\" [-1e+300, 1e+300]"\
+" gives displacements too large for single precision"
 reject_relief "$(edit threshold_negative 's/{/{ "discontinuity_threshold": -1,/')" \
-  "$D/threshold_negative.relief.json: field \"discontinuity_threshold\" must be a finite number >= 0 (world units), found -1"
+  "$D/threshold_negative.relief.json: field \"discontinuity_threshold\" must be a finite number >= 0"\
+" (world units), found -1"
 reject_relief "$(edit a_zero 's/"a": \[0.25, 0, 0\]/"a": [0, 0, 0]/')" \
   "$D/a_zero.relief.json: field \"a\" has zero length"
 reject_relief "$(edit ab_parallel 's/"b": \[0, 0.25, 0\]/"b": [-0.5, 0, 0]/')" \
@@ -224,7 +227,8 @@ write("text_2gb.png", b"\x89PNG\r\n\x1a\n" + ihdr + struct.pack(">I", 2016634473
 # The same in OpenEXR: a string attribute claiming 1.9 GB, which OpenEXR 3.1 would allocate and clear.
 write("attr_2gb.exr", b"\x76\x2f\x31\x01\x02\0\0\0" + b"comments\0string\0" + struct.pack("<i", 1929379935) + b"x" * 40)
 # OpenImageIO's SGI reader throws std::length_error on this one instead of reporting an error (a fuzzing find).
-write("throws.sgi", bytes.fromhex("01da00da00010002ff2850320005785249006146ca7700000000008ef60000000000000000000000000000"
+write("throws.sgi", \
+    bytes.fromhex("01da00da00010002ff2850320005785249006146ca7700000000008ef60000000000000000000000000000"
                                   "00000000000000004d4d4d4d328e8ef6000000000000000000000000004d4d4d4d328e8ef60000000000"
                                   "000000000000000000000000004d4d4d4d328e8ef60000"))
 write("huge.ppm", b"P6\n100000 100000\n255\n")
@@ -290,11 +294,13 @@ check 1 "$D/line?break.png: cannot open: No such file or directory" -- \
 # --- Displacement values and sizes.
 
 reject_relief "$(with_disp disp_nan nan.pfm)" \
-  "$D/disp_nan.relief.json: displacement image nan.pfm has a non-finite value (nan) at texel (1, 2), expected a finite value in 0..1"
+  "$D/disp_nan.relief.json: displacement image nan.pfm has a non-finite value (nan)"\
+" at texel (1, 2), expected a finite value in 0..1"
 reject_relief "$(with_disp disp_inf inf.pfm)" \
   "$D/disp_inf.relief.json: displacement image inf.pfm has a non-finite value (-inf) at texel (3, 0)"
 reject_relief "$(with_disp disp_above above_one.pfm)" \
-  "$D/disp_above.relief.json: displacement image above_one.pfm has the value 1.5 at texel (3, 3), expected a finite value in 0..1"
+  "$D/disp_above.relief.json: displacement image above_one.pfm has the value 1.5"\
+" at texel (3, 3), expected a finite value in 0..1"
 reject_relief "$(with_disp disp_below below_zero.pfm)" \
   "$D/disp_below.relief.json: displacement image below_zero.pfm has the value -0.25 at texel (0, 3)"
 if command -v oiiotool >/dev/null; then

@@ -29,14 +29,17 @@ PY
 else passes=$((passes + 1)); fi
 # The whole object behind the camera: every visible face outside the frustum, nothing drawn.
 expect_ok render --object "$O" --eye 0,0,5 --look-at 0,0,10 --size 32x32 --json "$T/away.json"
-grep -q '"outside-frustum"' "$T/away.json" && passes=$((passes + 1)) || { echo "FAIL: outside-frustum skip"; fails=$((fails + 1)); }
+grep -q '"outside-frustum"' "$T/away.json" && passes=$((passes + 1)) || { echo "FAIL: outside-frustum skip"; \
+    fails=$((fails + 1)); }
 
 # prewarp --object writes one texture per visible face, OUT_+x.png ..., and says which.
 expect_ok prewarp --object "$O" --eye 3,0.2,4 --out "$T/pw.png" --json "$T/pw.json"
 for f in +x +z; do
-  [ -s "$T/pw_$f.png" ] && passes=$((passes + 1)) || { echo "FAIL: prewarp --object did not write pw_$f.png"; fails=$((fails + 1)); }
+  [ -s "$T/pw_$f.png" ] && passes=$((passes + 1)) || { echo "FAIL: prewarp --object did not write pw_$f.png"; \
+      fails=$((fails + 1)); }
 done
-[ ! -e "$T/pw_+y.png" ] && [ ! -e "$T/pw.png" ] && passes=$((passes + 1)) || { echo "FAIL: unexpected output"; fails=$((fails + 1)); }
+[ ! -e "$T/pw_+y.png" ] && [ ! -e "$T/pw.png" ] && passes=$((passes + 1)) || { echo "FAIL: unexpected output"; \
+    fails=$((fails + 1)); }
 grep -q '"out"' "$T/pw.json" && grep -q '"adjacent"' "$T/pw.json" && passes=$((passes + 1)) ||
   { echo "FAIL: prewarp --object --json"; fails=$((fails + 1)); }
 
@@ -51,17 +54,24 @@ import json, sys, re
 text = open(sys.argv[1]).read()
 d = sys.argv[2]
 open(d + "/missing.object.json", "w").write(re.sub(r'\s*"\+y": \{[^}]*\},', "", text))
-open(d + "/nan.object.json", "w").write(text.replace('"displacement_range": [-2.0, 0.0]', '"displacement_range": [NaN, 0.0]', 1))
-open(d + "/hi.object.json", "w").write(text.replace('"displacement_range": [-2.0, 0.0]', '"displacement_range": [-2.0, 0.5]', 1))
-open(d + "/sizes.object.json", "w").write(text.replace("cross-box_px_color.png", "small.png").replace("cross-box_px_disp.png", "small_d.png"))
+open(d + "/nan.object.json", "w").write(text.replace('"displacement_range": [-2.0, 0.0]', \
+    '"displacement_range": [NaN, 0.0]', 1))
+open(d + "/hi.object.json", "w").write(text.replace('"displacement_range": [-2.0, 0.0]', \
+    '"displacement_range": [-2.0, 0.5]', 1))
+open(d + "/sizes.object.json", "w").write(text.replace("cross-box_px_color.png", \
+    "small.png").replace("cross-box_px_disp.png", "small_d.png"))
 PY
 oiiotool --pattern constant:color=1,0,0,1 32x32 4 -d uint8 -o "$T/o/small.png" 2>/dev/null
 oiiotool --pattern constant:color=0.5 32x32 1 -d uint16 -o "$T/o/small_d.png" 2>/dev/null
-expect_fail 1 'missing\.object\.json.*faces.*"\+y"' -- render --object "$T/o/missing.object.json" --orbit 0,0,3 --out "$T/m.png"
+expect_fail 1 'missing\.object\.json.*faces.*"\+y"' -- render --object "$T/o/missing.object.json" --orbit 0,0,3 --out \
+    "$T/m.png"
 expect_fail 1 'nan\.object\.json' -- render --object "$T/o/nan.object.json" --orbit 0,0,3 --out "$T/m.png"
-expect_fail 1 'hi\.object\.json.*"\+x".*displacement_range' -- prewarp --object "$T/o/hi.object.json" --eye 3,0,4 --out "$T/m.png"
+expect_fail 1 'hi\.object\.json.*"\+x".*displacement_range' -- prewarp --object "$T/o/hi.object.json" --eye 3,0,4 \
+    --out "$T/m.png"
 if command -v oiiotool >/dev/null; then
-  expect_fail 1 'sizes\.object\.json.*"\+x".*spacing|sizes\.object\.json.*spacing.*"\+x"' -- render --object "$T/o/sizes.object.json" --orbit 0,0,3 --out "$T/m.png"
+  expect_fail 1 'sizes\.object\.json.*"\+x".*spacing|sizes\.object\.json.*spacing.*"\+x"' -- render --object \
+      "$T/o/sizes.object.json" --orbit 0,0,3 --out "$T/m.png"
 fi
-[ ! -e "$T/m.png" ] && [ ! -e "$T/m_+x.png" ] && passes=$((passes + 1)) || { echo "FAIL: output left behind"; fails=$((fails + 1)); }
+[ ! -e "$T/m.png" ] && [ ! -e "$T/m_+x.png" ] && passes=$((passes + 1)) || { echo "FAIL: output left behind"; \
+    fails=$((fails + 1)); }
 finish

@@ -19,7 +19,8 @@ expect_ok render --scene "$S" --orbit 20,10,2 --size 96x64 --method flat --out "
 expect_ok render --scene "$S" --camera-path 1 --size 96x64 --method micromesh --out "$T/truth.png"
 expect_ok render --scene "$S" --size 96x64 --frames "$T/frames" --json "$T/frames.json"
 for k in 0 1 2; do
-  [ -s "$T/frames/frame_000$k.png" ] && passes=$((passes + 1)) || { echo "FAIL: frame $k missing"; fails=$((fails + 1)); }
+  if [ -s "$T/frames/frame_000$k.png" ]; then passes=$((passes + 1))
+  else echo "FAIL: frame $k missing"; fails=$((fails + 1)); fi
 done
 # The JSON: counts per frame, stage times over the frames.
 if python3 - "$T/default.json" "$T/frames.json" <<'PY'

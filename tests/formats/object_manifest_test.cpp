@@ -197,7 +197,8 @@ TEST(ObjectManifest, HostileManifestsGiveOneLineNamingTheFaceAndField) {
     t = text;
     t.replace(t.find("good_py_disp.png"), 16, "big_disp.png");
     write_file(path, t);
-    expect_io_error([&] { load_object(path); }, path, {"face \"+y\"", "big_disp.png", "8x16"}, "colour vs displacement");
+    expect_io_error([&] { load_object(path); }, path, {"face \"+y\"", "big_disp.png", "8x16"},
+                    "colour vs displacement");
     // Not JSON, not an object, not there.
     write_file(path, "[1, 2]");
     expect_io_error([&] { load_object(path); }, path, {"top level"}, "array");

@@ -116,8 +116,9 @@ TEST_F(BakeTest, TexelCentresSampleTheTexture) {
         for (int i = 0; i < 8; ++i) tex.at(i, r) = Rgba8{uint8_t(30 * i), uint8_t(30 * r), 77, 255};
     write_rgba8(dir.file("tex.png"), tex);
     write_file(dir.file("t.mtl"), "newmtl m\nKd 1 1 1\nmap_Kd tex.png\n");
-    write_file(dir.file("t.obj"), "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
-                                  "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl m\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n");
+    write_file(dir.file("t.obj"),
+               "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+               "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl m\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n");
     const TriangleMesh mesh = load_mesh(dir.file("t.obj"));
     std::vector<std::string> warnings;
     const BakedObject obj = bake_object(mesh, 8);

@@ -104,9 +104,11 @@ TEST(BakePlanesParse, RefusesMalformedPlanesNamingTheField) {
         {R"({"planes": [{"name": "p", "origin": [0,0,0], "a": [1,0,0], "b": [2,0,0], "size": [2,2]}]})", "plane 0"},
         {R"({"planes": [{"name": "p", "origin": [0,0,0], "a": [1,0,0], "b": [0,1,0], "size": [0,2]}]})", "size"},
         {R"({"planes": [{"name": "p", "origin": [0,0,0], "a": [1,0,0], "b": [0,1,0], "size": [2,2],
-             "range": [1, 0]}]})", "range"},
+             "range": [1, 0]}]})",
+         "range"},
         {R"({"planes": [{"name": "p", "origin": [0,0,0], "a": [1,0,0], "b": [0,1,0], "size": [2,2]},
-                        {"name": "p", "origin": [0,0,0], "a": [1,0,0], "b": [0,1,0], "size": [2,2]}]})", "twice"},
+                        {"name": "p", "origin": [0,0,0], "a": [1,0,0], "b": [0,1,0], "size": [2,2]}]})",
+         "twice"},
     };
     for (const Case& c : cases) {
         write_file(dir.file("p.json"), c.text);

@@ -97,10 +97,11 @@ TEST(MeshLoader, TextureWithoutUvsWarns) {
 
 TEST(MeshLoader, VertexColoursOnlyPly) {
     TempDir dir;
-    write_file(dir.file("c.ply"), "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                                  "property float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n"
-                                  "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
-                                  "0 0 0 255 0 0\n1 0 0 0 255 0\n0 1 0 0 0 255\n3 0 1 2\n");
+    write_file(dir.file("c.ply"),
+               "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+               "property float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n"
+               "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+               "0 0 0 255 0 0\n1 0 0 0 255 0\n0 1 0 0 0 255\n3 0 1 2\n");
     const TriangleMesh m = load_mesh(dir.file("c.ply"));
     ASSERT_EQ(m.triangle_count(), 1u);
     EXPECT_TRUE(m.parts[0].use_vertex_color);
@@ -148,9 +149,10 @@ TEST(MeshLoader, RefusesDeclaredCountsLargerThanTheFile) {
     // assimp's PLY and OFF readers reserve what the header declares (mesh/header_guard.h).
     objects_testing::TempDir dir;
     const std::string off = "OFF\n353535235358 6 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
-    const std::string ply = "ply\nformat ascii 1.0\nelement vertex 353535235358\nproperty float x\nproperty float y\n"
-                            "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
-                            "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    const std::string ply =
+        "ply\nformat ascii 1.0\nelement vertex 353535235358\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+        "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
     objects_testing::write_file(dir.file("huge.off"), off);
     objects_testing::write_file(dir.file("huge.ply"), ply);
     for (const char* name : {"huge.off", "huge.ply"}) {

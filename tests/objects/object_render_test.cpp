@@ -143,8 +143,8 @@ void compare_with_truth(SyntheticShape shape, RenderMethod method, bool depth, c
         const int h = holes(truth, img);
         const std::vector<uint8_t> edges = near_box_edges(cam);
         const int eh = holes(truth, img, &edges);
-        std::printf("%-14s %-10s %-24s depth %d: iou %.4f psnr %.2f holes %d near edges %d\n",
-                    to_string(shape).c_str(), to_string(method).c_str(), v.name, int(depth), r.iou, r.psnr, h, eh);
+        std::printf("%-14s %-10s %-24s depth %d: iou %.4f psnr %.2f holes %d near edges %d\n", to_string(shape).c_str(),
+                    to_string(method).c_str(), v.name, int(depth), r.iou, r.psnr, h, eh);
         EXPECT_GE(r.iou, th.iou);
         EXPECT_GE(r.psnr, th.psnr);
         EXPECT_LE(h, th.holes);
@@ -197,8 +197,10 @@ TEST(ObjectRender, DepthCorrectionOccludesOtherGeometry) {
     Gl gl;
     ReliefObject object(make_synthetic_object(SyntheticShape::sphere, kTexels));
     const glm::u8vec4 magenta(255, 0, 255, 255);
-    const std::vector<MeshVertex> square = {{{-1.6f, -1.6f, 0.0f}, magenta}, {{1.6f, -1.6f, 0.0f}, magenta},
-                                            {{1.6f, 1.6f, 0.0f}, magenta}, {{-1.6f, 1.6f, 0.0f}, magenta}};
+    const std::vector<MeshVertex> square = {{{-1.6f, -1.6f, 0.0f}, magenta},
+                                            {{1.6f, -1.6f, 0.0f}, magenta},
+                                            {{1.6f, 1.6f, 0.0f}, magenta},
+                                            {{-1.6f, 1.6f, 0.0f}, magenta}};
     const std::vector<uint32_t> idx = {0, 1, 2, 0, 2, 3};
     for (const View& v : kViews) {
         if (v.faces < 2) continue;  // the square is seen edge-on or not at all from the one-face views

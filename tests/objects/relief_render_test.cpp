@@ -52,8 +52,8 @@ TEST(ReliefRender, SidePolygonsCompleteObliqueSilhouettes) {
     ReliefQuad quad(load_relief(std::string(RTM_SOURCE_DIR) + "/media/facade.relief.json"));
     quad.micromesh();
     Gl gl(256, 256);
-    for (const CompareView& v : {CompareView{"a", 80, 5, 2.2}, CompareView{"b", -70, 30, 2.2},
-                                 CompareView{"c", 10, 75, 2.2}}) {
+    for (const CompareView& v :
+         {CompareView{"a", 80, 5, 2.2}, CompareView{"b", -70, 30, 2.2}, CompareView{"c", 10, 75, 2.2}}) {
         const Camera cam = compare_camera(quad, v, 256, 256);
         const ImageRGBA8 truth = render(gl, quad, cam, RenderMethod::micromesh);
         PrewarpOptions off, on;
@@ -64,7 +64,8 @@ TEST(ReliefRender, SidePolygonsCompleteObliqueSilhouettes) {
         // (recessed roof leaving through the top, towards the epipole): 0.764 -> 0.971. The remaining gap is the
         // two-pass reconstruction itself (skins, one-pixel silhouette rounding). The bounds leave about 0.025 for
         // rasterization differences; losing a wall (or its part below the plane) fails them.
-        std::printf("view az %g el %g: iou %.4f without side polygons, %.4f with\n", v.azimuth, v.elevation, without.iou, with.iou);
+        std::printf("view az %g el %g: iou %.4f without side polygons, %.4f with\n", v.azimuth, v.elevation,
+                    without.iou, with.iou);
         EXPECT_GT(with.iou, without.iou + 0.05) << v.azimuth << "," << v.elevation << " without " << without.iou;
         EXPECT_GT(with.iou, 0.93) << v.azimuth << "," << v.elevation;
     }
@@ -97,20 +98,21 @@ TEST(ReliefRender, CoverageFilterRendersLikePointSampling) {
     const std::string path = std::string(RTM_SOURCE_DIR) + "/media/facade.relief.json";
     ReliefQuad quad(load_relief(path)), truth_quad(load_relief(path));
     Gl gl(256, 256), big(1024, 1024);
-    for (const CompareView& v : {CompareView{"a", 30, 15, 2.2}, CompareView{"b", -70, 30, 2.2},
-                                 CompareView{"c", 80, 5, 2.2}}) {
+    for (const CompareView& v :
+         {CompareView{"a", 30, 15, 2.2}, CompareView{"b", -70, 30, 2.2}, CompareView{"c", 80, 5, 2.2}}) {
         const Camera cam = compare_camera(quad, v, 256, 256);
         big.ctx->make_current();
         const ImageRGBA8 truth = box_down(render(big, truth_quad, compare_camera(quad, v, 1024, 1024),
-                                                 RenderMethod::micromesh), 4);
+                                                 RenderMethod::micromesh),
+                                          4);
         gl.ctx->make_current();
         PrewarpOptions point, cov;
         point.keep_outliers = cov.keep_outliers = true;
         cov.filter = Filter::coverage;
         const DiffResult p = diff_images(truth, render(gl, quad, cam, RenderMethod::two_pass, point));
         const DiffResult c = diff_images(truth, render(gl, quad, cam, RenderMethod::two_pass, cov));
-        std::printf("view az %g el %g: point PSNR %.2f IoU %.4f, coverage PSNR %.2f IoU %.4f\n", v.azimuth,
-                    v.elevation, p.psnr, p.iou, c.psnr, c.iou);
+        std::printf("view az %g el %g: point PSNR %.2f IoU %.4f, coverage PSNR %.2f IoU %.4f\n", v.azimuth, v.elevation,
+                    p.psnr, p.iou, c.psnr, c.iou);
         // A lost premultiplication shows as dark or bright fringes (several dB); a wrong alpha threshold as lost
         // or grown silhouettes (IoU). Half a dB and 0.01 IoU are well beyond the filters' own differences.
         EXPECT_GT(c.psnr, p.psnr - 0.5) << v.azimuth << "," << v.elevation;
@@ -127,8 +129,8 @@ TEST(ReliefRender, DepthCorrectionAgainstInterpenetratingPolygon) {
     const glm::dvec3 aw = g.a * double(t.width), bh = g.b * double(t.height);
     std::vector<MeshVertex> plane;
     const glm::u8vec4 magenta{255, 0, 255, 255};
-    for (const glm::dvec3& p : {g.origin + f * lo, g.origin + aw + f * hi, g.origin + aw + bh + f * hi,
-                                g.origin + bh + f * lo})
+    for (const glm::dvec3& p :
+         {g.origin + f * lo, g.origin + aw + f * hi, g.origin + aw + bh + f * hi, g.origin + bh + f * lo})
         plane.push_back({glm::vec3(p), magenta});
     const std::vector<uint32_t> idx{0, 1, 2, 0, 2, 3};
     Gl gl(256, 256);
@@ -162,7 +164,8 @@ TEST(ReliefRender, DepthCorrectionAgainstInterpenetratingPolygon) {
             agree_without += is_plane(truth.pixels[i]) == is_plane(without.pixels[i]);
         }
         const double fw = double(agree_with) / n, fo = double(agree_without) / n;
-        std::printf("view %s: agreement with the truth %.4f with depth correction, %.4f without\n", v.name.c_str(), fw, fo);
+        std::printf("view %s: agreement with the truth %.4f with depth correction, %.4f without\n", v.name.c_str(), fw,
+                    fo);
         // Measured: 0.997 / 0.995 with and 0.811 / 0.724 without. Disagreement with correction comes from the
         // 8-bit depth quantization and the one-pixel-wide intersection curve; 0.97 leaves room for both.
         EXPECT_GT(fw, 0.97) << "view " << v.name << " without: " << fo;
@@ -213,9 +216,10 @@ TEST(ReliefRender, DiscontinuitiesMatchAMicromeshWithTheSameCut) {
             const ImageRGBA8 img = render(gl, quad, cam, m, o);
             const ImageRGBA8 skin = render(gl, uncut, cam, m, o);
             const DiffResult cut_d = diff_images(mesh, img), skin_d = diff_images(mesh, skin);
-            std::printf("view %s %s against the cut micromesh: iou %.4f with the cut (%d blended pixels), %.4f "
-                        "without (%d)\n",
-                        v.name.c_str(), to_string(m).c_str(), cut_d.iou, mixed(img), skin_d.iou, mixed(skin));
+            std::printf(
+                "view %s %s against the cut micromesh: iou %.4f with the cut (%d blended pixels), %.4f "
+                "without (%d)\n",
+                v.name.c_str(), to_string(m).c_str(), cut_d.iou, mixed(img), skin_d.iou, mixed(skin));
             // Measured 0.92-0.96. The mesh runs through texel centres while the texture covers whole texels, so
             // every cut edge differs by half a texel (1.5 pixels here); that costs the rest.
             EXPECT_GT(cut_d.iou, 0.90) << v.name << " " << to_string(m);

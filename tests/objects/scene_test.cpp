@@ -230,7 +230,8 @@ TEST(SceneDepth, PolygonCrossingAReliefWallMeetsItWhereTheTruthDoes) {
     const std::vector<int> relief = magenta_edge(RenderMethod::two_pass);
     const std::vector<int> uncorrected = magenta_edge(RenderMethod::two_pass, false);
     int moved = 0;
-    for (size_t r = 0; r < 256; ++r) moved += truth[r] >= 0 && uncorrected[r] >= 0 && std::abs(truth[r] - uncorrected[r]) > 2;
+    for (size_t r = 0; r < 256; ++r)
+        moved += truth[r] >= 0 && uncorrected[r] >= 0 && std::abs(truth[r] - uncorrected[r]) > 2;
     double sum = 0;
     int rows = 0, worst = 0;
     for (size_t r = 0; r < 256; ++r) {

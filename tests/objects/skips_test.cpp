@@ -103,9 +103,8 @@ TEST(Skips, ReuseWhenTheEyeBarelyMovesAndPartialUpload) {
 // A flat wall (zero displacement) with one raised block: only the pixels the block's texels can reach change
 // between views, and only those are uploaded; the picture is the one a full upload gives.
 ReliefTexture block_wall(int n, int x0, int x1) {
-    return test::make_test_relief(n, n, 0.0, 0.1, [&](int x, int r) {
-        return x >= x0 && x < x1 && r >= x0 && r < x1 ? 0.1 : 0.0;
-    });
+    return test::make_test_relief(n, n, 0.0, 0.1,
+                                  [&](int x, int r) { return x >= x0 && x < x1 && r >= x0 && r < x1 ? 0.1 : 0.0; });
 }
 
 TEST(Skips, PartialUploadOfWhatMovingTexelsReach) {

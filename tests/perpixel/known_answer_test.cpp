@@ -39,7 +39,8 @@ ImageRGBA8 render(Gl& gl, ReliefQuad& quad, const Camera& cam, RenderMethod m, c
 }
 
 const std::vector<CompareView>& views() {
-    static const std::vector<CompareView> v = {{"frontal", 0, 0, 2.2}, {"oblique", 35, 25, 2.2},
+    static const std::vector<CompareView> v = {{"frontal", 0, 0, 2.2},
+                                               {"oblique", 35, 25, 2.2},
                                                {"grazing", 60, 15, 2.2}};
     return v;
 }
@@ -138,8 +139,7 @@ TEST(PerPixel, KnownAnswersAgainstTheRayCaster) {
                 EXPECT_GE(d.iou, b.iou) << name << " " << v.name << " " << to_string(m);
             }
             const DiffResult mm = diff_images(truth, render(gl, quad, cam, RenderMethod::micromesh));
-            std::printf("%-12s %-8s %-26s %8.2f %7.4f\n", name.c_str(), v.name.c_str(), "micromesh", mm.psnr,
-                        mm.iou);
+            std::printf("%-12s %-8s %-26s %8.2f %7.4f\n", name.c_str(), v.name.c_str(), "micromesh", mm.psnr, mm.iou);
         }
     }
 }
@@ -182,8 +182,8 @@ TEST(PerPixel, TopSettingsWithinOneDecibelOfTheRayCaster) {
                     write_rgba8(stem + to_string(m) + ".png", img);
                     write_rgba8(stem + "micromesh.png", mesh);
                 }
-                std::printf("%-10s %-8s %-16s %.2f dB (ray caster %.2f dB) against the micro-polygons\n",
-                            name.c_str(), v.name.c_str(), to_string(m).c_str(), p, ray);
+                std::printf("%-10s %-8s %-16s %.2f dB (ray caster %.2f dB) against the micro-polygons\n", name.c_str(),
+                            v.name.c_str(), to_string(m).c_str(), p, ray);
                 const double bound = name != "step" ? 52.5 : v.name == "grazing" ? 41.5 : std::min(ray, 62.0) - 1.0;
                 EXPECT_GE(p, bound) << name << " " << v.name << " " << to_string(m);
             }
@@ -239,8 +239,7 @@ TEST(PerPixel, IterationCountsOfIntervalAndReliefMapping) {
                     const IterationStats st = iteration_stats(counts);
                     const DiffResult d = diff_images(truth, colour);
                     std::printf("linear %2d %-10s %-8s %-16s iterations mean %.3f (%d..%d), psnr %.2f dB\n", linear,
-                                name.c_str(), v.name.c_str(), to_string(m).c_str(), st.mean, st.min, st.max,
-                                d.psnr);
+                                name.c_str(), v.name.c_str(), to_string(m).c_str(), st.mean, st.min, st.max, d.psnr);
                     EXPECT_GE(st.min, 1);
                     EXPECT_LE(st.max, 10);
                     long long covered_colour = 0;
@@ -320,7 +319,9 @@ TEST(PerPixel, DepthCorrectionPutsTheFoundPointInTheDepthBuffer) {
     const Camera cam = compare_camera(quad, {"frontal", 0, 0, 2.2}, kImage, kImage);
     const glm::u8vec4 magenta(255, 0, 255, 255);
     const float z = 0.125f, lo = 0.5f / kReliefSize, hi = 1.0f - lo;  // over the surface: the texel centres
-    const std::vector<MeshVertex> plane = {{{lo, lo, z}, magenta}, {{hi, lo, z}, magenta}, {{hi, hi, z}, magenta},
+    const std::vector<MeshVertex> plane = {{{lo, lo, z}, magenta},
+                                           {{hi, lo, z}, magenta},
+                                           {{hi, hi, z}, magenta},
                                            {{lo, hi, z}, magenta}};
     const std::vector<uint32_t> tris = {0, 1, 2, 0, 2, 3};
     for (RenderMethod m : {RenderMethod::relief_mapping, RenderMethod::protruded_displacement}) {
@@ -337,8 +338,10 @@ TEST(PerPixel, DepthCorrectionPutsTheFoundPointInTheDepthBuffer) {
             // What render_relief_frame read back is the relief alone; the second read has the plane on it.
             long long magenta_px = 0, relief_px = 0;
             for (const Rgba8& p : img.pixels) {
-                if (p.r == 255 && p.g == 0 && p.b == 255) ++magenta_px;
-                else if (covered(p)) ++relief_px;
+                if (p.r == 255 && p.g == 0 && p.b == 255)
+                    ++magenta_px;
+                else if (covered(p))
+                    ++relief_px;
             }
             const double frac = double(magenta_px) / double(magenta_px + relief_px);
             std::printf("%s, depth correction %s: magenta %.3f of the covered pixels\n", to_string(m).c_str(),

@@ -36,7 +36,8 @@ const Rgba8 kBlue{0, 0, 255, 255};
 const Rgba8 kWhite{255, 255, 255, 255};
 
 // Eye on +z at distance 1 from the origin, 90 degree field of view: the plane z = 0 shows [-1, 1] x [-1, 1], so
-// pixel (px, py) of a size x size image has its centre at x = -1 + (px + 0.5) * 2 / size, y = 1 - (py + 0.5) * 2 / size.
+// pixel (px, py) of a size x size image has its centre at x = -1 + (px + 0.5) * 2 / size, y = 1 - (py + 0.5) * 2 /
+// size.
 Camera front_camera(int size) {
     Camera cam;
     cam.eye = {0, 0, 1};
@@ -227,8 +228,10 @@ glm::dvec2 plane_point(const Camera& cam, const ReliefSurface& rs, int px, int r
     cam.ray(px, row, o, dir);
     const glm::dvec3 n = glm::cross(rs.a, rs.b);
     const glm::dvec3 q = o + dir * (glm::dot(rs.origin - o, n) / glm::dot(dir, n)) - rs.origin;
-    const double aa = glm::dot(rs.a, rs.a), ab = glm::dot(rs.a, rs.b), bb = glm::dot(rs.b, rs.b), det = aa * bb - ab * ab;
-    return {(glm::dot(q, rs.a) * bb - glm::dot(q, rs.b) * ab) / det, (glm::dot(q, rs.b) * aa - glm::dot(q, rs.a) * ab) / det};
+    const double aa = glm::dot(rs.a, rs.a), ab = glm::dot(rs.a, rs.b), bb = glm::dot(rs.b, rs.b),
+                 det = aa * bb - ab * ab;
+    return {(glm::dot(q, rs.a) * bb - glm::dot(q, rs.b) * ab) / det,
+            (glm::dot(q, rs.b) * aa - glm::dot(q, rs.a) * ab) / det};
 }
 
 TEST_F(RendererTest, WallsCutToTheMarginContentDrawTheSamePixels) {
@@ -409,7 +412,8 @@ TEST_F(RendererTest, MeshTriangleCoversTheExpectedPixels) {
 
 TEST_F(RendererTest, MeshColoursAreInterpolated) {
     Camera cam = front_camera(32);
-    std::vector<MeshVertex> v = {{{-1, -1, 0}, {255, 0, 0, 255}}, {{1, -1, 0}, {0, 255, 0, 255}},
+    std::vector<MeshVertex> v = {{{-1, -1, 0}, {255, 0, 0, 255}},
+                                 {{1, -1, 0}, {0, 255, 0, 255}},
                                  {{-1, 1, 0}, {0, 0, 255, 255}}};
     renderer_->begin_frame(cam);
     renderer_->draw_mesh(cam, v, {0, 1, 2});
@@ -419,8 +423,9 @@ TEST_F(RendererTest, MeshColoursAreInterpolated) {
     for (auto [px, py] : {std::pair{2, 29}, {10, 20}, {5, 12}, {20, 25}}) {
         double x = -1 + (px + 0.5) / 16, y = 1 - (py + 0.5) / 16;
         double g = (x + 1) / 2, b = (y + 1) / 2, r = 1 - g - b;
-        ImageRGBA8 expected(1, 1, Rgba8{uint8_t(std::lround(255 * r)), uint8_t(std::lround(255 * g)),
-                                        uint8_t(std::lround(255 * b)), 255});
+        ImageRGBA8 expected(1, 1,
+                            Rgba8{uint8_t(std::lround(255 * r)), uint8_t(std::lround(255 * g)),
+                                  uint8_t(std::lround(255 * b)), 255});
         ImageRGBA8 got(1, 1, out.at(px, py));
         // Colour interpolation in float and conversion to 8 bits: within kFilterTolerance of the exact value.
         EXPECT_EQ(test::compare_images(expected, got, kFilterTolerance), "") << "px=" << px << " py=" << py;
@@ -431,9 +436,9 @@ TEST_F(RendererTest, MeshAlphaBelowOneHalfIsDiscardedAndDepthWorks) {
     Camera cam = front_camera(32);
     // A transparent triangle in front, an opaque blue one behind, a red one in front of that on the right.
     std::vector<MeshVertex> v = {
-        {{-2, -2, 0.5f}, {255, 255, 255, 0}},  {{2, -2, 0.5f}, {255, 255, 255, 0}},  {{0, 2, 0.5f}, {255, 255, 255, 0}},
-        {{-2, -2, -0.5f}, {0, 0, 255, 255}},   {{2, -2, -0.5f}, {0, 0, 255, 255}},   {{0, 2, -0.5f}, {0, 0, 255, 255}},
-        {{0.25f, -2, 0.0f}, {255, 0, 0, 255}}, {{2, -2, 0.0f}, {255, 0, 0, 255}},    {{2, 2, 0.0f}, {255, 0, 0, 255}},
+        {{-2, -2, 0.5f}, {255, 255, 255, 0}},  {{2, -2, 0.5f}, {255, 255, 255, 0}}, {{0, 2, 0.5f}, {255, 255, 255, 0}},
+        {{-2, -2, -0.5f}, {0, 0, 255, 255}},   {{2, -2, -0.5f}, {0, 0, 255, 255}},  {{0, 2, -0.5f}, {0, 0, 255, 255}},
+        {{0.25f, -2, 0.0f}, {255, 0, 0, 255}}, {{2, -2, 0.0f}, {255, 0, 0, 255}},   {{2, 2, 0.0f}, {255, 0, 0, 255}},
     };
     renderer_->begin_frame(cam);
     renderer_->draw_mesh(cam, v, {0, 1, 2, 3, 4, 5, 6, 7, 8});

@@ -19,7 +19,7 @@ TempDir::TempDir() {
     std::random_device rd;
     for (int attempt = 0; attempt < 100; ++attempt) {
         fs::path p = fs::temp_directory_path() / ("rtm_texmap_test_" + std::to_string(::getpid()) + "_" +
-                                                   std::to_string(counter++) + "_" + std::to_string(rd() % 100000));
+                                                  std::to_string(counter++) + "_" + std::to_string(rd() % 100000));
         if (fs::create_directory(p)) {
             path_ = p;
             return;
@@ -177,8 +177,8 @@ std::string compare_images(const ImageRGBA8& expected, const ImageRGBA8& actual,
     if (differing == 0) return {};
     size_t fi = size_t(first_row) * size_t(expected.width) + size_t(first_x);
     os << differing << " of " << compared << " compared pixels differ by more than " << tolerance
-       << " (largest difference " << max_diff << "); first at x=" << first_x << " row=" << first_row
-       << ": expected " << to_string(expected.pixels[fi]) << ", got " << to_string(actual.pixels[fi]);
+       << " (largest difference " << max_diff << "); first at x=" << first_x << " row=" << first_row << ": expected "
+       << to_string(expected.pixels[fi]) << ", got " << to_string(actual.pixels[fi]);
     return os.str();
 }
 

@@ -71,7 +71,8 @@ TEST(OutsideViewCone, PiecesKeepWhatMissesTheQuadAndDropWhatMeetsIt) {
         glm::dvec3 a{U(rng), U(rng), U(rng)}, b{U(rng), U(rng), U(rng)};
         if (glm::length(glm::cross(glm::normalize(a), glm::normalize(b))) < 0.3) continue;
         const glm::dvec3 f = glm::normalize(glm::cross(a, b));
-        const glm::dvec3 eye = origin + 0.5 * (a + b) + 3.0 * glm::dvec3(U(rng), U(rng), U(rng)) + f * (0.2 + 2.0 * S(rng)) * (S(rng) < 0.5 ? 1.0 : -1.0);
+        const glm::dvec3 eye = origin + 0.5 * (a + b) + 3.0 * glm::dvec3(U(rng), U(rng), U(rng)) +
+                               f * (0.2 + 2.0 * S(rng)) * (S(rng) < 0.5 ? 1.0 : -1.0);
         // Eye-relative quad and wall.
         const glm::dvec3 c = origin - eye;
         const std::array<glm::dvec3, 4> quad = {c, c + a, c + a + b, c + b};
@@ -115,8 +116,8 @@ TEST(OutsideViewCone, PiecesKeepWhatMissesTheQuadAndDropWhatMeetsIt) {
             ASSERT_FALSE(outside && well_inside) << "iteration " << iter << ": the cone and the ray disagree";
             if (outside) {
                 ++kept_checked;
-                ASSERT_TRUE(in_some) << "iteration " << iter << ": a point whose ray misses the quad (u " << u
-                                     << ", v " << v << ") is in no piece";
+                ASSERT_TRUE(in_some) << "iteration " << iter << ": a point whose ray misses the quad (u " << u << ", v "
+                                     << v << ") is in no piece";
             } else if (well_inside) {
                 ++dropped_checked;
                 ASSERT_FALSE(in_some) << "iteration " << iter << ": a point whose ray meets the quad at (u " << u
@@ -164,7 +165,8 @@ double filtered_alpha(const ImageRGBA8& img, int ml, int mb, double u, double v)
         const int cx = std::clamp(int(xi), 0, img.width - 1), cy = std::clamp(int(yi), 0, img.height - 1);
         return double(img.at(cx, cy).a);
     };
-    return (a(x0, y0) * (1 - fx) + a(x0 + 1, y0) * fx) * (1 - fy) + (a(x0, y0 + 1) * (1 - fx) + a(x0 + 1, y0 + 1) * fx) * fy;
+    return (a(x0, y0) * (1 - fx) + a(x0 + 1, y0) * fx) * (1 - fy) +
+           (a(x0, y0 + 1) * (1 - fx) + a(x0 + 1, y0 + 1) * fx) * fy;
 }
 
 TEST(MarginContent, HoldsEveryPlanePointOutsideTheQuadThatFilteringGivesAlpha) {

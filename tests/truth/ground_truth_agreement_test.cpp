@@ -119,8 +119,8 @@ void agree(const char* relief_name, const ReliefTexture& t, double min_iou, std:
         if (const char* dir = std::getenv("RTM_TRUTH_DUMP")) {  // to look at a failure: both images as PPM
             for (int k = 0; k < 2; ++k) {
                 const ImageRGBA8& im = k ? gl : rc;
-                const std::string path =
-                    std::string(dir) + "/" + relief_name + "_" + v.name + (k ? "_gl.ppm" : "_rc.ppm");
+                const std::string path = std::string(dir) + "/" + relief_name + "_" + v.name +
+                                         (k ? "_gl.ppm" : "_rc.ppm");
                 FILE* fp = std::fopen(path.c_str(), "wb");
                 if (!fp) continue;
                 std::fprintf(fp, "P6 %d %d 255\n", im.width, im.height);

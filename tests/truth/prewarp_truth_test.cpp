@@ -25,8 +25,12 @@ ReliefTexture make(int w, int h, auto colour, auto displ, double lo, double hi) 
 // A flat relief seen from anywhere in front: its truth is the colour texture box-filtered over each pixel
 // (alpha 255 inside, the outer half texel ring uncovered since the surface ends at the texel centres).
 TEST(PrewarpTruth, FlatReliefIsItsOwnTexture) {
-    ReliefTexture t = make(16, 12, [](int x, int) { return Rgba8{uint8_t(x * 16), 100, 7, 255}; },
-                           [](int, int) { return 0.0; }, -1, 1);
+    ReliefTexture t = make(
+        16, 12,
+        [](int x, int) {
+            return Rgba8{uint8_t(x * 16), 100, 7, 255};
+        },
+        [](int, int) { return 0.0; }, -1, 1);
     PrewarpTruthOptions o;
     o.samples = 4;
     const ImageRGBA8 truth = prewarp_truth(t, {3.0, -5.0, 20.0}, PrewarpExtent{}, o);
@@ -49,8 +53,13 @@ TEST(PrewarpTruth, FlatReliefIsItsOwnTexture) {
 // rounding details.
 TEST(PrewarpTruth, CoverageFilterRemovesAliasingUnderCompression) {
     const int n = 48;
-    ReliefTexture t = make(n, n, [](int x, int) { uint8_t v = x % 2 ? 255 : 0; return Rgba8{v, v, v, 255}; },
-                           [&](int x, int) { return 1.2 * (n - x); }, 0.0, 1.2 * n + 1);
+    ReliefTexture t = make(
+        n, n,
+        [](int x, int) {
+            uint8_t v = x % 2 ? 255 : 0;
+            return Rgba8{v, v, v, 255};
+        },
+        [&](int x, int) { return 1.2 * (n - x); }, 0.0, 1.2 * n + 1);
     const glm::dvec3 eye{-40.0, n * 0.5, 120.0};
     const PrewarpCoefficients k = compute_coefficients(t.geometry, eye);
     // Precondition: at the middle of the relief, neighbouring texels land less than half a pixel apart.
@@ -70,13 +79,18 @@ TEST(PrewarpTruth, CoverageFilterRemovesAliasingUnderCompression) {
     ASSERT_GT(ep.pixels, 100);
     ASSERT_GT(ec.pixels, 100);
     EXPECT_LT(ec.color_rmse * 3, ep.color_rmse) << "point " << ep.color_rmse << " coverage " << ec.color_rmse;
-    std::printf("colour RMSE against the truth: point %.2f, coverage %.2f; coverage error %.4f, %.4f\n",
-                ep.color_rmse, ec.color_rmse, ep.coverage_mae, ec.coverage_mae);
+    std::printf("colour RMSE against the truth: point %.2f, coverage %.2f; coverage error %.4f, %.4f\n", ep.color_rmse,
+                ec.color_rmse, ep.coverage_mae, ec.coverage_mae);
     EXPECT_LE(ec.coverage_mae, ep.coverage_mae + 0.01);
 }
 
 TEST(PrewarpTruth, BadArgumentsNameTheValue) {
-    ReliefTexture t = make(4, 4, [](int, int) { return Rgba8{1, 2, 3, 255}; }, [](int, int) { return 0.0; }, 0, 1);
+    ReliefTexture t = make(
+        4, 4,
+        [](int, int) {
+            return Rgba8{1, 2, 3, 255};
+        },
+        [](int, int) { return 0.0; }, 0, 1);
     PrewarpTruthOptions o;
     o.samples = 0;
     try {

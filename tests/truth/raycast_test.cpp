@@ -85,10 +85,10 @@ TEST(Raycast, FlatReliefMatchesThePlaneIntersection) {
                 const glm::dvec3 sol = glm::inverse(m) * (o - g.origin - g.f() * d0);
                 const double u = sol.x, v = sol.y, tt = sol.z;
                 const double margin = 1e-6;
-                const bool inside =
-                    tt > 0 && u > 0.5 + margin && u < w - 0.5 - margin && v > 0.5 + margin && v < h - 0.5 - margin;
-                const bool outside =
-                    tt < 0 || u < 0.5 - margin || u > w - 0.5 + margin || v < 0.5 - margin || v > h - 0.5 + margin;
+                const bool inside = tt > 0 && u > 0.5 + margin && u < w - 0.5 - margin && v > 0.5 + margin &&
+                                    v < h - 0.5 - margin;
+                const bool outside = tt < 0 || u < 0.5 - margin || u > w - 0.5 + margin || v < 0.5 - margin ||
+                                     v > h - 0.5 + margin;
                 const Rgba8 p = img.at(px, py);
                 const ReliefRayHit hit = caster.cast(o, dir);
                 SCOPED_TRACE("pixel " + std::to_string(px) + "," + std::to_string(py) + " " + t.to_string());

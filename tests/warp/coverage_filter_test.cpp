@@ -64,7 +64,8 @@ TEST(CoverageLine, LaterPiecesHideOnlyWhereTheyOverlap) {
     std::vector<uint8_t> valid(4, 1);
     std::vector<Cell1> cells(3, Cell1{});
     const CoverageLineInput<double, 0> in{4, pos.data(), col.data(), nullptr, valid.data()};
-    coverage_warp_line(in, 2, cells.data(), 3, [](int a, int b) { return !(std::min(a, b) == 1 && std::max(a, b) == 2); });
+    coverage_warp_line(in, 2, cells.data(), 3,
+                       [](int a, int b) { return !(std::min(a, b) == 1 && std::max(a, b) == 2); });
     // Pixel 1: red on [1, 1.5) = 16 positions, blue on [1.25, 2) = 24 positions, 8 of red's hidden.
     EXPECT_NEAR(cells[1].cov, 0.25 + 0.75, 1e-12);
     EXPECT_NEAR(cells[1].r, 0.25 * 255, 1e-9);
@@ -127,9 +128,9 @@ TEST(CoverageFilter, OneColourStaysExact) {
     for (int trial = 0; trial < 200; ++trial) {
         const int w = 4 + int(rng() % 30), h = 4 + int(rng() % 30);
         const double f1 = 0.1 + std::abs(U(rng)), f2 = 0.1 + std::abs(U(rng)), amp = 3 * std::abs(U(rng));
-        ReliefTexture t = test::make_test_relief(w, h, -amp, amp, [&](int x, int r) {
-            return amp * std::sin(f1 * x) * std::cos(f2 * r);
-        }, test::random_geometry(rng));
+        ReliefTexture t = test::make_test_relief(
+            w, h, -amp, amp, [&](int x, int r) { return amp * std::sin(f1 * x) * std::cos(f2 * r); },
+            test::random_geometry(rng));
         const Rgba8 c{uint8_t(rng()), uint8_t(rng()), uint8_t(rng()), 255};
         for (ReliefTexel& tx : t.texels) tx.r = c.r, tx.g = c.g, tx.b = c.b;
         const glm::dvec3 centre = t.point(w / 2, h / 2);

@@ -72,11 +72,26 @@ Case random_case(std::mt19937_64& rng) {
     int w, h;
     switch (pick(8)) {
         case 0: w = h = 1; break;
-        case 1: w = 1; h = 1 + pick(80); break;
-        case 2: w = 1 + pick(80); h = 1; break;
-        case 3: w = 15 + pick(4); h = 31 + pick(4); break;  // around multiples of 16
-        case 4: w = 64 + pick(150); h = 64 + pick(150); break;
-        default: w = 1 + pick(70); h = 1 + pick(70); break;
+        case 1:
+            w = 1;
+            h = 1 + pick(80);
+            break;
+        case 2:
+            w = 1 + pick(80);
+            h = 1;
+            break;
+        case 3:
+            w = 15 + pick(4);
+            h = 31 + pick(4);
+            break;  // around multiples of 16
+        case 4:
+            w = 64 + pick(150);
+            h = 64 + pick(150);
+            break;
+        default:
+            w = 1 + pick(70);
+            h = 1 + pick(70);
+            break;
     }
     const ReliefGeometry g = test::random_geometry(rng);
     const double size = std::max(glm::length(g.a) * w, glm::length(g.b) * h);
@@ -87,10 +102,10 @@ Case random_case(std::mt19937_64& rng) {
     auto displ = [&](int x, int r) -> double {
         switch (kind) {
             case 0: return amp * (0.5 + 0.5 * std::sin(x * fx) * std::cos(r * fy));  // smooth bumps
-            case 1: return ((x % 9) == 0 || (r % 5) == 0) ? -amp * 0.3 : 0.0;    // bricks: mostly 0, recessed mortar
-            case 2: return amp * hash01(x, r, salt);                             // noise: foldovers everywhere
-            case 3: return amp * std::abs(std::sin(x * fx * 3));                 // ridges
-            default: return amp * 0.5;                                           // constant
+            case 1: return ((x % 9) == 0 || (r % 5) == 0) ? -amp * 0.3 : 0.0;  // bricks: mostly 0, recessed mortar
+            case 2: return amp * hash01(x, r, salt);                           // noise: foldovers everywhere
+            case 3: return amp * std::abs(std::sin(x * fx * 3));               // ridges
+            default: return amp * 0.5;                                         // constant
         }
     };
     const double lo = kind == 1 ? -amp * 0.3 : 0.0, hi = kind == 1 ? 0.0 : amp;
@@ -106,17 +121,41 @@ Case random_case(std::mt19937_64& rng) {
     double eu = U(rng) * 3 * w - w, ev = U(rng) * 3 * h - h;
     std::string where = "anywhere";
     switch (pick(6)) {
-        case 0: eu = std::floor(eu) + 0.5; ev = std::floor(ev) + 0.5; where = "over a texel centre"; break;
-        case 1: eu = std::floor(eu); ev = std::floor(ev); where = "on texel boundaries"; break;
-        case 2: eu = U(rng) * w; ev = U(rng) * h; where = "inside"; break;
-        case 3: eu = -w * (1 + U(rng) * 20); where = "outside"; break;
+        case 0:
+            eu = std::floor(eu) + 0.5;
+            ev = std::floor(ev) + 0.5;
+            where = "over a texel centre";
+            break;
+        case 1:
+            eu = std::floor(eu);
+            ev = std::floor(ev);
+            where = "on texel boundaries";
+            break;
+        case 2:
+            eu = U(rng) * w;
+            ev = U(rng) * h;
+            where = "inside";
+            break;
+        case 3:
+            eu = -w * (1 + U(rng) * 20);
+            where = "outside";
+            break;
         default: break;
     }
     double dist;
     switch (pick(6)) {
-        case 0: dist = size * (20 + U(rng) * 1000); where += ", far"; break;
-        case 1: dist = amp * (1.05 + U(rng)); where += ", near"; break;
-        case 2: dist = amp * U(rng); where += ", below the highest texels"; break;
+        case 0:
+            dist = size * (20 + U(rng) * 1000);
+            where += ", far";
+            break;
+        case 1:
+            dist = amp * (1.05 + U(rng));
+            where += ", near";
+            break;
+        case 2:
+            dist = amp * U(rng);
+            where += ", below the highest texels";
+            break;
         case 3: {
             const double off = size * (2 + U(rng) * 20);
             eu = w * 0.5 + off / glm::length(g.a);
@@ -124,15 +163,18 @@ Case random_case(std::mt19937_64& rng) {
             where = "grazing";
             break;
         }
-        case 4: dist = -size * (0.1 + U(rng)); where += ", behind"; break;
+        case 4:
+            dist = -size * (0.1 + U(rng));
+            where += ", behind";
+            break;
         default: dist = size * (0.2 + U(rng) * 3); break;
     }
     c.eye = g.origin + g.a * eu + g.b * ev + g.f() * dist;
     c.options.keep_outliers = pick(3) == 0;
     if (pick(4) == 0) c.options.max_margin = pick(20);
     std::ostringstream s;
-    s << w << "x" << h << " kind " << kind << " empties " << empties << " eye " << where << " ("
-      << c.eye.x << ", " << c.eye.y << ", " << c.eye.z << ") outliers " << c.options.keep_outliers << " max_margin "
+    s << w << "x" << h << " kind " << kind << " empties " << empties << " eye " << where << " (" << c.eye.x << ", "
+      << c.eye.y << ", " << c.eye.z << ") outliers " << c.options.keep_outliers << " max_margin "
       << c.options.max_margin;
     c.describe = s.str();
     return c;
@@ -323,8 +365,9 @@ TEST_P(FastKernels, StillRunCopiesAreInvisible) {
     // PrewarpOptions::copy_still_runs on the fast path: 16 consecutive spans one pixel wide on pixel centres (zero
     // displacement) are copied or, with the option off, interpolated; the output is the same either way (and the
     // copies are not counted). Bricks 40 texels wide.
-    const ReliefTexture t = test::make_test_relief(
-        150, 90, -0.05, 0.0, [](int x, int r) { return (x % 40 == 0 || r % 6 == 0) ? -0.05 : 0.0; });
+    const ReliefTexture t = test::make_test_relief(150, 90, -0.05, 0.0, [](int x, int r) {
+        return (x % 40 == 0 || r % 6 == 0) ? -0.05 : 0.0;
+    });
     PrewarpWorkspace ws;
     ImageRGBA8 on, off, ref;
     for (const glm::dvec3 eye : {glm::dvec3(0.7, 0.3, 0.8), glm::dvec3(-0.2, 0.9, 0.5), glm::dvec3(0.4, 0.4, 2.0)}) {
@@ -353,9 +396,8 @@ TEST_P(FastKernels, SteadyStateAllocatesNothing) {
     ReliefGeometry g;
     g.a = {0.01, 0, 0};
     g.b = {0, 0.01, 0};
-    const ReliefTexture t =
-        test::make_test_relief(300, 200, 0.0, 0.2, [](int x, int r) { return 0.1 + 0.1 * std::sin(x * 0.1 + r * 0.07); },
-                               g);
+    const ReliefTexture t = test::make_test_relief(
+        300, 200, 0.0, 0.2, [](int x, int r) { return 0.1 + 0.1 * std::sin(x * 0.1 + r * 0.07); }, g);
     PrewarpOptions o;
     o.method = method();
     o.isa = isa();
@@ -422,8 +464,8 @@ ReliefTexture steady_state_relief() {
     ReliefGeometry g;
     g.a = {0.01, 0, 0};
     g.b = {0, 0.01, 0};
-    return test::make_test_relief(300, 200, 0.0, 0.5, [](int x, int) { return 0.5 * std::abs(std::sin(x * 0.3)); },
-                                  g);
+    return test::make_test_relief(
+        300, 200, 0.0, 0.5, [](int x, int) { return 0.5 * std::abs(std::sin(x * 0.3)); }, g);
 }
 
 class ReverseModeFixture : public ::testing::Test {
@@ -515,11 +557,11 @@ TEST_F(ReverseModeFixture, PipelinedReverseModeFoldoversStillTexelsAndGaps) {
             w, h, -0.1, 0.3,
             [&](int x, int r) -> double {
                 switch (kind) {
-                    case 0: return 0.3 * hash01(x, r, salt);                                 // noise
+                    case 0: return 0.3 * hash01(x, r, salt);                                     // noise
                     case 1: return 0.3 * std::abs(std::sin(x * f)) * std::abs(std::sin(r * f));  // steep ridges
-                    case 2: return (x % 7 == 0 || r % 5 == 0) ? -0.1 : 0.0;                  // still texels, mortar
-                    case 3: return hash01(x / 4, r / 4, salt) < 0.5 ? 0.0 : 0.3;             // steps onto still
-                    default: return 0.3 * std::abs(std::sin(r * f));                         // ridges along rows
+                    case 2: return (x % 7 == 0 || r % 5 == 0) ? -0.1 : 0.0;                      // still texels, mortar
+                    case 3: return hash01(x / 4, r / 4, salt) < 0.5 ? 0.0 : 0.3;                 // steps onto still
+                    default: return 0.3 * std::abs(std::sin(r * f));                             // ridges along rows
                 }
             },
             g);
@@ -669,8 +711,10 @@ TEST_F(ReverseModeFixture, PipelinedRowChunksMatchTheReference) {
             const ReliefTexture t = test::make_test_relief(
                 w, h, 0.0, 0.3, [&](int x, int r) { return 0.3 * hash01(x, r, salt); }, g);
             // The epipole's row: inside the rows (two parts), on a row boundary, below and above them (one part).
-            const double ev = i % 4 == 0 ? U(rng) * h : i % 4 == 1 ? double(int(rng() % uint64_t(h + 1)))
-                                                      : i % 4 == 2 ? -1.0 - U(rng) * 5 * h : h + 1.0 + U(rng) * 5 * h;
+            const double ev = i % 4 == 0   ? U(rng) * h
+                              : i % 4 == 1 ? double(int(rng() % uint64_t(h + 1)))
+                              : i % 4 == 2 ? -1.0 - U(rng) * 5 * h
+                                           : h + 1.0 + U(rng) * 5 * h;
             const glm::dvec3 eye = g.origin + g.a * (U(rng) * 1.4 * w - 0.2 * w) + g.b * ev + g.f() * (0.05 + U(rng));
             PrewarpOptions o;
             o.keep_outliers = i % 2 == 0;
@@ -703,8 +747,8 @@ TEST_F(ReverseModeFixture, PipelinedRowChunksRecoverFromAnInterruptedPrewarp) {
     // left with pixels by a pre-warp interrupted between its chunks and its composite is cleared before use.
     const ReliefGeometry g = unit_width_geometry(200);
     const ReliefTexture t = test::make_test_relief(
-        200, 150, 0.0, 0.3, [](int x, int r) { return 0.3 * std::abs(std::sin(x * 0.2)) * std::abs(std::cos(r * 0.1)); },
-        g);
+        200, 150, 0.0, 0.3,
+        [](int x, int r) { return 0.3 * std::abs(std::sin(x * 0.2)) * std::abs(std::cos(r * 0.1)); }, g);
     const PrewarpCoefficients k = compute_coefficients(g, g.origin + g.a * 80.0 - g.b * 100.0 + g.f() * 0.8);
     PrewarpOptions o;
     o.method = Reconstruction::pipelined;
@@ -748,8 +792,7 @@ TEST_F(ReverseModeFixture, PipelinedReverseModeAllocatesNothingInSteadyState) {
                 const PrewarpCoefficients k = compute_coefficients(g, {1.2, ey, 0.4});
                 prewarp(t, k, o, ws, out);  // warm-up: buffers grow to size
                 const long long before = g_allocations.load();
-                for (int i = 0; i < 3; ++i)
-                    prewarp(t, compute_coefficients(g, {1.2 + 0.01 * i, ey, 0.4}), o, ws, out);
+                for (int i = 0; i < 3; ++i) prewarp(t, compute_coefficients(g, {1.2 + 0.01 * i, ey, 0.4}), o, ws, out);
                 EXPECT_EQ(g_allocations.load() - before, 0)
                     << "reverse mode " << choice_name(reverse) << " threads " << threads << " eye y " << ey;
             }
@@ -794,8 +837,8 @@ TEST_F(TwoPassReverseRows, FoldoversEmptyRowsAndMarksMatchTheReference) {
             [&](int x, int r) -> double {
                 switch (kind) {
                     case 0: return 0.3 * std::abs(2.0 * ((x * f / 4) - std::floor(x * f / 4)) - 1.0);  // ridges
-                    case 1: return 0.3 * hash01(x, r, salt);                                     // noise
-                    case 2: return hash01(x / 5, r / 7, salt) < 0.5 ? 0.0 : 0.3;                 // steps
+                    case 1: return 0.3 * hash01(x, r, salt);                                           // noise
+                    case 2: return hash01(x / 5, r / 7, salt) < 0.5 ? 0.0 : 0.3;                       // steps
                     default: return 0.3 * std::abs(std::sin(x * f)) * std::abs(std::sin(r * f * 0.3));
                 }
             },
@@ -809,8 +852,8 @@ TEST_F(TwoPassReverseRows, FoldoversEmptyRowsAndMarksMatchTheReference) {
         }
         double eu = U(rng) * w;
         switch (i % 5) {
-            case 0: eu = std::floor(eu); break;          // on a texel boundary
-            case 1: eu = std::floor(eu) + 0.5; break;    // over a texel centre
+            case 0: eu = std::floor(eu); break;           // on a texel boundary
+            case 1: eu = std::floor(eu) + 0.5; break;     // over a texel centre
             case 2: eu = -w * (0.5 + U(rng) * 3); break;  // outside, left
             case 3: eu = w * (1.5 + U(rng) * 3); break;   // outside, right
             default: break;
@@ -818,8 +861,8 @@ TEST_F(TwoPassReverseRows, FoldoversEmptyRowsAndMarksMatchTheReference) {
         const double ev = U(rng) * 1.6 * h - 0.3 * h;
         double dist;
         switch (i % 3) {
-            case 0: dist = 0.02 + U(rng) * 0.1; break;  // grazing
-            case 1: dist = 0.5 + U(rng) * 2; break;     // from above
+            case 0: dist = 0.02 + U(rng) * 0.1; break;          // grazing
+            case 1: dist = 0.5 + U(rng) * 2; break;             // from above
             default: dist = 0.3 * (0.3 + U(rng) * 0.6); break;  // below the highest texels
         }
         const glm::dvec3 eye = g.origin + g.a * eu + g.b * ev + g.f() * dist;
@@ -830,8 +873,8 @@ TEST_F(TwoPassReverseRows, FoldoversEmptyRowsAndMarksMatchTheReference) {
         o.isa = Isa::generic;
         o.threads = 1;
         SCOPED_TRACE("seed " + std::to_string(seed) + " case " + std::to_string(i) + " kind " + std::to_string(kind) +
-                     " empty rows " + std::to_string(empty_rows) + " " + std::to_string(w) + "x" +
-                     std::to_string(h) + " " + k.to_string());
+                     " empty rows " + std::to_string(empty_rows) + " " + std::to_string(w) + "x" + std::to_string(h) +
+                     " " + k.to_string());
         const PrewarpStats sr = prewarp(t, k, o, ws_ref, ref);
         o.isa = Isa::avx512;
         for (const NamedPolicy& policy : kTwoPassReverse) {
@@ -886,8 +929,8 @@ TEST(FastPrewarpCovers, OnlyOutputsItsKernelsCanAddress) {
     // pixels or more, and sides over 2^22, go to the generic kernels. Only the decision is tested: no image that
     // size is allocated.
     if (!fast_prewarp_available()) GTEST_SKIP() << "no AVX-512 on this CPU";
-    const ReliefTexture t = test::make_test_relief(16, 16, 0.0, 0.1, [](int, int) { return 0.05; },
-                                                   unit_width_geometry(16));
+    const ReliefTexture t = test::make_test_relief(
+        16, 16, 0.0, 0.1, [](int, int) { return 0.05; }, unit_width_geometry(16));
     const PrewarpCoefficients k = compute_coefficients(t.geometry, {0.1, 0.2, 2.0});
     PrewarpOptions o;
     auto covers = [&](int ow, int oh) {

@@ -34,9 +34,9 @@ struct Line {
 
 TEST(SplitIndex, CentresBelowTheSplitGoFirst) {
     EXPECT_EQ(split_index(-3.0, 10), 0);
-    EXPECT_EQ(split_index(0.5, 10), 0);   // on centre 0: sample 0 is in the second part
+    EXPECT_EQ(split_index(0.5, 10), 0);  // on centre 0: sample 0 is in the second part
     EXPECT_EQ(split_index(0.51, 10), 1);
-    EXPECT_EQ(split_index(1.0, 10), 1);   // on the boundary between 0 and 1
+    EXPECT_EQ(split_index(1.0, 10), 1);  // on the boundary between 0 and 1
     EXPECT_EQ(split_index(5.5, 10), 5);
     EXPECT_EQ(split_index(10.0, 10), 10);
     EXPECT_EQ(split_index(1e30, 10), 10);

@@ -16,8 +16,10 @@ TEST(Pipelined, ZeroDisplacementIsTheIdentity) {
     for (int i = 0; i < 40; ++i) {
         const int w = 1 + int(rng() % 60), h = 1 + int(rng() % 60);
         const ReliefGeometry g = test::random_geometry(rng);
-        const ReliefTexture t = test::make_test_relief(w, h, 0.0, 0.0, [](int, int) { return 0.0; }, g);
-        const glm::dvec3 eye = g.origin + g.a * (U(rng) * 200) + g.b * (U(rng) * 200) + g.f() * (0.01 + std::abs(U(rng)));
+        const ReliefTexture t = test::make_test_relief(
+            w, h, 0.0, 0.0, [](int, int) { return 0.0; }, g);
+        const glm::dvec3 eye = g.origin + g.a * (U(rng) * 200) + g.b * (U(rng) * 200) +
+                               g.f() * (0.01 + std::abs(U(rng)));
         for (bool exact : {false, true}) {
             PrewarpOptions o = kPipe;
             o.exact = exact;
@@ -35,10 +37,13 @@ TEST(Pipelined, EqualsTwoPassWithoutFoldovers) {
     g.a = {0.01, 0, 0};
     g.b = {0, 0.01, 0};
     const int n = 80;
-    const ReliefTexture t = test::make_test_relief(n, n, 0.0, 0.05, [&](int x, int r) {
-        const double dx = (x - 40.0) / 25, dy = (r - 37.0) / 25;
-        return 0.05 * std::exp(-(dx * dx + dy * dy));
-    }, g);
+    const ReliefTexture t = test::make_test_relief(
+        n, n, 0.0, 0.05,
+        [&](int x, int r) {
+            const double dx = (x - 40.0) / 25, dy = (r - 37.0) / 25;
+            return 0.05 * std::exp(-(dx * dx + dy * dy));
+        },
+        g);
     for (const glm::dvec3 eye : {glm::dvec3{0.4, 0.4, 0.6}, glm::dvec3{-0.5, 0.2, 0.9}, glm::dvec3{0.31, 1.5, 0.5}}) {
         for (bool exact : {false, true}) {
             PrewarpOptions o = kPipe;
@@ -52,9 +57,12 @@ TEST(Pipelined, OutputDoesNotDependOnThreadCount) {
     ReliefGeometry g;
     g.a = {0.01, 0, 0};
     g.b = {0, 0.01, 0};
-    const ReliefTexture t = test::make_test_relief(120, 90, 0.0, 0.3, [](int x, int r) {
-        return 0.3 * std::abs(std::sin(x * 0.3)) * std::abs(std::cos(r * 0.21));  // steep: folds over
-    }, g);
+    const ReliefTexture t = test::make_test_relief(
+        120, 90, 0.0, 0.3,
+        [](int x, int r) {
+            return 0.3 * std::abs(std::sin(x * 0.3)) * std::abs(std::cos(r * 0.21));  // steep: folds over
+        },
+        g);
     for (bool exact : {false, true}) {
         PrewarpOptions o = kPipe;
         o.exact = exact;
@@ -68,13 +76,13 @@ TEST(Pipelined, OutputDoesNotDependOnThreadCount) {
 TEST(Pipelined, NoHoleAtTheSplits) {
     ReliefGeometry g;
     const int n = 64;
-    const ReliefTexture t = test::make_test_relief(n, n, 2.0, 2.0, [](int, int) { return 2.0; }, g);
+    const ReliefTexture t = test::make_test_relief(
+        n, n, 2.0, 2.0, [](int, int) { return 2.0; }, g);
     for (double e : {20.5, 21.0, 21.2}) {
         const ImageRGBA8 out = prewarp(t, {e, e + 3, 40.0}, kPipe);
         for (const Rgba8& p : out.pixels) ASSERT_EQ(p.a, 255) << "epipole " << e;
     }
 }
-
 
 // PrewarpStats::row_pixels and column_samples, the work each reconstruction does.
 PrewarpStats reference_stats(const ReliefTexture& t, const glm::dvec3& eye, Reconstruction m, bool exact) {
@@ -122,9 +130,9 @@ TEST(PipelinedWork, FoldoversCostThePipelinedReconstructionMore) {
         ReliefGeometry g;
         g.a = {0.01, 0, 0};
         g.b = {0, 0.01, 0};
-        const ReliefTexture t = test::make_test_relief(w, h, 0.0, amp, [&](int x, int r) {
-            return amp * std::abs(std::sin(x * fx)) * std::abs(std::cos(r * fy));
-        }, g);
+        const ReliefTexture t = test::make_test_relief(
+            w, h, 0.0, amp, [&](int x, int r) { return amp * std::abs(std::sin(x * fx)) * std::abs(std::cos(r * fy)); },
+            g);
         const glm::dvec3 eye{0.005 * w + U(rng), 0.005 * h + U(rng), 0.05 + std::abs(U(rng))};
         for (bool exact : {false, true}) {
             SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h) + (exact ? " exact" : " lut"));

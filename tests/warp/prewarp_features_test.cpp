@@ -67,7 +67,8 @@ TEST(DepthOutput, CarriesTheDisplacementSeenAtEachPixel) {
     ReliefGeometry g;
     const int n = 32;
     const double d = 0.2;
-    const ReliefTexture t = test::make_test_relief(n, n, 0.0, 1.0, [&](int, int) { return d; }, g);
+    const ReliefTexture t = test::make_test_relief(
+        n, n, 0.0, 1.0, [&](int, int) { return d; }, g);
     const PrewarpCoefficients k = compute_coefficients(g, {10, 12, 5});
     for (Reconstruction m : {Reconstruction::two_pass, Reconstruction::pipelined}) {
         PrewarpWorkspace ws;
@@ -93,8 +94,8 @@ TEST(Outliers, ExtentHoldsEverySample) {
         const ReliefGeometry g = test::random_geometry(rng);
         const int w = 8 + int(rng() % 40), h = 8 + int(rng() % 40);
         const double top = glm::length(g.a) * 20 * U(rng);
-        const ReliefTexture t =
-            test::make_test_relief(w, h, 0.0, top, [&](int x, int r) { return top * ((x * 7 + r * 3) % 11) / 10.0; }, g);
+        const ReliefTexture t = test::make_test_relief(
+            w, h, 0.0, top, [&](int x, int r) { return top * ((x * 7 + r * 3) % 11) / 10.0; }, g);
         const glm::dvec3 eye = g.origin + g.a * (U(rng) * 3 * w - w) + g.b * (U(rng) * 3 * h - h) +
                                g.f() * (top * (1.2 + 5 * U(rng)));
         const PrewarpCoefficients k = compute_coefficients(g, eye);
@@ -115,7 +116,8 @@ TEST(Outliers, TallDetailAtTheBorderIsKeptInTheMargin) {
     ReliefGeometry g;
     const int n = 32;
     // A tall wall along the left border, seen from the right: it leans out of the quad to the left.
-    const ReliefTexture t = test::make_test_relief(n, n, 0.0, 4.0, [](int x, int) { return x < 4 ? 4.0 : 0.0; }, g);
+    const ReliefTexture t = test::make_test_relief(
+        n, n, 0.0, 4.0, [](int x, int) { return x < 4 ? 4.0 : 0.0; }, g);
     const glm::dvec3 eye{40.0, 16.0, 10.0};
     const ImageRGBA8 dropped = prewarp(t, eye, {});
     PrewarpWorkspace ws;
@@ -133,7 +135,8 @@ TEST(Outliers, TallDetailAtTheBorderIsKeptInTheMargin) {
 
 TEST(Outliers, ZeroDisplacementNeedsNoMargin) {
     ReliefGeometry g;
-    const ReliefTexture t = test::make_test_relief(16, 16, 0.0, 0.0, [](int, int) { return 0.0; }, g);
+    const ReliefTexture t = test::make_test_relief(
+        16, 16, 0.0, 0.0, [](int, int) { return 0.0; }, g);
     PrewarpWorkspace ws;
     ImageRGBA8 a;
     const PrewarpStats st = prewarp(t, compute_coefficients(g, {3, 30, 2}), {.keep_outliers = true}, ws, a);

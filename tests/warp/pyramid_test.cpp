@@ -13,7 +13,8 @@ TEST(Pyramid, LevelsHalveAndCoverTheSameArea) {
     ReliefGeometry g;
     g.a = {0.01, 0.0, 0.002};
     g.b = {0.0, 0.02, 0.0};
-    const ReliefTexture t = test::make_test_relief(37, 20, 0.0, 1.0, [](int x, int r) { return (x + r) / 60.0; }, g);
+    const ReliefTexture t = test::make_test_relief(
+        37, 20, 0.0, 1.0, [](int x, int r) { return (x + r) / 60.0; }, g);
     const ReliefPyramid p(t);
     ASSERT_EQ(p.levels(), 7);  // 37x20, 19x10, 10x5, 5x3, 3x2, 2x1, 1x1
     EXPECT_EQ(p.level(1).width, 19);
@@ -30,7 +31,8 @@ TEST(Pyramid, LevelsHalveAndCoverTheSameArea) {
 
 TEST(Pyramid, PowerOfTwoDoublesAAndAveragesBlocks) {
     ReliefGeometry g;
-    const ReliefTexture t = test::make_test_relief(4, 4, 0.0, 1.0, [](int x, int r) { return x * 0.1 + r * 0.01; }, g);
+    const ReliefTexture t = test::make_test_relief(
+        4, 4, 0.0, 1.0, [](int x, int r) { return x * 0.1 + r * 0.01; }, g);
     const ReliefPyramid p(t);
     const ReliefTexture& l1 = p.level(1);
     EXPECT_EQ(l1.geometry.a, g.a * 2.0);

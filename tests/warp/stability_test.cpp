@@ -30,9 +30,18 @@ Config random_config(std::mt19937_64& rng) {
     int w, h;
     switch (pick(5)) {
         case 0: w = h = 1; break;
-        case 1: w = 1; h = 1 + pick(24); break;
-        case 2: w = 1 + pick(24); h = 1; break;
-        default: w = 1 + pick(20); h = 1 + pick(20); break;
+        case 1:
+            w = 1;
+            h = 1 + pick(24);
+            break;
+        case 2:
+            w = 1 + pick(24);
+            h = 1;
+            break;
+        default:
+            w = 1 + pick(20);
+            h = 1 + pick(20);
+            break;
     }
     const double scale = std::pow(10.0, U(rng) * 8 - 4);
     ReliefGeometry g = test::random_geometry(rng);
@@ -43,27 +52,54 @@ Config random_config(std::mt19937_64& rng) {
     double lo = 0, hi = 0;
     switch (pick(4)) {
         case 0: lo = hi = size * (U(rng) - 0.5); break;  // max == min
-        case 1: lo = 0; hi = size * U(rng); break;
-        case 2: lo = -size * U(rng); hi = 0; break;
-        default: lo = -size * U(rng); hi = size * 2 * U(rng); break;
+        case 1:
+            lo = 0;
+            hi = size * U(rng);
+            break;
+        case 2:
+            lo = -size * U(rng);
+            hi = 0;
+            break;
+        default:
+            lo = -size * U(rng);
+            hi = size * 2 * U(rng);
+            break;
     }
     const glm::dvec3 f = g.f();
     // Eye's position along the plane, in texels.
     double eu = U(rng) * 3 * w - w, ev = U(rng) * 3 * h - h;
     switch (pick(4)) {
         case 0: eu = std::floor(eu) + 0.5; break;  // over a texel centre
-        case 1: eu = std::floor(eu); ev = std::floor(ev); break;  // on texel boundaries
+        case 1:
+            eu = std::floor(eu);
+            ev = std::floor(ev);
+            break;                 // on texel boundaries
         case 2: eu *= 1e6; break;  // far outside
         default: break;
     }
     double dist;
     std::string kind;
     switch (pick(7)) {
-        case 0: dist = size * std::pow(10.0, 3 + U(rng) * 9); kind = "far"; break;  // k3 -> 0
-        case 1: dist = size * std::pow(10.0, -12 + U(rng) * 10); kind = "near plane"; break;
-        case 2: dist = 0; kind = "on plane"; break;
-        case 3: dist = -size * (0.1 + U(rng)); kind = "behind"; break;
-        case 4: dist = hi * U(rng); kind = "below highest texels"; break;
+        case 0:
+            dist = size * std::pow(10.0, 3 + U(rng) * 9);
+            kind = "far";
+            break;  // k3 -> 0
+        case 1:
+            dist = size * std::pow(10.0, -12 + U(rng) * 10);
+            kind = "near plane";
+            break;
+        case 2:
+            dist = 0;
+            kind = "on plane";
+            break;
+        case 3:
+            dist = -size * (0.1 + U(rng));
+            kind = "behind";
+            break;
+        case 4:
+            dist = hi * U(rng);
+            kind = "below highest texels";
+            break;
         case 5: {  // grazing: 0.1 to 5 degrees above the plane, from far off to the side
             const double ang = glm::radians(0.1 + U(rng) * 4.9);
             const double off = size * (2 + U(rng) * 50);
@@ -72,15 +108,17 @@ Config random_config(std::mt19937_64& rng) {
             kind = "grazing";
             break;
         }
-        default: dist = size * (0.05 + U(rng) * 5); kind = "front"; break;
+        default:
+            dist = size * (0.05 + U(rng) * 5);
+            kind = "front";
+            break;
     }
     const glm::dvec3 eye = g.origin + g.a * eu + g.b * ev + f * dist;
     std::ostringstream s;
     s << kind << " " << w << "x" << h << " " << g.to_string() << " range [" << lo << ", " << hi << "] eye (" << eye.x
       << ", " << eye.y << ", " << eye.z << ")";
-    Config c{test::make_test_relief(w, h, lo, hi, [&](int x, int r) {
-                 return lo + (hi - lo) * (((x * 31 + r * 17) % 13) / 12.0);
-             }, g),
+    Config c{test::make_test_relief(
+                 w, h, lo, hi, [&](int x, int r) { return lo + (hi - lo) * (((x * 31 + r * 17) % 13) / 12.0); }, g),
              eye, s.str()};
     if (pick(3) == 0) {  // some empty texels
         for (size_t i = 0; i < c.relief.texels.size(); i += 3) c.relief.texels[i].q = kEmptyIndex;
@@ -185,8 +223,10 @@ TEST(Stability, CoverageFilterSweep) {
 
 TEST(Stability, FarAwayTendsToTheIdentity) {
     ReliefGeometry g;
-    const ReliefTexture t = test::make_test_relief(32, 32, 0.0, 1.0, [](int x, int r) { return (x ^ r) % 5 * 0.25; }, g);
-    const ImageRGBA8 flat = prewarp(test::make_test_relief(32, 32, 0.0, 0.0, [](int, int) { return 0.0; }, g),
+    const ReliefTexture t = test::make_test_relief(
+        32, 32, 0.0, 1.0, [](int x, int r) { return (x ^ r) % 5 * 0.25; }, g);
+    const ImageRGBA8 flat = prewarp(test::make_test_relief(
+                                        32, 32, 0.0, 0.0, [](int, int) { return 0.0; }, g),
                                     glm::dvec3{16, 16, 10});
     // 1e9 texels away every texel moves by less than 1e-8 texels: the output equals the source colours.
     EXPECT_EQ(prewarp(t, glm::dvec3{16, 16, 1e9}), flat);

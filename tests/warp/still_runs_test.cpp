@@ -41,10 +41,22 @@ Case random_case(std::mt19937_64& rng) {
     auto pick = [&](int n) { return int(rng() % uint64_t(n)); };
     int w, h;
     switch (pick(6)) {
-        case 0: w = 1 + pick(3); h = 1 + pick(40); break;
-        case 1: w = 1 + pick(40); h = 1 + pick(3); break;
-        case 2: w = 60 + pick(60); h = 60 + pick(60); break;
-        default: w = 2 + pick(50); h = 2 + pick(50); break;
+        case 0:
+            w = 1 + pick(3);
+            h = 1 + pick(40);
+            break;
+        case 1:
+            w = 1 + pick(40);
+            h = 1 + pick(3);
+            break;
+        case 2:
+            w = 60 + pick(60);
+            h = 60 + pick(60);
+            break;
+        default:
+            w = 2 + pick(50);
+            h = 2 + pick(50);
+            break;
     }
     const ReliefGeometry g = test::random_geometry(rng);
     const double size = std::max(glm::length(g.a) * w, glm::length(g.b) * h);
@@ -80,17 +92,41 @@ Case random_case(std::mt19937_64& rng) {
     double eu = U(rng) * 3 * w - w, ev = U(rng) * 3 * h - h;
     std::string where = "anywhere";
     switch (pick(5)) {
-        case 0: eu = std::floor(eu) + 0.5; ev = std::floor(ev) + 0.5; where = "over a texel centre"; break;
-        case 1: eu = std::floor(eu); ev = std::floor(ev); where = "on texel boundaries"; break;
-        case 2: eu = U(rng) * w; ev = U(rng) * h; where = "inside"; break;
+        case 0:
+            eu = std::floor(eu) + 0.5;
+            ev = std::floor(ev) + 0.5;
+            where = "over a texel centre";
+            break;
+        case 1:
+            eu = std::floor(eu);
+            ev = std::floor(ev);
+            where = "on texel boundaries";
+            break;
+        case 2:
+            eu = U(rng) * w;
+            ev = U(rng) * h;
+            where = "inside";
+            break;
         default: break;
     }
     double dist;
     switch (pick(5)) {
-        case 0: dist = size * (20 + U(rng) * 1000); where += ", far"; break;
-        case 1: dist = std::abs(lo) * U(rng) + hi * (1.05 + U(rng)); where += ", near"; break;
-        case 2: dist = hi * U(rng); where += ", below the highest texels"; break;
-        case 3: dist = -size * (0.1 + U(rng)); where += ", behind"; break;
+        case 0:
+            dist = size * (20 + U(rng) * 1000);
+            where += ", far";
+            break;
+        case 1:
+            dist = std::abs(lo) * U(rng) + hi * (1.05 + U(rng));
+            where += ", near";
+            break;
+        case 2:
+            dist = hi * U(rng);
+            where += ", below the highest texels";
+            break;
+        case 3:
+            dist = -size * (0.1 + U(rng));
+            where += ", behind";
+            break;
         default: dist = size * (0.2 + U(rng) * 3); break;
     }
     c.eye = g.origin + g.a * eu + g.b * ev + g.f() * dist;
@@ -226,8 +262,9 @@ TEST(StillRuns, AFlatReliefIsCopiedWhole) {
 
 TEST(StillRuns, ExactMeansExactlyZero) {
     // Bricks at 1e-9 world units: the tables round them to the zero level and copy them; --exact does not.
-    const ReliefTexture t = test::make_test_relief(
-        40, 12, -0.05, 0.0, [](int x, int r) { return (x % 8 == 0 || r % 4 == 0) ? -0.05 : -1e-9; });
+    const ReliefTexture t = test::make_test_relief(40, 12, -0.05, 0.0, [](int x, int r) {
+        return (x % 8 == 0 || r % 4 == 0) ? -0.05 : -1e-9;
+    });
     const PrewarpCoefficients k = compute_coefficients(t.geometry, glm::dvec3(0.7, 0.3, 0.5));
     PrewarpWorkspace ws;
     ImageRGBA8 out;

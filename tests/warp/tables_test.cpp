@@ -35,7 +35,7 @@ TEST(Quantizer, EqualMinAndMaxIsOneLevel) {
 TEST(PrewarpTables, MatchTheFormulaAndMarkInvalidLevels) {
     ReliefGeometry g;
     const PrewarpCoefficients k = compute_coefficients(g, {10, 20, 0.5});  // eye 0.5 above the plane
-    const Quantizer q = Quantizer::from_range(0.0, 1.0);               // levels above 0.5 cannot be warped
+    const Quantizer q = Quantizer::from_range(0.0, 1.0);                   // levels above 0.5 cannot be warped
     const PrewarpTables t = PrewarpTables::build(k, q);
     for (int i = 0; i < 255; ++i) {
         const double d = q.decode(uint8_t(i));

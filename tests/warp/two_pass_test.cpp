@@ -28,8 +28,10 @@ TEST(TwoPass, ZeroDisplacementIsTheIdentity) {
     for (int i = 0; i < 50; ++i) {
         const int w = 1 + int(rng() % 70), h = 1 + int(rng() % 70);
         const ReliefGeometry g = test::random_geometry(rng);
-        const ReliefTexture t = test::make_test_relief(w, h, 0.0, 0.0, [](int, int) { return 0.0; }, g);
-        const glm::dvec3 eye = g.origin + g.a * (U(rng) * 200) + g.b * (U(rng) * 200) + g.f() * (0.01 + std::abs(U(rng)));
+        const ReliefTexture t = test::make_test_relief(
+            w, h, 0.0, 0.0, [](int, int) { return 0.0; }, g);
+        const glm::dvec3 eye = g.origin + g.a * (U(rng) * 200) + g.b * (U(rng) * 200) +
+                               g.f() * (0.01 + std::abs(U(rng)));
         for (bool exact : {false, true}) {
             const ImageRGBA8 out = prewarp(t, eye, {.exact = exact});
             ASSERT_EQ(out, source_colors(t)) << w << "x" << h << " exact=" << exact;
@@ -47,7 +49,8 @@ TEST(TwoPass, ConstantDisplacementIsAScalingAboutTheEpipole) {
     g.b = {0, 0.01, 0};
     const int n = 64;
     const double d = 0.05;
-    const ReliefTexture t = test::make_test_relief(n, n, d, d, [&](int, int) { return d; }, g);
+    const ReliefTexture t = test::make_test_relief(
+        n, n, d, d, [&](int, int) { return d; }, g);
     const glm::dvec3 eye{0.2, 0.3, 0.5};  // epipole at (20, 30) texels, inside
     const PrewarpCoefficients k = compute_coefficients(g, eye);
     const double s = 1 + k.k3 * d;  // < 1: the texture spreads out from the epipole
@@ -113,10 +116,13 @@ TEST(TwoPass, NoHoleAtTheEpipoleSplitOfAContinuousSurface) {
     g.a = {0.01, 0, 0};
     g.b = {0, 0.01, 0};
     const int n = 96;
-    const ReliefTexture t = test::make_test_relief(n, n, 0.0, 0.1, [&](int x, int r) {
-        const double dx = (x - 48.0) / 30, dy = (r - 48.0) / 30;
-        return 0.1 * std::exp(-(dx * dx + dy * dy));
-    }, g);
+    const ReliefTexture t = test::make_test_relief(
+        n, n, 0.0, 0.1,
+        [&](int x, int r) {
+            const double dx = (x - 48.0) / 30, dy = (r - 48.0) / 30;
+            return 0.1 * std::exp(-(dx * dx + dy * dy));
+        },
+        g);
     for (double eu : {40.5, 41.0, 41.3, 0.0, 96.0}) {
         for (double ev : {52.5, 52.0, 52.77}) {
             const glm::dvec3 eye{eu * 0.01, ev * 0.01, 0.4};
@@ -134,9 +140,9 @@ TEST(TwoPass, OutputDoesNotDependOnThreadCount) {
     ReliefGeometry g;
     g.a = {0.01, 0, 0};
     g.b = {0, 0.01, 0};
-    const ReliefTexture t = test::make_test_relief(200, 150, -0.05, 0.1, [](int x, int r) {
-        return 0.1 * std::sin(x * 0.2) * std::cos(r * 0.13) * (x % 7 == 0 ? -0.5 : 1.0);
-    }, g);
+    const ReliefTexture t = test::make_test_relief(
+        200, 150, -0.05, 0.1,
+        [](int x, int r) { return 0.1 * std::sin(x * 0.2) * std::cos(r * 0.13) * (x % 7 == 0 ? -0.5 : 1.0); }, g);
     for (bool exact : {false, true}) {
         const ImageRGBA8 one = prewarp(t, {0.3, 1.9, 0.7}, {.exact = exact, .threads = 1});
         const ImageRGBA8 two = prewarp(t, {0.3, 1.9, 0.7}, {.exact = exact, .threads = 2});
@@ -156,7 +162,8 @@ TEST(TwoPass, EmptyTexelsStayEmptyAndTexelsAboveTheEyeAreDropped) {
     for (const Rgba8& p : out.pixels) ASSERT_EQ(p.a, 0);
 
     // Viewer 0.5 above the plane, every texel at 1.0: none can be pre-warped.
-    const ReliefTexture tall = test::make_test_relief(n, n, 0.0, 1.0, [](int, int) { return 1.0; }, g);
+    const ReliefTexture tall = test::make_test_relief(
+        n, n, 0.0, 1.0, [](int, int) { return 1.0; }, g);
     PrewarpWorkspace ws;
     ImageRGBA8 o2;
     const PrewarpStats st = prewarp(tall, compute_coefficients(g, {8, 8, 0.5}), {}, ws, o2);

@@ -234,8 +234,8 @@ void horizontal_pass(const ReliefTexture& t, const PrewarpCoefficients& k, const
 // The vertical pass's input for intermediate column x, in v order (bottom row first): colour, validity, final
 // row and carried displacement; and the output column cleared (displacement to empty).
 template <class P>
-void column_samples(const ImageRGBA8& mid, const Image2D<P>& mid_v, const Image2D<P>& mid_d, int x,
-                    LineScratch<P>& s, ImageRGBA8& out, Image2D<uint8_t>* displ_out) {
+void column_samples(const ImageRGBA8& mid, const Image2D<P>& mid_v, const Image2D<P>& mid_d, int x, LineScratch<P>& s,
+                    ImageRGBA8& out, Image2D<uint8_t>* displ_out) {
     const int h = mid.height;
     for (int j = 0; j < h; ++j) {
         const int r = h - 1 - j;
@@ -326,8 +326,8 @@ void horizontal_pass_coverage(const ReliefTexture& t, const PrewarpCoefficients&
 
 template <class P>
 void vertical_pass_coverage(const ReliefTexture& t, const PrewarpCoefficients& k, const Frame& fr, int x0, int x1,
-                            const ImageRGBA8& mid, const Image2D<P>& mid_v, const Image2D<P>& mid_d,
-                            ImageRGBA8& out, Image2D<uint8_t>* displ_out) {
+                            const ImageRGBA8& mid, const Image2D<P>& mid_v, const Image2D<P>& mid_d, ImageRGBA8& out,
+                            Image2D<uint8_t>* displ_out) {
     const int h = fr.h, oh = fr.out_h();
     LineScratch<P> s;
     s.resize(h);
@@ -375,9 +375,8 @@ PrewarpStats two_pass(const ReliefTexture& t, const PrewarpCoefficients& k, cons
         run(threads, t.height, 16, [&](int r0, int r1) {
             horizontal_pass_coverage<P>(t, k, tab, exact, fr, r0, r1, mid, mid_v, mid_d, dropped);
         });
-        run(threads, ow, 16, [&](int x0, int x1) {
-            vertical_pass_coverage<P>(t, k, fr, x0, x1, mid, mid_v, mid_d, out, displ_out);
-        });
+        run(threads, ow, 16,
+            [&](int x0, int x1) { vertical_pass_coverage<P>(t, k, fr, x0, x1, mid, mid_v, mid_d, out, displ_out); });
         return {(long long)t.width * t.height, dropped.load(), fr.e};
     }
     std::atomic<long long> copied{0}, row_pixels{0}, column_samples{0};
@@ -390,9 +389,8 @@ PrewarpStats two_pass(const ReliefTexture& t, const PrewarpCoefficients& k, cons
     // still: 2.25 -> 1.50 ms, 1 thread).
     Frame fv = fr;
     fv.copy_still = fr.copy_still && copied.load() * 8 >= (long long)t.width * t.height;
-    run(threads, ow, 16, [&](int x0, int x1) {
-        vertical_pass<P>(t, k, fv, x0, x1, mid, mid_v, mid_d, out, displ_out, column_samples);
-    });
+    run(threads, ow, 16,
+        [&](int x0, int x1) { vertical_pass<P>(t, k, fv, x0, x1, mid, mid_v, mid_d, out, displ_out, column_samples); });
     return {(long long)t.width * t.height, dropped.load(), fr.e, copied.load(), row_pixels.load(),
             column_samples.load()};
 }
@@ -413,7 +411,7 @@ struct PipelinedPart {
     std::vector<ColumnSample<P>> prev, cur;
     std::vector<uint8_t> prev_ok, cur_ok;
     long long dropped = 0;
-    long long copied = 0;  // still texels copied (warp_line_still_to)
+    long long copied = 0;                          // still texels copied (warp_line_still_to)
     long long row_pixels = 0, column_samples = 0;  // PrewarpStats
 };
 
@@ -488,9 +486,7 @@ PrewarpStats pipelined(const ReliefTexture& t, const PrewarpCoefficients& k, con
     const int split = split_index(k.epipole_v, h);
     const int ysplit = split_index(k.epipole_v + fr.e.bottom, oh);
     PipelinedPart<P> bottom, top;
-    auto run_bottom = [&] {
-        pipelined_part<P>(t, k, tab, exact, fr, 0, split, +1, 0, ysplit, bottom, out, displ_out);
-    };
+    auto run_bottom = [&] { pipelined_part<P>(t, k, tab, exact, fr, 0, split, +1, 0, ysplit, bottom, out, displ_out); };
     auto run_top = [&] {
         pipelined_part<P>(t, k, tab, exact, fr, h - 1, split - 1, -1, ysplit, oh, top, out, displ_out);
     };
@@ -542,10 +538,10 @@ PrewarpStats prewarp(const ReliefTexture& relief, const PrewarpCoefficients& k, 
         return pipelined<float>(relief, k, tab, false, fr, options.threads, out, displ_out);
     }
     if (options.exact)
-        return two_pass<double>(relief, k, tab, true, fr, options.threads, ws.mid_color, ws.mid_v_exact,
-                                ws.mid_d_exact, out, displ_out, options.filter);
-    return two_pass<float>(relief, k, tab, false, fr, options.threads, ws.mid_color, ws.mid_v, ws.mid_d, out,
-                           displ_out, options.filter);
+        return two_pass<double>(relief, k, tab, true, fr, options.threads, ws.mid_color, ws.mid_v_exact, ws.mid_d_exact,
+                                out, displ_out, options.filter);
+    return two_pass<float>(relief, k, tab, false, fr, options.threads, ws.mid_color, ws.mid_v, ws.mid_d, out, displ_out,
+                           options.filter);
 }
 
 }  // namespace reference

@@ -84,8 +84,8 @@ __attribute__((noinline)) void column_long_spans(const ColumnOut& o, int x, __mm
                                                  const __m512i& pc, const __m512i& c) {
     const Lerp8 lerp(pc, c);
     const int ymin = _mm512_mask_reduce_min_epi32(lng, ylo), ymax = _mm512_mask_reduce_max_epi32(lng, yhi);
-    const long long total = _mm512_mask_reduce_add_epi32(
-        lng, _mm512_add_epi32(_mm512_sub_epi32(yhi, ylo), _mm512_set1_epi32(1)));
+    const long long total = _mm512_mask_reduce_add_epi32(lng, _mm512_add_epi32(_mm512_sub_epi32(yhi, ylo),
+                                                                               _mm512_set1_epi32(1)));
     __mmask16 rowwise = lng;
     if ((long long)(ymax - ymin + 1) * _mm_popcnt_u32(lng) > 2 * total) {
         // Sparse: the lanes whose span is not within the range of the longest go alone.
@@ -137,7 +137,8 @@ __attribute__((always_inline)) inline void column_pixels(const ColumnOut& o, int
     const Lerp8 lerp(pc, c);
     const __m512i cpoint = _mm512_or_si512(c, _mm512_set1_epi32(int(0xFF000000)));
     const __mmask16 lng = todo & span & _mm512_cmpge_epi32_mask(_mm512_sub_epi32(yhi, ylo), _mm512_set1_epi32(4));
-    if (lng) [[unlikely]] column_long_spans(o, x, lng, ylo, yhi, pv, inv8192, pc, c);
+    if (lng) [[unlikely]]
+        column_long_spans(o, x, lng, ylo, yhi, pv, inv8192, pc, c);
     // The others (spans of 1 to 4 pixels, points) pixel by pixel: the first pixel of every lane, then the second of
     // those that have one, ...; the centre y + 0.5 steps by 1 exactly.
     __mmask16 act = todo & __mmask16(~lng);
@@ -179,8 +180,8 @@ __attribute__((always_inline)) inline ColumnRows column_rows(const ColumnOut& o,
     lo = _mm512_max_ps(lo, zero);  // std::max(lo, 0) and std::min(hi, n - 1) on finite values
     hi = _mm512_min_ps(hi, last);
     const __mmask16 span = (inc | dec) & _mm512_cmp_ps_mask(lo, hi, _CMP_LE_OQ);
-    const __mmask16 point =
-        fin & ~pok & _mm512_cmp_ps_mask(v, zero, _CMP_GE_OQ) & _mm512_cmp_ps_mask(v, ohf, _CMP_LT_OQ);
+    const __mmask16 point = fin & ~pok & _mm512_cmp_ps_mask(v, zero, _CMP_GE_OQ) &
+                            _mm512_cmp_ps_mask(v, ohf, _CMP_LT_OQ);
     // Integer rows: a point's is int(v), a span's lo .. hi (integers in [0, oh - 1] as floats); then clipped.
     __m512i ylo = _mm512_cvttps_epi32(_mm512_mask_mov_ps(lo, point, v));
     __m512i yhi = _mm512_mask_mov_epi32(_mm512_cvttps_epi32(hi), point, ylo);

@@ -163,8 +163,8 @@ struct LineWriter {
         _mm512_storeu_si512(s.col + k, color);
         if constexpr (kAttr) _mm512_storeu_ps(s.attr + k, attr);
         // pos[k - 1] in each lane.
-        const __m512 pm = _mm512_castsi512_ps(
-            _mm512_alignr_epi32(_mm512_castps_si512(pos), _mm512_castps_si512(prev_pos), 15));
+        const __m512 pm = _mm512_castsi512_ps(_mm512_alignr_epi32(_mm512_castps_si512(pos),
+                                                                  _mm512_castps_si512(prev_pos), 15));
         const __m512 diff = _mm512_sub_ps(pos, pm);
         _mm512_storeu_ps(s.inv + k, _mm512_div_ps(_mm512_set1_ps(1.0f), diff));
         // Clamping in float before converting keeps huge positions (and the NaN of invalid samples) in range;
@@ -195,8 +195,8 @@ struct LineWriter {
 
     // The "down" bits of the previous chunk, which need the first sample of this one.
     void down_bits(__m512 next_pos, __mmask16 next_valid) {
-        const __m512 pp = _mm512_castsi512_ps(
-            _mm512_alignr_epi32(_mm512_castps_si512(next_pos), _mm512_castps_si512(prev_pos), 1));
+        const __m512 pp = _mm512_castsi512_ps(_mm512_alignr_epi32(_mm512_castps_si512(next_pos),
+                                                                  _mm512_castps_si512(prev_pos), 1));
         const __mmask16 dn = prev_valid & __mmask16((prev_valid >> 1) | ((next_valid & 1) << 15));
         const int w = (k >> 4) - 1;
         reinterpret_cast<uint16_t*>(s.dn_inc)[w] = _mm512_mask_cmp_ps_mask(dn, prev_pos, pp, _CMP_GE_OQ);
@@ -385,9 +385,10 @@ __attribute__((always_inline)) inline void span_pixels(const LineSoA& s, int k0,
     static_assert(N == 1 || N == 2 || N == 4);
     const __m512i sign = _mm512_set1_epi32(int(0x80000000));
     const __m512 pa = _mm512_loadu_ps(s.pos + k0 + A);
-    const __m512 inv = A < 0 ? _mm512_loadu_ps(s.inv + k0)
-                             : _mm512_castsi512_ps(_mm512_xor_si512(
-                                   _mm512_castps_si512(_mm512_loadu_ps(s.inv + k0 + 1)), sign));
+    const __m512 inv = A < 0
+                           ? _mm512_loadu_ps(s.inv + k0)
+                           : _mm512_castsi512_ps(_mm512_xor_si512(_mm512_castps_si512(_mm512_loadu_ps(s.inv + k0 + 1)),
+                                                                  sign));
     const Lerp8 lerp(_mm512_loadu_si512(s.col + k0 + A), _mm512_loadu_si512(s.col + k0));
     const __m512 one = _mm512_set1_ps(1.0f);
     __m512 va = _mm512_setzero_ps(), vb = _mm512_setzero_ps();
@@ -433,8 +434,7 @@ __attribute__((noinline)) void shade_per_pixel(const LineSoA& s, int kL, int i_b
         const __m512i i = _mm512_add_epi32(iota, _mm512_set1_epi32(i0));
         const __m512i e = _mm512_set1_epi32(i_end);
         w0 = _mm512_mask_mov_epi32(w0, _mm512_cmpge_epi32_mask(i, e), big);
-        w1 = _mm512_mask_mov_epi32(w1, _mm512_cmpge_epi32_mask(_mm512_add_epi32(i, _mm512_set1_epi32(16)), e),
-                                   big);
+        w1 = _mm512_mask_mov_epi32(w1, _mm512_cmpge_epi32_mask(_mm512_add_epi32(i, _mm512_set1_epi32(16)), e), big);
     };
     auto search = [&](__m512i w0, __m512i w1, __m512i X) {  // largest r in [0, 31] with w[r] <= x (w[0] <= x)
         __m512i r = _mm512_setzero_si512();
@@ -473,8 +473,7 @@ __attribute__((noinline)) void shade_per_pixel(const LineSoA& s, int kL, int i_b
             while (i_next + 1 < i_end && st(i_next + 1) <= x0 + 16) ++i_next;
         }
         // Keys, and their range over the block: lanes lie between the spans of x0 and x0 + 16.
-        const __m512i key =
-            _mm512_add_epi32(_mm512_set1_epi32(kL), _mm512_mullo_epi32(i, _mm512_set1_epi32(step)));
+        const __m512i key = _mm512_add_epi32(_mm512_set1_epi32(kL), _mm512_mullo_epi32(i, _mm512_set1_epi32(step)));
         const int k0 = kL + step * i0, k1 = kL + step * imin(i_next, i_end - 1);
         shade_block<A, kAttr>(s, key, imin(k0, k1), imax(k0, k1), x0, m, out);
         i0 = i_next;
@@ -624,9 +623,10 @@ inline void shade_subrun(const LineSoA& s, int k_first, int k_last, const LineOu
                     int p = p0;
                     for (int g = 0; g < 4; ++g) {
                         const int sh = 4 * g;
-                        const __mmask16 mg =
-                            __mmask16(_pdep_u32((h1 >> sh) & 0xF, 0x1111) | _pdep_u32((h2 >> sh) & 0xF, 0x2222) |
-                                      _pdep_u32((h3 >> sh) & 0xF, 0x4444) | _pdep_u32((h4 >> sh) & 0xF, 0x8888));
+                        const __mmask16 mg = __mmask16(_pdep_u32((h1 >> sh) & 0xF, 0x1111) |
+                                                       _pdep_u32((h2 >> sh) & 0xF, 0x2222) |
+                                                       _pdep_u32((h3 >> sh) & 0xF, 0x4444) |
+                                                       _pdep_u32((h4 >> sh) & 0xF, 0x8888));
                         if (!mg) continue;
                         const int np = int(_mm_popcnt_u32(mg));
                         const __mmask16 ms = first_lanes(np) & clip16(p);

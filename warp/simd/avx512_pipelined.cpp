@@ -196,7 +196,8 @@ struct Logger {
 
     void operator()(int xa, int xb) const {
         const size_t want = log.n + size_t((xb - xa) / 16 + 1);
-        if (want > log.cap) [[unlikely]] log.reserve(want);
+        if (want > log.cap) [[unlikely]]
+            log.reserve(want);
         for (int x = xa; x <= xb; x += 16) {
             const __mmask16 m = first_lanes(xb - x + 1);
             const __m512 v = _mm512_maskz_loadu_ps(m, sc.row_v + x);
@@ -220,8 +221,8 @@ struct Logger {
 // point) are not one interval with the rows their column already has: the column's bitmask (made from its interval
 // the first time), and the runs of pixels not yet written one lane at a time.
 __attribute__((noinline)) void column_bits(const ColumnOut& o, PipeScratch& sc, int x, __mmask16 fb, __mmask16 span,
-                                           const __m512i& ylo, const __m512i& yhi, const __m512& pv,
-                                           const __m512i& pc, const __m512& v, const __m512i& c) {
+                                           const __m512i& ylo, const __m512i& yhi, const __m512& pv, const __m512i& pc,
+                                           const __m512& v, const __m512i& c) {
     alignas(64) int32_t lo[16], hi[16];
     _mm512_store_si512(lo, ylo);
     _mm512_store_si512(hi, yhi);
@@ -264,8 +265,8 @@ inline void column_spans_rev(const ColumnOut& o, PipeScratch& sc, int x, __mmask
     const __m128i cb = _mm_loadu_si128(reinterpret_cast<const __m128i*>(sc.cbits + x));
     const __m512i one_i = _mm512_set1_epi32(1);
     const __mmask16 emp = _mm512_cmpgt_epi32_mask(clo, chi);
-    const __mmask16 inside =
-        _mm512_mask_cmpge_epi32_mask(__mmask16(~emp), ylo, clo) & _mm512_cmple_epi32_mask(yhi, chi);
+    const __mmask16 inside = _mm512_mask_cmpge_epi32_mask(__mmask16(~emp), ylo, clo) &
+                             _mm512_cmple_epi32_mask(yhi, chi);
     const __mmask16 apart = __mmask16(~emp) & (_mm512_cmplt_epi32_mask(yhi, _mm512_sub_epi32(clo, one_i)) |
                                                _mm512_cmpgt_epi32_mask(ylo, _mm512_add_epi32(chi, one_i)));
     const __mmask16 fb = todo & (_mm_test_epi8_mask(cb, cb) | apart);
@@ -281,10 +282,11 @@ inline void column_spans_rev(const ColumnOut& o, PipeScratch& sc, int x, __mmask
                           _mm512_mask_mov_epi32(_mm512_min_epi32(yhi, _mm512_sub_epi32(clo, one_i)), emp, yhi), pv, pc,
                           v, c);
         if (high)
-            column_pixels(o, x, span & high, point & high, _mm512_max_epi32(ylo, _mm512_add_epi32(chi, one_i)), yhi,
-                          pv, pc, v, c);
+            column_pixels(o, x, span & high, point & high, _mm512_max_epi32(ylo, _mm512_add_epi32(chi, one_i)), yhi, pv,
+                          pc, v, c);
     }
-    if (fb) [[unlikely]] column_bits(o, sc, x, fb, span, ylo, yhi, pv, pc, v, c);
+    if (fb) [[unlikely]]
+        column_bits(o, sc, x, fb, span, ylo, yhi, pv, pc, v, c);
 }
 
 // Widens sc.vmin and sc.vmax by the finite row coordinates of columns a .. b of the row buffer: the rows a scratch
@@ -303,7 +305,7 @@ __attribute__((noinline)) void track_rows(PipeScratch& sc, int a, int b) {
 template <class E>
 struct ClipRange {
     const E& emit;
-    int x0, x1;  // columns [x0, x1)
+    int x0, x1;                    // columns [x0, x1)
     PipeScratch* track = nullptr;  // records the emitted row coordinates (track_rows) when not null
     void operator()(int a, int b) const {
         a = imax(a, x0);

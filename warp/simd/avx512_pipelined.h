@@ -36,7 +36,7 @@ struct PipelinedJob {
     // final row coordinate and colour, alpha 0 where the column received nothing. Out width entries each.
     float* seam_v[2] = {nullptr, nullptr};
     uint32_t* seam_c[2] = {nullptr, nullptr};
-    bool copy_still = true;  // PrewarpOptions::copy_still_runs
+    bool copy_still = true;                          // PrewarpOptions::copy_still_runs
     KernelChoice reverse = KernelChoice::automatic;  // FastKernelPolicy::pipelined_reverse
     std::atomic<long long>* dropped = nullptr;
 };

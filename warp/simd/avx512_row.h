@@ -19,11 +19,11 @@ namespace {
 struct LookupConstants {
     alignas(64) uint8_t from01[64] = {};  // byte index into texels 0..31 (two registers) of each qp lane
     alignas(64) uint8_t from23[64] = {};  // the same into texels 32..63
-    uint64_t use23 = 0;              // lanes of qp taken from texels 32..63
+    uint64_t use23 = 0;                   // lanes of qp taken from texels 32..63
     constexpr LookupConstants() {
         for (int j = 0; j < 64; ++j) {
             const int L = j / 16, m = (j / 4) % 4, i = j % 4;
-            const int t = 16 * m + 4 * L + i;  // texel of lane j
+            const int t = 16 * m + 4 * L + i;       // texel of lane j
             from01[j] = uint8_t(4 * (t % 32) + 3);  // byte 3 of the texel: its level
             from23[j] = uint8_t(4 * (t % 32) + 3);
             if (t >= 32) use23 |= uint64_t(1) << j;
@@ -49,7 +49,6 @@ inline void lookup_floats(const uint8_t (*planes)[256], __m512i qp, __mmask64 hi
     out[2] = _mm512_castsi512_ps(_mm512_unpacklo_epi16(h01, h23));
     out[3] = _mm512_castsi512_ps(_mm512_unpackhi_epi16(h01, h23));
 }
-
 
 // Fills `s` with storage row r of the relief: u_i = (u_s + K1[q]) * R[q] + left margin as position and the final
 // row coordinate v_i = (v_s + K2[q]) * R[q] + bottom margin as attribute, in float exactly as the reference's

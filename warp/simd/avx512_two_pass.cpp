@@ -49,8 +49,8 @@ struct NoRange {
 // also keeps floor and ceil of v - 0.5 (clamped to [-1, oh]), from which a span's first and last rows follow in
 // integers: raster_span's floor(pa - 0.5) + 1 .. floor(pb - 0.5) or ceil(pb - 0.5) .. ceil(pa - 0.5) - 1 (clamping
 // to integers commutes with floor and ceil).
-inline void vertical_step(const fast::TwoPassJob& job, const ColumnOut& o, const uint32_t* rc, const float* rv,
-                          int x0, int x1) {
+inline void vertical_step(const fast::TwoPassJob& job, const ColumnOut& o, const uint32_t* rc, const float* rv, int x0,
+                          int x1) {
     const __m512 half = _mm512_set1_ps(0.5f);
     const __m512 lo_clamp = _mm512_set1_ps(-1.0f), hi_clamp = _mm512_set1_ps(float(o.oh));
     const __m512i one = _mm512_set1_epi32(1), last = _mm512_set1_epi32(o.oh - 1);
@@ -126,8 +126,8 @@ void horizontal_steps(const TwoPassJob& job, int s0, int s1, uint32_t* band_c, f
     if (dropped) *job.dropped += dropped;
 }
 
-void vertical_steps(const TwoPassJob& job, int s0, int s1, const uint32_t* band_c, const float* band_v,
-                    size_t stride, int x0, int x1) {
+void vertical_steps(const TwoPassJob& job, int s0, int s1, const uint32_t* band_c, const float* band_v, size_t stride,
+                    int x0, int x1) {
     const int h = job.relief->height, ow = job.out->width, oh = job.out->height;
     uint32_t* out = reinterpret_cast<uint32_t*>(job.out->pixels.data());
     ColumnOut o{out, ow, oh, 0, oh};

@@ -50,7 +50,7 @@ struct TwoPassJob {
     uint16_t* col_ok = nullptr;
     float* seam_v = nullptr;
     uint32_t* seam_c = nullptr;
-    bool copy_still = true;  // PrewarpOptions::copy_still_runs
+    bool copy_still = true;                          // PrewarpOptions::copy_still_runs
     KernelChoice reverse = KernelChoice::automatic;  // FastKernelPolicy::two_pass_reverse
     bool redo_forwards = false;                      // FastKernelPolicy::two_pass_redo_forwards
     std::atomic<long long>* dropped = nullptr;
@@ -70,7 +70,7 @@ void horizontal_steps(const TwoPassJob& job, int s0, int s1, uint32_t* band_c, f
 // The vertical pass over steps [s0, s1) (band rows as written by horizontal_steps) for output columns [x0, x1),
 // x0 a multiple of 16, in step order for each column range. The call with s0 = 0 first clears those columns of
 // the output; the call that reaches step h also draws the span across the epipole.
-void vertical_steps(const TwoPassJob& job, int s0, int s1, const uint32_t* band_c, const float* band_v,
-                    size_t stride, int x0, int x1);
+void vertical_steps(const TwoPassJob& job, int s0, int s1, const uint32_t* band_c, const float* band_v, size_t stride,
+                    int x0, int x1);
 
 }  // namespace rtm::fast

@@ -71,8 +71,8 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
             const VI q = hn::And(hn::ShiftRightSame(cb, shift), byte);
             return hn::ShiftRight<14>(hn::Add(hn::Add(hn::Mul(p, wa), hn::Mul(q, wt)), round));
         };
-        const VI col = hn::Or(hn::Or(channel(0), hn::ShiftLeft<8>(channel(8))), hn::Or(hn::ShiftLeft<16>(channel(16)),
-                                                                                        alpha));
+        const VI col = hn::Or(hn::Or(channel(0), hn::ShiftLeft<8>(channel(8))),
+                              hn::Or(hn::ShiftLeft<16>(channel(16)), alpha));
         const VF v = hn::Add(hn::Mul(va, hn::Sub(one, tt)), hn::Mul(vb, tt));  // attr_lerp, no contraction
         hn::Store(x, di, lane_x);
         hn::Store(col, di, lane_c);
@@ -121,8 +121,7 @@ void WarpRow(const float* pos, const uint32_t* col, const float* attr, int n, in
             const auto pa = hn::LoadU(df, pos + k - 1), pb = hn::LoadU(df, pos + k);
             const auto fine = hn::And(hn::IsFinite(pa), hn::And(hn::IsFinite(pb), hn::Ge(pb, pa)));
             if (hn::AllTrue(df, fine)) {
-                SpanLanes(df, di, hn::Ne(pb, pa), pa, pb,
-                          hn::LoadU(di, reinterpret_cast<const int32_t*>(col + k - 1)),
+                SpanLanes(df, di, hn::Ne(pb, pa), pa, pb, hn::LoadU(di, reinterpret_cast<const int32_t*>(col + k - 1)),
                           hn::LoadU(di, reinterpret_cast<const int32_t*>(col + k)), hn::LoadU(df, attr + k - 1),
                           hn::LoadU(df, attr + k), n_out, k, rc, rv);
                 k += N;
@@ -143,8 +142,7 @@ void WarpRow(const float* pos, const uint32_t* col, const float* attr, int n, in
             const auto pb = hn::LoadU(df, pos + b), pa = hn::LoadU(df, pos + b + 1);
             const auto fine = hn::And(hn::IsFinite(pa), hn::And(hn::IsFinite(pb), hn::Le(pb, pa)));
             if (hn::AllTrue(df, fine)) {
-                SpanLanes(df, di, hn::Ne(pb, pa), pa, pb,
-                          hn::LoadU(di, reinterpret_cast<const int32_t*>(col + b + 1)),
+                SpanLanes(df, di, hn::Ne(pb, pa), pa, pb, hn::LoadU(di, reinterpret_cast<const int32_t*>(col + b + 1)),
                           hn::LoadU(di, reinterpret_cast<const int32_t*>(col + b)), hn::LoadU(df, attr + b + 1),
                           hn::LoadU(df, attr + b), n_out, b, rc, rv);
                 k -= N;
@@ -267,8 +265,7 @@ void VerticalStep(const fast::TwoPassJob& job, const uint32_t* rc, const float* 
             hn::Store(hn::IfThenElse(pointi, cpoint, col), di, lane_c);
             hn::Store(hn::VecFromMask(di, on), di, lane_on);
             for (size_t i = 0; i < N; ++i)
-                if (lane_on[i])
-                    out[size_t(oh - 1 - lane_y[i]) * size_t(ow) + size_t(x) + i] = uint32_t(lane_c[i]);
+                if (lane_on[i]) out[size_t(oh - 1 - lane_y[i]) * size_t(ow) + size_t(x) + i] = uint32_t(lane_c[i]);
             y = hn::Add(y, hn::Set(di, 1));
             yc = hn::Add(yc, one);
             on = hn::AndNot(hn::Lt(yhi, y), on);
@@ -318,26 +315,26 @@ namespace rtm::simd {
 TwoPassKernels hwy_two_pass_kernels(Isa isa) {
     switch (isa) {
 #if HWY_TARGETS & HWY_AVX2
-    case Isa::avx2: return {&N_AVX2::HorizontalSteps, &N_AVX2::VerticalSteps};
+        case Isa::avx2: return {&N_AVX2::HorizontalSteps, &N_AVX2::VerticalSteps};
 #endif
 #if HWY_TARGETS & HWY_SSE4
-    case Isa::sse4: return {&N_SSE4::HorizontalSteps, &N_SSE4::VerticalSteps};
+        case Isa::sse4: return {&N_SSE4::HorizontalSteps, &N_SSE4::VerticalSteps};
 #endif
 #if HWY_TARGETS & HWY_NEON
-    case Isa::neon: return {&N_NEON::HorizontalSteps, &N_NEON::VerticalSteps};
+        case Isa::neon: return {&N_NEON::HorizontalSteps, &N_NEON::VerticalSteps};
 #endif
 #if HWY_TARGETS & HWY_SVE2
-    case Isa::sve:
-        if (hwy::SupportedTargets() & HWY_SVE2) return {&N_SVE2::HorizontalSteps, &N_SVE2::VerticalSteps};
+        case Isa::sve:
+            if (hwy::SupportedTargets() & HWY_SVE2) return {&N_SVE2::HorizontalSteps, &N_SVE2::VerticalSteps};
 #if HWY_TARGETS & HWY_SVE
-        return {&N_SVE::HorizontalSteps, &N_SVE::VerticalSteps};
+            return {&N_SVE::HorizontalSteps, &N_SVE::VerticalSteps};
 #else
-        return {};
+            return {};
 #endif
 #elif HWY_TARGETS & HWY_SVE
-    case Isa::sve: return {&N_SVE::HorizontalSteps, &N_SVE::VerticalSteps};
+        case Isa::sve: return {&N_SVE::HorizontalSteps, &N_SVE::VerticalSteps};
 #endif
-    default: return {};
+        default: return {};
     }
 }
 

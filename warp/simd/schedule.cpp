@@ -209,7 +209,7 @@ PrewarpStats fast_two_pass(const simd::TwoPassKernels& kernels, const ReliefText
     };
     auto vertical = [&](int b, int x0, int x1) {
         kernels.vertical(job, b * band, std::min(h, (b + 1) * band), band_c(b % slots), band_v(b % slots),
-                             size_t(stride), x0, x1);
+                         size_t(stride), x0, x1);
     };
     if (options.threads == 1 || bands < 2) {
         for (int b = 0; b < bands; ++b) {
@@ -227,23 +227,16 @@ PrewarpStats fast_two_pass(const simd::TwoPassKernels& kernels, const ReliefText
         int next = 0;
         tbb::parallel_pipeline(
             size_t(slots),
-            tbb::make_filter<void, int>(tbb::filter_mode::serial_in_order,
-                                        [&](tbb::flow_control& fc) {
-                                            if (next == bands) fc.stop();
-                                            return next++;
-                                        }) &
-                tbb::make_filter<int, int>(tbb::filter_mode::parallel,
-                                           [&](int b) {
-                                               horizontal(b);
-                                               return b;
-                                           }) &
-                tbb::make_filter<int, int>(tbb::filter_mode::serial_in_order,
-                                           [&](int b) {
-                                               vertical(b, 0, mid);
-                                               return b;
-                                           }) &
-                tbb::make_filter<int, void>(tbb::filter_mode::serial_in_order,
-                                            [&](int b) { vertical(b, mid, ow); }));
+            tbb::make_filter<void, int>(tbb::filter_mode::serial_in_order, [&](tbb::flow_control& fc) {
+                if (next == bands) fc.stop();
+                return next++;
+            }) & tbb::make_filter<int, int>(tbb::filter_mode::parallel, [&](int b) {
+                horizontal(b);
+                return b;
+            }) & tbb::make_filter<int, int>(tbb::filter_mode::serial_in_order, [&](int b) {
+                vertical(b, 0, mid);
+                return b;
+            }) & tbb::make_filter<int, void>(tbb::filter_mode::serial_in_order, [&](int b) { vertical(b, mid, ow); }));
     };
     if (options.threads > 0)
         arena_for(options.threads).execute(pipeline);
@@ -356,9 +349,8 @@ void pipelined_in_row_chunks(const fast::PipelinedJob& job, int threads_option, 
     for (int i = 0; i < nc; ++i)
         if (chunks[i].ylo < chunks[i].yhi) y0 = std::min(y0, chunks[i].ylo), y1 = std::max(y1, chunks[i].yhi);
     if (y0 < y1)
-        run_ranges(threads_option, y1 - y0, 16, [&](int a, int b) {
-            fast::pipelined_composite(job, chunks, nc, y0 + a, y0 + b);
-        });
+        run_ranges(threads_option, y1 - y0, 16,
+                   [&](int a, int b) { fast::pipelined_composite(job, chunks, nc, y0 + a, y0 + b); });
     ws.chunk_scratch_dirty = false;
 }
 

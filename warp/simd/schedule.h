@@ -34,8 +34,7 @@ namespace rtm {
 // True when the kernels of target `isa` (supported by this CPU: resolve_isa, warp/isa.h) compute this pre-warp
 // (see the top of this file). `extent` is the output's margins.
 bool fast_prewarp_covers(Isa isa, const ReliefTexture& relief, const PrewarpCoefficients& k,
-                         const PrewarpOptions& options, const PrewarpExtent& extent,
-                         const Image2D<uint8_t>* displ_out);
+                         const PrewarpOptions& options, const PrewarpExtent& extent, const Image2D<uint8_t>* displ_out);
 
 // The pre-warp of prewarp() for a case `isa` covers; `out` is resized to the relief plus the margins.
 PrewarpStats fast_prewarp(Isa isa, const ReliefTexture& relief, const PrewarpCoefficients& k,
