@@ -22,12 +22,12 @@ namespace {
 
 constexpr std::uintmax_t kMaxManifestBytes = 1u << 20;
 
-std::string truncate(std::string s, size_t n = 60) {
+}  // namespace
+
+std::string truncate(std::string s, size_t n) {
     if (s.size() > n) s = s.substr(0, n) + "...";
     return s;
 }
-
-}  // namespace
 
 void fail(const std::string& path, const std::string& what) {
     std::string msg = path + ": " + what;

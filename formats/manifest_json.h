@@ -1,7 +1,7 @@
 // What the readers of the project's JSON manifests share: the one-line error (the file's path, then what is
 // wrong), short descriptions of hostile values, reading a small text file, parsing JSON with errors that name the
 // field, typed field getters, and path resolution (writers use formats/atomic_file.h). Used by the object manifest
-// (formats/object_manifest.h); the relief manifest's reader has its own copies of the same rules.
+// (formats/object_manifest.h), the scene manifest and the relief manifest's reader.
 #pragma once
 
 #include <glm/vec3.hpp>
@@ -20,8 +20,9 @@ using nlohmann::json;
 std::string fmt_double(double v);  // shortest round-trip form; nan, inf, -inf
 std::string fmt_list(std::initializer_list<std::string> items);
 std::string fmt_vec(const glm::dvec3& v);
-std::string describe(const json& v);       // one short line, never recursing into containers
-std::string quoted(const std::string& s);  // JSON-quoted, truncated, one line
+std::string describe(const json& v);                 // one short line, never recursing into containers
+std::string truncate(std::string s, size_t n = 60);  // at most n characters, then "..."
+std::string quoted(const std::string& s);            // JSON-quoted, truncated, one line
 // The text of a manifest file of the given kind ("object manifest"), at most 1 MiB, not empty.
 std::string read_text(const std::string& path, const std::string& kind);
 json parse(const std::string& path, const std::string& text);

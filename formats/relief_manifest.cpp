@@ -25,6 +25,7 @@
 
 #include "formats/atomic_file.h"
 #include "formats/image_io.h"
+#include "formats/manifest_json.h"
 
 namespace rtm {
 namespace {
@@ -35,70 +36,14 @@ using nlohmann::json;
 // A manifest is a few hundred bytes; refuse to slurp anything absurd.
 constexpr std::uintmax_t kMaxManifestBytes = 1u << 20;
 
-// The message is one line whatever the path holds: control characters (a newline in a file name, which a manifest
-// can ask for: found by fuzz/fuzz_relief_manifest) are shown as '?'.
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
-    std::string msg = path + ": " + what;
-    for (char& c : msg)
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-    throw IoError(msg);
-}
-
-std::string fmt_double(double v) {
-    if (std::isnan(v)) return "nan";
-    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-    return json(v).dump();  // shortest representation that round-trips
-}
-
-std::string truncate(std::string s, size_t n = 60) {
-    if (s.size() > n) s = s.substr(0, n) + "...";
-    return s;
-}
-
-// A short one-line description of a JSON value for error messages.
-std::string describe(const json& v) {
-    switch (v.type()) {
-        case json::value_t::null: return "null";
-        case json::value_t::boolean: return v.get<bool>() ? "true" : "false";
-        case json::value_t::number_integer:
-        case json::value_t::number_unsigned: return v.dump();
-        case json::value_t::number_float: return fmt_double(v.get<double>());
-        case json::value_t::string:
-            return "the string " + truncate(v.dump(-1, ' ', false, json::error_handler_t::replace));
-        case json::value_t::object: return "an object with " + std::to_string(v.size()) + " fields";
-        case json::value_t::array: {
-            if (v.size() > 8) return "an array of " + std::to_string(v.size()) + " elements";
-            std::string s = "[";
-            for (size_t i = 0; i < v.size(); ++i) {
-                if (i) s += ", ";
-                const json& e = v[i];
-                if (e.is_array())
-                    s += "[...]";
-                else if (e.is_object())
-                    s += "{...}";
-                else if (e.is_string())
-                    s += truncate(e.dump(-1, ' ', false, json::error_handler_t::replace), 20);
-                else
-                    s += describe(e);
-            }
-            return s + "]";
-        }
-        default: return "an unsupported value";
-    }
-}
-
-// Appends rather than `"[" + std::string&&`, which trips GCC 12's false -Wrestrict (GCC PR 105329).
-std::string fmt_list(std::initializer_list<std::string> items) {
-    std::string s(1, '[');
-    for (const std::string& i : items) {
-        if (s.size() > 1) s += ", ";
-        s += i;
-    }
-    s += ']';
-    return s;
-}
-
-std::string fmt_vec(const glm::dvec3& v) { return fmt_list({fmt_double(v.x), fmt_double(v.y), fmt_double(v.z)}); }
+// The one-line error and the short descriptions of hostile values are the manifests' shared ones
+// (formats/manifest_json.h).
+using manifest_json::describe;
+using manifest_json::fail;
+using manifest_json::fmt_double;
+using manifest_json::fmt_list;
+using manifest_json::fmt_vec;
+using manifest_json::truncate;
 
 // The manifest's text, after checking the file itself.
 std::string read_text(const std::string& path) {
