@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "texmap/gl_context.h"
+#include "texmap/gl_program.h"
 
 namespace rtm {
 namespace {
@@ -57,21 +58,6 @@ void main() {
     o_distance = v_distance;
 }
 )";
-
-GLuint compile(GLenum type, const char* src) {
-    const GLuint s = glCreateShader(type);
-    glShaderSource(s, 1, &src, nullptr);
-    glCompileShader(s);
-    GLint ok = 0;
-    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[1024] = {};
-        glGetShaderInfoLog(s, sizeof(log), nullptr, log);
-        glDeleteShader(s);
-        throw GlError(std::string("mesh shader: ") + log);
-    }
-    return s;
-}
 
 }  // namespace
 
@@ -121,17 +107,7 @@ struct MeshRenderer::Impl {
 MeshRenderer::MeshRenderer(const TriangleMesh& mesh) : impl_(new Impl) {
     Impl& m = *impl_;
     try {
-        const GLuint vs = compile(GL_VERTEX_SHADER, kVertexShader);
-        const GLuint fs = compile(GL_FRAGMENT_SHADER, kFragmentShader);
-        m.program = glCreateProgram();
-        glAttachShader(m.program, vs);
-        glAttachShader(m.program, fs);
-        glLinkProgram(m.program);
-        glDeleteShader(vs);
-        glDeleteShader(fs);
-        GLint ok = 0;
-        glGetProgramiv(m.program, GL_LINK_STATUS, &ok);
-        if (!ok) throw GlError("mesh shader: link failed");
+        m.program = link_program(kVertexShader, kFragmentShader, "mesh");
         m.u_clip = glGetUniformLocation(m.program, "u_clip");
         m.u_plane = glGetUniformLocation(m.program, "u_plane");
         m.u_texture = glGetUniformLocation(m.program, "u_texture");

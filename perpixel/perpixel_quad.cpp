@@ -17,60 +17,11 @@
 #include "perpixel/relief_map.h"
 #include "perpixel/shader_common.h"
 #include "texmap/gl_context.h"
+#include "texmap/gl_program.h"
 
 namespace rtm {
 
 extern const char* const kQuadricVertexShader;
-
-namespace {
-
-GLuint compile(GLenum type, const std::string& source, const std::string& name) {
-    GLuint s = glCreateShader(type);
-    const char* src = source.c_str();
-    glShaderSource(s, 1, &src, nullptr);
-    glCompileShader(s);
-    GLint ok = 0;
-    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        GLint len = 0;
-        glGetShaderiv(s, GL_INFO_LOG_LENGTH, &len);
-        std::string log(size_t(len > 1 ? len : 1), '\0');
-        glGetShaderInfoLog(s, len, nullptr, log.data());
-        glDeleteShader(s);
-        throw GlError("cannot compile the " + name + " shader: " + log.c_str());
-    }
-    return s;
-}
-
-GLuint link(const char* vs_src, const std::string& fs_src, const std::string& name) {
-    GLuint vs = compile(GL_VERTEX_SHADER, vs_src, name);
-    GLuint fs = 0;
-    try {
-        fs = compile(GL_FRAGMENT_SHADER, fs_src, name);
-    } catch (...) {
-        glDeleteShader(vs);
-        throw;
-    }
-    GLuint p = glCreateProgram();
-    glAttachShader(p, vs);
-    glAttachShader(p, fs);
-    glLinkProgram(p);
-    glDeleteShader(vs);
-    glDeleteShader(fs);
-    GLint ok = 0;
-    glGetProgramiv(p, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        GLint len = 0;
-        glGetProgramiv(p, GL_INFO_LOG_LENGTH, &len);
-        std::string log(size_t(len > 1 ? len : 1), '\0');
-        glGetProgramInfoLog(p, len, nullptr, log.data());
-        glDeleteProgram(p);
-        throw GlError("cannot link the " + name + " program: " + log.c_str());
-    }
-    return p;
-}
-
-}  // namespace
 
 PerPixelQuad::PerPixelQuad() = default;
 
@@ -90,7 +41,7 @@ unsigned PerPixelQuad::program(PerPixelMethod m, const PerPixelCommon& c) {
     auto it = programs_.find(key);
     if (it != programs_.end()) return it->second;
     const char* vs = m == PerPixelMethod::quadric_silhouettes ? kQuadricVertexShader : kPerPixelVertexShader;
-    const GLuint p = link(vs, perpixel_fragment_shader(m, c), to_string(m));
+    const GLuint p = link_program(vs, perpixel_fragment_shader(m, c), to_string(m));
     programs_[key] = p;
     return p;
 }

@@ -25,6 +25,7 @@
 #include <string>
 
 #include "texmap/gl_context.h"
+#include "texmap/gl_program.h"
 #include "texmap/wall_clip.h"
 
 namespace rtm {
@@ -152,51 +153,6 @@ void main() {
 void require_context(const char* what) {
     // glad's pointers are null until a GlContext was made current.
     if (!glad_glCreateShader) throw GlError(std::string(what) + ": no OpenGL context is current");
-}
-
-GLuint compile(GLenum type, const char* source, const char* name) {
-    GLuint s = glCreateShader(type);
-    glShaderSource(s, 1, &source, nullptr);
-    glCompileShader(s);
-    GLint ok = 0;
-    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        GLint len = 0;
-        glGetShaderiv(s, GL_INFO_LOG_LENGTH, &len);
-        std::string log(size_t(len > 1 ? len : 1), '\0');
-        glGetShaderInfoLog(s, len, nullptr, log.data());
-        glDeleteShader(s);
-        throw GlError(std::string("cannot compile the ") + name + " shader: " + log.c_str());
-    }
-    return s;
-}
-
-GLuint link(const char* vs_src, const char* fs_src, const char* name) {
-    GLuint vs = compile(GL_VERTEX_SHADER, vs_src, name);
-    GLuint fs = 0;
-    try {
-        fs = compile(GL_FRAGMENT_SHADER, fs_src, name);
-    } catch (...) {
-        glDeleteShader(vs);
-        throw;
-    }
-    GLuint p = glCreateProgram();
-    glAttachShader(p, vs);
-    glAttachShader(p, fs);
-    glLinkProgram(p);
-    glDeleteShader(vs);
-    glDeleteShader(fs);
-    GLint ok = 0;
-    glGetProgramiv(p, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        GLint len = 0;
-        glGetProgramiv(p, GL_INFO_LOG_LENGTH, &len);
-        std::string log(size_t(len > 1 ? len : 1), '\0');
-        glGetProgramInfoLog(p, len, nullptr, log.data());
-        glDeleteProgram(p);
-        throw GlError(std::string("cannot link the ") + name + " program: " + log.c_str());
-    }
-    return p;
 }
 
 // Model-view-projection in double (the camera's precision), handed to GL as float.
@@ -346,8 +302,8 @@ Renderer::Renderer() : impl_(new Impl) {
     require_context("Renderer");
     Impl& m = *impl_;
     try {
-        m.quad_program = link(kQuadVertexShader, kQuadFragmentShader, "textured quad");
-        m.mesh_program = link(kMeshVertexShader, kMeshFragmentShader, "mesh");
+        m.quad_program = link_program(kQuadVertexShader, kQuadFragmentShader, "textured quad");
+        m.mesh_program = link_program(kMeshVertexShader, kMeshFragmentShader, "mesh");
         m.quad_mvp = glGetUniformLocation(m.quad_program, "u_mvp");
         m.quad_texture = glGetUniformLocation(m.quad_program, "u_texture");
         m.mesh_mvp = glGetUniformLocation(m.mesh_program, "u_mvp");
@@ -357,7 +313,7 @@ Renderer::Renderer() : impl_(new Impl) {
                                        "\n#define RTM_WALL " + std::to_string(wall) + "\n" + kReliefFragmentShaderBody;
                 const std::string what = std::string(wall ? "relief side polygon" : "relief quad") +
                                          (depth ? " with depth correction" : "");
-                m.relief_program[depth][wall] = link(kReliefVertexShader, fs.c_str(), what.c_str());
+                m.relief_program[depth][wall] = link_program(kReliefVertexShader, fs, what);
             }
 
         // Relief surface: the relief quad and the pieces of up to 4 side polygons (kMaxReliefVertices), as
