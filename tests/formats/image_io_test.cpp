@@ -10,8 +10,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <random>
 
+#include "common/io_error.h"
 #include "texmap/test_util.h"
 
 namespace rtm {
@@ -29,20 +31,9 @@ ImageRGBA8 random_rgba(int w, int h, uint32_t seed) {
     return img;
 }
 
-// Runs `fn`, expecting an IoError whose message starts with "<path>: " and contains `fragment`.
-template <class Fn>
-void expect_io_error(Fn fn, const std::string& path, const std::string& fragment) {
-    try {
-        fn();
-        ADD_FAILURE() << "no IoError for " << path;
-    } catch (const IoError& e) {
-        std::string msg = e.what();
-        EXPECT_EQ(msg.rfind(path + ": ", 0), 0u) << "message does not start with the path: " << msg;
-        EXPECT_NE(msg.find(fragment), std::string::npos) << "message lacks \"" << fragment << "\": " << msg;
-        EXPECT_EQ(msg.find('\n'), std::string::npos) << "message is not one line: " << msg;
-    } catch (const std::exception& e) {
-        ADD_FAILURE() << "expected IoError for " << path << ", got another exception: " << e.what();
-    }
+// One fragment, labelled by the file (tests/common/io_error.h).
+void expect_io_error(const std::function<void()>& fn, const std::string& path, const std::string& fragment) {
+    objects_testing::expect_io_error(fn, path, {fragment}, path);
 }
 
 TEST(ImageIo, PngRoundTripIsBitExact) {

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "common/io_error.h"
 #include "common/temp_dir.h"
 #include "formats/image_io.h"
 #include "formats/relief_manifest.h"
@@ -20,25 +21,9 @@ namespace rtm {
 namespace {
 
 namespace fs = std::filesystem;
+using objects_testing::expect_io_error;
 using objects_testing::TempDir;
 using objects_testing::write_file;
-
-void expect_io_error(const std::function<void()>& fn, const std::string& path, const std::vector<std::string>& parts,
-                     const std::string& label) {
-    SCOPED_TRACE(label);
-    try {
-        fn();
-        ADD_FAILURE() << "no exception for " << label;
-    } catch (const IoError& e) {
-        const std::string msg = e.what();
-        EXPECT_EQ(msg.rfind(path + ": ", 0), 0u) << "message does not start with the path: " << msg;
-        EXPECT_EQ(msg.find('\n'), std::string::npos) << "message is not one line: " << msg;
-        for (const std::string& p : parts)
-            EXPECT_NE(msg.find(p), std::string::npos) << "missing \"" << p << "\" in: " << msg;
-    } catch (const std::exception& e) {
-        ADD_FAILURE() << label << ": expected rtm::IoError, got: " << e.what();
-    }
-}
 
 // A box 2 x 1 x 0.5 with faces of 8 texels per unit: +-x 4x8, +-y 16x4, +-z 16x8.
 const Box kBox{{-1, 0, 0}, {1, 1, 0.5}};

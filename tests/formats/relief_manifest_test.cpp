@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/io_error.h"
 #include "common/temp_dir.h"
 #include "formats/image_io.h"
 
@@ -23,27 +24,10 @@ namespace rtm {
 namespace {
 
 namespace fs = std::filesystem;
+using objects_testing::expect_io_error;
 using objects_testing::read_file;
 using objects_testing::TempDir;
 using objects_testing::write_file;
-
-// Runs fn, expects an IoError whose message is one line, starts with `path` and contains every substring.
-void expect_io_error(const std::function<void()>& fn, const std::string& path, const std::vector<std::string>& parts,
-                     const std::string& label) {
-    SCOPED_TRACE(label);
-    try {
-        fn();
-        ADD_FAILURE() << "no exception for " << label;
-    } catch (const IoError& e) {
-        const std::string msg = e.what();
-        EXPECT_EQ(msg.rfind(path + ": ", 0), 0u) << "message does not start with the path: " << msg;
-        EXPECT_EQ(msg.find('\n'), std::string::npos) << "message is not one line: " << msg;
-        for (const std::string& p : parts)
-            EXPECT_NE(msg.find(p), std::string::npos) << "missing \"" << p << "\" in: " << msg;
-    } catch (const std::exception& e) {
-        ADD_FAILURE() << label << ": expected rtm::IoError, got another exception: " << e.what();
-    }
-}
 
 ImageRGBA8 test_color(int w, int h) {
     ImageRGBA8 c(w, h);
