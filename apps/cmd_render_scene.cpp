@@ -27,15 +27,6 @@ nlohmann::json report_json(const SceneFrameReport& r) {
             {"total_ms", r.times.total_ms}};
 }
 
-Camera key_camera(const SceneCameraKey& k, const Camera& sized) {
-    Camera c = sized;
-    c.eye = k.eye;
-    c.look_at = k.look_at;
-    c.up = k.up;
-    c.fov_deg = k.fov_deg;
-    return c;
-}
-
 }  // namespace
 
 void run_render_scene(const SceneRenderArgs& a) {

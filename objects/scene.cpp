@@ -35,6 +35,15 @@ ReliefTexture transform_relief(ReliefTexture t, const glm::dmat4& m) {
     return t;
 }
 
+Camera key_camera(const SceneCameraKey& key, const Camera& base) {
+    Camera c = base;
+    c.eye = key.eye;
+    c.look_at = key.look_at;
+    c.up = key.up;
+    c.fov_deg = key.fov_deg;
+    return c;
+}
+
 Scene Scene::load(const std::string& manifest_path) { return Scene(parse_scene_manifest(manifest_path)); }
 
 Scene::Scene(SceneManifest manifest) : manifest_(std::move(manifest)) {

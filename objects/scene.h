@@ -19,6 +19,10 @@ namespace rtm {
 // Throws std::invalid_argument when the transform does not keep the relief's shape (shear or unequal scale).
 ReliefTexture transform_relief(ReliefTexture t, const glm::dmat4& m);
 
+// The camera of a scene's key (its default camera or a frame of its path) with the image size and clip planes of
+// `base`.
+Camera key_camera(const SceneCameraKey& key, const Camera& base);
+
 struct ScenePolygon {
     std::vector<glm::dvec3> vertices;  // 3 or 4, convex, planar
     glm::dvec3 color{0.5};

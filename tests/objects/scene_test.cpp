@@ -69,15 +69,10 @@ public:
         delete path_;
     }
     static Camera path_camera(const SceneManifest& m, int k, int w, int h) {
-        const SceneCameraKey key = camera_path_frame(m.path_keys, k, m.path_frames);
-        Camera c;
-        c.eye = key.eye;
-        c.look_at = key.look_at;
-        c.up = key.up;
-        c.fov_deg = key.fov_deg;
-        c.width = w;
-        c.height = h;
-        return c;
+        Camera size;
+        size.width = w;
+        size.height = h;
+        return key_camera(camera_path_frame(m.path_keys, k, m.path_frames), size);
     }
     static TempDir* dir_;
     static std::string* path_;
