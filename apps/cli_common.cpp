@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "formats/atomic_file.h"
+#include "warp/upsample.h"
 #include "procedural/procedural_media.h"
 #include "texmap/camera_rig.h"
 #include "warp/timing.h"
@@ -107,6 +108,17 @@ void parse_size(const std::string& text, const std::string& flag, int& w, int& h
         throw UsageError(flag + ": expected WxH with 1 <= W, H <= 16384, found \"" + text + "\"");
     w = a;
     h = b;
+}
+
+ReliefTexture apply_output_scale(ReliefTexture relief, int factor, const std::string& path) {
+    if (factor < 1 || factor > 8)
+        throw UsageError("--output-scale: expected a factor from 1 to 8, found " + std::to_string(factor));
+    if (factor == 1) return relief;
+    try {
+        return upsample(relief, factor);
+    } catch (const std::invalid_argument& e) {
+        throw std::runtime_error(path + ": " + e.what());
+    }
 }
 
 void CameraArgs::add_to(CLI::App& app, bool eye_required) {

@@ -36,6 +36,10 @@ Isa parse_isa_arg(const std::string& text, const std::string& flag);
 // --isa LIST: comma-separated targets, each as parse_isa_arg.
 std::vector<Isa> parse_isa_list(const std::string& text, const std::string& flag);
 void parse_size(const std::string& text, const std::string& flag, int& w, int& h);
+// --output-scale N (1 to 8): the relief resampled onto a grid N times finer (warp/upsample.h) so that the pre-warp
+// writes a texture N times the source's size in each direction. Throws UsageError naming N when out of range and
+// std::runtime_error naming the relief file `path` when the result would be too large.
+ReliefTexture apply_output_scale(ReliefTexture relief, int factor, const std::string& path);
 
 struct CameraArgs {
     std::string eye, orbit, look_at, up = "0,1,0", size = "512x512";

@@ -22,12 +22,13 @@ namespace {
 struct PrewarpArgs {
     std::string relief, object, eye, out, method = "two-pass", level = "0", json, filter = "point", isa = "auto";
     bool exact = false;
-    int repeat = 1, threads = 0;
+    int repeat = 1, threads = 0, output_scale = 1;
 };
 
 void run_prewarp(const PrewarpArgs& a) {
     if (a.relief.empty() == a.object.empty())
         throw UsageError("prewarp needs exactly one of --relief M and --object O");
+    if (!a.object.empty() && a.output_scale != 1) throw UsageError("--output-scale applies to --relief only");
     if (!a.object.empty())
         return run_prewarp_object({a.object, a.eye, a.out, a.method, a.level, a.json, a.filter, a.exact, a.repeat,
                                    a.threads});
@@ -47,7 +48,9 @@ void run_prewarp(const PrewarpArgs& a) {
     opt.filter = parse_filter(a.filter, opt.method);
     opt.isa = parse_isa_arg(a.isa, "--isa");
 
-    ReliefQuad quad(load_relief(a.relief));
+    if (a.output_scale < 1 || a.output_scale > 8)
+        throw UsageError("--output-scale: expected a factor from 1 to 8, found " + std::to_string(a.output_scale));
+    ReliefQuad quad(apply_output_scale(load_relief(a.relief), a.output_scale, a.relief));
     int level = level_arg;
     if (level < 0) {  // auto: the level for a 512x512, 45-degree view from the eye towards the relief's centre
         Camera cam = aimed_camera(eye, relief_bounds(quad.relief()).centre(), 512, 512);
@@ -89,6 +92,7 @@ void run_prewarp(const PrewarpArgs& a) {
             {"width", relief.width},
             {"height", relief.height},
             {"level", level},
+            {"output_scale", a.output_scale},
             {"skips", skips},
             {"still_texels", still},
             {"still_copied", stats.still_copied},
@@ -115,6 +119,9 @@ void add_prewarp_command(CLI::App& app) {
     sub->add_flag("--exact", a->exact, "Unquantized displacement, double-precision coordinates");
     sub->add_option("--filter", a->filter, "point or coverage (Fant-style, two-pass only)")->capture_default_str();
     sub->add_option("--level", a->level, "Relief texture pyramid level N or auto")->capture_default_str();
+    sub->add_option("--output-scale", a->output_scale,
+                    "Pre-warp into a texture N times the relief's size in each direction (1 to 8; --relief only)")
+        ->capture_default_str();
     sub->add_option("--repeat", a->repeat, "Run N times after one warm-up, for timing")->capture_default_str();
     sub->add_option("--threads", a->threads, "Threads (0 = all)")->capture_default_str();
     sub->add_option("--isa", a->isa,

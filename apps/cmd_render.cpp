@@ -28,10 +28,12 @@ struct RenderArgs {
     CameraArgs camera;
     bool exact = false, progress = false, no_sidewalls = false, depth_correction = false, no_skips = false;
     double discontinuity = -1;
-    int repeat = 1, threads = 0, path_frame = -1;
+    int repeat = 1, threads = 0, path_frame = -1, output_scale = 1;
 };
 
 void run_render(const RenderArgs& a) {
+    if (a.output_scale != 1 && a.relief.empty())
+        throw UsageError("--output-scale applies to --relief only");
     if (!a.object.empty()) {
         if (!a.relief.empty() || !a.scene.empty())
             throw UsageError("render takes one of --relief, --object and --scene");
@@ -80,6 +82,7 @@ void run_render(const RenderArgs& a) {
 
     ReliefTexture relief = load_relief(a.relief);
     if (a.discontinuity >= 0) mark_discontinuities(relief, a.discontinuity);
+    relief = apply_output_scale(std::move(relief), a.output_scale, a.relief);
     ReliefQuad quad(std::move(relief));
     const Camera cam = a.camera.resolve(relief_bounds(quad.relief()));
     PrewarpOptions opt;
@@ -141,6 +144,7 @@ void run_render(const RenderArgs& a) {
             {"total_ms", timing_json(t_total)},
             {"texels", (long long)quad.relief().width * quad.relief().height},
             {"level", used_level},
+            {"output_scale", a.output_scale},
             {"skips", skips},
             // zero-displacement-runs: texels of the level at zero displacement, and how many of them the reference
             // kernels copied (0 when the fast kernels ran: they copy without counting).
@@ -175,6 +179,9 @@ void add_render_command(CLI::App& app) {
     sub->add_option("--filter", a->filter, "Pre-warp resampling: point or coverage (Fant-style, two-pass only)")
         ->capture_default_str();
     sub->add_option("--level", a->level, "Relief texture pyramid level N or auto")->capture_default_str();
+    sub->add_option("--output-scale", a->output_scale,
+                    "Pre-warp into a texture N times the relief's size in each direction (1 to 8; --relief only)")
+        ->capture_default_str();
     sub->add_option("--out", a->out, "Output image");
     sub->add_option("--json", a->json, "Write stage times as JSON");
     sub->add_option("--repeat", a->repeat, "Render N frames after one warm-up, for timing")->capture_default_str();

@@ -63,4 +63,19 @@ else
   echo "FAIL: prewarp --json on the brick wall does not report zero-displacement-runs: $(cat "$T/bricks_pre.json")"
   fails=$((fails + 1))
 fi
+# Output scale: a factor from 1 to 8 (usage error otherwise, before any file is read), --relief only; the pre-warped
+# texture of a 4x4 relief at scale 2 is 8x8.
+expect_fail 2 'output-scale.*found 0' -- prewarp --relief "$T/nope.relief.json" --eye 0,0,1 --output-scale 0 --out \
+    "$T/o_s0.png"
+expect_fail 2 'output-scale.*found 9' -- render --relief "$R" --eye 0,0,1 --output-scale 9 --out "$T/o_s9.png"
+expect_fail 2 'output-scale.*--relief' -- render --object "$T/nope.object.json" --orbit 0,0,2 --output-scale 2 --out \
+    "$T/o_s2.png"
+expect_ok prewarp --relief "$R" --eye 0.5,0.5,3 --output-scale 2 --out "$T/ok_s2.png" --json "$T/ok_s2.json"
+if grep -q '"width": 8' "$T/ok_s2.json" && grep -q '"output_scale": 2' "$T/ok_s2.json"; then
+  echo "ok: prewarp --output-scale 2 writes 8x8 for a 4x4 relief"
+else
+  echo "FAIL: prewarp --output-scale 2: $(cat "$T/ok_s2.json")"
+  fails=$((fails + 1))
+fi
+expect_ok render --relief "$R" --eye 0.5,0.5,3 --size 64x64 --output-scale 4 --out "$T/ok_render_s4.png"
 finish
