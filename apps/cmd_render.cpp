@@ -32,8 +32,7 @@ struct RenderArgs {
 };
 
 void run_render(const RenderArgs& a) {
-    if (a.output_scale != 1 && a.relief.empty())
-        throw UsageError("--output-scale applies to --relief only");
+    if (a.output_scale != 1 && a.relief.empty()) throw UsageError("--output-scale applies to --relief only");
     if (!a.object.empty()) {
         if (!a.relief.empty() || !a.scene.empty())
             throw UsageError("render takes one of --relief, --object and --scene");

@@ -31,7 +31,8 @@ void axis(int X, int factor, int n, int& i0, int& i1, double& t, int& nearest) {
 }  // namespace
 
 ReliefTexture upsample(const ReliefTexture& src, int factor) {
-    if (factor < 1) throw std::invalid_argument("output scale: expected a factor >= 1, found " + std::to_string(factor));
+    if (factor < 1)
+        throw std::invalid_argument("output scale: expected a factor >= 1, found " + std::to_string(factor));
     if (factor == 1) return src;
     const long long fw = (long long)src.width * factor, fh = (long long)src.height * factor;
     if (fw * fh > (1ll << 28))

@@ -20,8 +20,8 @@ TEST(OutputScale, CloserToTheTruthWhenMagnified) {
     ReliefQuad q1(relief), q2(upsample(relief, 2)), q4(upsample(relief, 4));
     auto ctx = GlContext::create_offscreen(256, 256);
     Renderer renderer;
-    for (const CompareView& v : {CompareView{"front", 0, 0, 0.9}, CompareView{"oblique", 30, 20, 0.9},
-                                 CompareView{"grazing", 60, 15, 1.0}}) {
+    for (const CompareView& v :
+         {CompareView{"front", 0, 0, 0.9}, CompareView{"oblique", 30, 20, 0.9}, CompareView{"grazing", 60, 15, 1.0}}) {
         const Camera cam = compare_camera(q1, v, 256, 256);
         RenderSettings s;
         s.prewarp.keep_outliers = true;

@@ -37,7 +37,8 @@ TEST(Upsample, RefusesABadFactorNamingIt) {
 TEST(Upsample, CoversTheSameQuad) {
     std::mt19937_64 rng(test::test_seed(11));
     const ReliefGeometry g = test::random_geometry(rng);
-    const ReliefTexture t = test::make_test_relief(13, 6, 0.0, 1.0, [](int, int) { return 0.25; }, g);
+    const ReliefTexture t = test::make_test_relief(
+        13, 6, 0.0, 1.0, [](int, int) { return 0.25; }, g);
     for (int factor : {2, 3, 4}) {
         const ReliefTexture o = upsample(t, factor);
         EXPECT_EQ(o.width, 13 * factor);
@@ -62,8 +63,8 @@ TEST(Upsample, PlanesStayPlanes) {
         const int w = 5 + int(rng() % 20), h = 5 + int(rng() % 20);
         // Displacement at source texel centre (u, v) = (x + 0.5, h - 1 - row + 0.5).
         const auto plane = [&](double u, double v) { return c0 + cu * u + cv * v; };
-        ReliefTexture t = test::make_test_relief(
-            w, h, -2.0, 3.0, [&](int x, int r) { return plane(x + 0.5, h - 1 - r + 0.5); });
+        ReliefTexture t = test::make_test_relief(w, h, -2.0, 3.0,
+                                                 [&](int x, int r) { return plane(x + 0.5, h - 1 - r + 0.5); });
         for (ReliefTexel& tx : t.texels) tx.r = tx.g = tx.b = 77;
         const int factor = trial % 2 ? 2 : 4;
         const ReliefTexture o = upsample(t, factor);
