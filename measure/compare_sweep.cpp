@@ -16,7 +16,8 @@ struct PrewarpSetting {
 };
 
 // The paper's default (tables, side polygons, level 0, point filter) for both reconstructions, then one change
-// each: the exact path, no side polygons, the next pyramid level, the coverage filter. Not the full product: each
+// each: the exact path, no side polygons, the next pyramid level, the coverage filter (two-pass only: the pipelined
+// reconstruction has no coverage filter). Not the full product: each
 // line answers one question (what the tables cost in error, what the side polygons add, ...).
 const PrewarpSetting kPrewarpSettings[] = {
     {"tables", Reconstruction::two_pass, false, true, 0, Filter::point, true},
@@ -26,7 +27,7 @@ const PrewarpSetting kPrewarpSettings[] = {
     {"coverage", Reconstruction::two_pass, false, true, 0, Filter::coverage, false},
     {"tables", Reconstruction::pipelined, false, true, 0, Filter::point, true},
     {"exact", Reconstruction::pipelined, true, true, 0, Filter::point, true},
-    {"coverage", Reconstruction::pipelined, false, true, 0, Filter::coverage, false},
+    {"level1", Reconstruction::pipelined, false, true, 1, Filter::point, false},
 };
 
 CompareEntry entry(RenderMethod m, const std::string& setting, const std::string& family, nlohmann::json params) {
