@@ -25,7 +25,8 @@ struct CompareArgs {
 
 void run_compare(const CompareArgs& a) {
     const int kinds = int(!a.reliefs.empty()) + int(!a.object.empty()) + int(!a.scene.empty());
-    if (kinds != 1) throw UsageError("compare needs one kind of source: --relief M (repeatable), --object O or --scene S");
+    if (kinds != 1)
+        throw UsageError("compare needs one kind of source: --relief M (repeatable), --object O or --scene S");
     if (a.repeat != -1 && a.repeat < 1)
         throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
     if (a.threads < 0) throw UsageError("--threads: expected N >= 0, found " + std::to_string(a.threads));
@@ -64,8 +65,10 @@ void run_compare(const CompareArgs& a) {
         title += (title.empty() ? "" : ", ") + s->name + " (" + std::to_string(s->width) + "x" +
                  std::to_string(s->height) + " texels)";
     title += ", " + std::to_string(o.width) + "x" + std::to_string(o.height) + " pixels";
-    const nlohmann::json meta = {
-        {"title", title}, {"machine", machine_description()}, {"threads", o.threads}, {"quick", a.quick}};
+    const nlohmann::json meta = {{"title", title},
+                                 {"machine", machine_description()},
+                                 {"threads", o.threads},
+                                 {"quick", a.quick}};
     const nlohmann::json results = comparison_json(sources, o, run, meta);
     write_json(a.out + "/results.json", results);
     write_text_atomically(a.out + "/results.csv", comparison_csv(results));

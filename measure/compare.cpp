@@ -284,7 +284,8 @@ nlohmann::json comparison_json(const std::vector<CompareSource*>& sources, const
     j["sources"] = src;
     nlohmann::json views = nlohmann::json::array();
     for (const CompareView& v : run.views)
-        views.push_back({{"name", v.name}, {"azimuth", v.azimuth}, {"elevation", v.elevation}, {"distance", v.distance}});
+        views.push_back(
+            {{"name", v.name}, {"azimuth", v.azimuth}, {"elevation", v.elevation}, {"distance", v.distance}});
     j["views"] = views;
     nlohmann::json methods = nlohmann::json::array();
     for (const CompareEntry* e : run.methods)
@@ -336,10 +337,27 @@ std::string csv_cell(const nlohmann::json& v) {
 }  // namespace
 
 std::string comparison_csv(const nlohmann::json& results) {
-    const char* columns[] = {"source", "view", "method_id", "method", "setting", "family", "ms",
-                             "stage_prewarp", "stage_upload", "stage_texmap", "stage_other", "psnr", "rmse", "iou",
-                             "silhouette_px", "psnr_vs_micromesh", "iou_vs_micromesh", "iterations_mean", "image",
-                             "heatmap", "iterations_image"};
+    const char* columns[] = {"source",
+                             "view",
+                             "method_id",
+                             "method",
+                             "setting",
+                             "family",
+                             "ms",
+                             "stage_prewarp",
+                             "stage_upload",
+                             "stage_texmap",
+                             "stage_other",
+                             "psnr",
+                             "rmse",
+                             "iou",
+                             "silhouette_px",
+                             "psnr_vs_micromesh",
+                             "iou_vs_micromesh",
+                             "iterations_mean",
+                             "image",
+                             "heatmap",
+                             "iterations_image"};
     std::string s;
     for (const char* c : columns) {
         if (!s.empty()) s += ',';

@@ -54,11 +54,11 @@ constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
 
 struct CompareRow {
     std::string source, view, method_id, method, setting, family;
-    double ms = 0;          // median frame time
-    StageTimes stages;      // medians per stage (pre-warp family only; `other` = total - the three)
+    double ms = 0;      // median frame time
+    StageTimes stages;  // medians per stage (pre-warp family only; `other` = total - the three)
     bool has_stages = false;
-    DiffResult error;         // against the reference truth (raycast for a relief, micromesh otherwise)
-    DiffResult vs_micromesh;  // against the micro-polygon mesh
+    DiffResult error;                   // against the reference truth (raycast for a relief, micromesh otherwise)
+    DiffResult vs_micromesh;            // against the micro-polygon mesh
     double silhouette_px = kNoValue;    // silhouette error against the reference truth
     double iterations_mean = kNoValue;  // per-pixel search iterations over the covered pixels
     std::string image, heatmap, iterations_image;  // relative to out_dir; empty = none

@@ -18,9 +18,9 @@ namespace rtm {
 class CompareSource {
 public:
     virtual ~CompareSource() = default;
-    std::string name;  // the manifest's name (unique within a run: the caller appends "-2", ... to repeats)
-    std::string kind;  // "relief", "object" or "scene"
-    std::string path;  // the manifest as given
+    std::string name;           // the manifest's name (unique within a run: the caller appends "-2", ... to repeats)
+    std::string kind;           // "relief", "object" or "scene"
+    std::string path;           // the manifest as given
     int width = 0, height = 0;  // texels: the relief's; an object's first face's; a scene's first relief's
 
     virtual Bounds bounds() const = 0;

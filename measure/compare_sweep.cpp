@@ -69,8 +69,8 @@ std::vector<CompareEntry> compare_sweep(bool quick) {
 
     for (const PrewarpSetting& p : kPrewarpSettings) {
         if (quick && !p.quick) continue;
-        const RenderMethod m =
-            p.reconstruction == Reconstruction::two_pass ? RenderMethod::two_pass : RenderMethod::pipelined;
+        const RenderMethod m = p.reconstruction == Reconstruction::two_pass ? RenderMethod::two_pass
+                                                                            : RenderMethod::pipelined;
         CompareEntry e = entry(m, p.name, "pre-warp",
                                {{"reconstruction", to_string(p.reconstruction)},
                                 {"lookup", p.exact ? "exact" : "tables"},
@@ -87,8 +87,7 @@ std::vector<CompareEntry> compare_sweep(bool quick) {
 
     // Per-pixel methods: unlit colour (as the pre-warp), depth correction on (relief mapping's paper). The first
     // setting of each list is the cheapest; the default is the paper's recommendation (perpixel_method.h).
-    const auto perpixel = [&](RenderMethod m, const std::string& setting, nlohmann::json params,
-                              const auto& set) {
+    const auto perpixel = [&](RenderMethod m, const std::string& setting, nlohmann::json params, const auto& set) {
         CompareEntry e = entry(m, setting, "per-pixel", std::move(params));
         set(e.render.perpixel);
         out.push_back(e);
@@ -97,15 +96,15 @@ std::vector<CompareEntry> compare_sweep(bool quick) {
     perpixel(RenderMethod::parallax_offset_limiting, "", {{"scale", 1.0}, {"bias", 0.0}}, [](PerPixelSettings&) {});
 
     using MinMax = std::pair<int, int>;
-    for (const MinMax& s : pick<MinMax>({{{4, 16}, false}, {{8, 32}, false}, {{10, 60}, true}, {{32, 128}, false}},
-                                        quick))
+    for (const MinMax& s :
+         pick<MinMax>({{{4, 16}, false}, {{8, 32}, false}, {{10, 60}, true}, {{32, 128}, false}}, quick))
         perpixel(RenderMethod::steep_parallax, steps("n", s.first, "", s.second),
                  {{"min_steps", s.first}, {"max_steps", s.second}}, [&](PerPixelSettings& p) {
                      p.steep_parallax.min_steps = s.first;
                      p.steep_parallax.max_steps = s.second;
                  });
-    for (const MinMax& s : pick<MinMax>({{{4, 16}, false}, {{8, 50}, true}, {{16, 100}, false}, {{32, 200}, false}},
-                                        quick))
+    for (const MinMax& s :
+         pick<MinMax>({{{4, 16}, false}, {{8, 50}, true}, {{16, 100}, false}, {{32, 200}, false}}, quick))
         perpixel(RenderMethod::parallax_occlusion, steps("n", s.first, "", s.second),
                  {{"nMinSamples", s.first}, {"nMaxSamples", s.second}}, [&](PerPixelSettings& p) {
                      p.parallax_occlusion.nMinSamples = s.first;
@@ -119,7 +118,8 @@ std::vector<CompareEntry> compare_sweep(bool quick) {
                      p.relief_mapping.linear_search_steps = s.first;
                      p.relief_mapping.binary_search_steps = s.second;
                  });
-    for (const LinBin& s : pick<LinBin>({{{8, 2}, false}, {{16, 5}, false}, {{32, 10}, true}, {{64, 20}, false}}, quick))
+    for (const LinBin& s :
+         pick<LinBin>({{{8, 2}, false}, {{16, 5}, false}, {{32, 10}, true}, {{64, 20}, false}}, quick))
         perpixel(RenderMethod::interval_mapping, steps("l", s.first, "i", s.second),
                  {{"linear_search_steps", s.first}, {"max_iterations", s.second}, {"convergence_threshold", 0.01}},
                  [&](PerPixelSettings& p) {

@@ -63,7 +63,7 @@ std::vector<double> squared_distance_transform(const std::vector<unsigned char>&
     for (size_t i = 0; i < f.size(); ++i) f[i] = mask[i] ? 0.0 : kInf;
     std::vector<double> d, z;
     std::vector<int> v;
-    for (int x = 0; x < w; ++x) transform_1d(f.data() + x, h, w, d, v, z);  // columns
+    for (int x = 0; x < w; ++x) transform_1d(f.data() + x, h, w, d, v, z);                      // columns
     for (int y = 0; y < h; ++y) transform_1d(f.data() + size_t(y) * size_t(w), w, 1, d, v, z);  // rows
     return f;
 }
