@@ -10,6 +10,7 @@
 #include "measure/silhouette.h"
 #include "texmap/camera_rig.h"
 #include "texmap/gl_context.h"
+#include "warp/timing.h"
 
 namespace rtm {
 
@@ -40,12 +41,6 @@ Camera compare_camera(const ReliefQuad& quad, const CompareView& v, int width, i
 }
 
 namespace {
-
-double median(std::vector<double> v) {
-    if (v.empty()) return kNoValue;
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-}
 
 // Timed frames of one entry: the median total and per-stage times.
 struct Timed {
