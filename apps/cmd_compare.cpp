@@ -1,81 +1,108 @@
-// rtm compare: renders one relief with every method at eight views from frontal to grazing, writes the pictures
-// and a table of run time against error (PSNR, RMSE, coverage IoU) relative to the ray-cast truth.
+// rtm compare: every method at every quality setting on one or more reliefs, an object or a scene, from views from
+// frontal to grazing: time against error. Writes DIR/results.json, DIR/results.csv, DIR/compare.md, the pictures
+// under DIR/images/ and the page DIR/index.html (docs/COMPARE.md).
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
+#include <set>
 
 #include "cli_common.h"
 #include "formats/atomic_file.h"
+#include "measure/bench.h"
 #include "measure/compare.h"
-#include "formats/relief_manifest.h"
-#include "formats/image_io.h"
+#include "measure/compare_page.h"
 
 namespace rtm::cli {
 
 namespace {
 
 struct CompareArgs {
-    std::string relief, out, size = "512x512";
-    int repeat = 5, threads = 0;
-    bool no_images = false;
+    std::vector<std::string> reliefs;
+    std::string object, scene, out, size;
+    int repeat = -1, threads = 0;
+    bool quick = false;
 };
 
 void run_compare(const CompareArgs& a) {
-    if (a.relief.empty()) throw UsageError("compare needs --relief M");
-    if (a.repeat < 1) throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
+    const int kinds = int(!a.reliefs.empty()) + int(!a.object.empty()) + int(!a.scene.empty());
+    if (kinds != 1)
+        throw UsageError("compare needs one kind of source: --relief M (repeatable), --object O or --scene S");
+    if (a.repeat != -1 && a.repeat < 1)
+        throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
+    if (a.threads < 0) throw UsageError("--threads: expected N >= 0, found " + std::to_string(a.threads));
     CompareOptions o;
-    parse_size(a.size, "--size", o.width, o.height);
-    o.repeat = a.repeat;
+    parse_size(a.size.empty() ? (a.quick ? "128x128" : "512x512") : a.size, "--size", o.width, o.height);
+    o.repeat = a.repeat != -1 ? a.repeat : a.quick ? 1 : 3;
     o.threads = a.threads;
-    ReliefManifest m;
-    ReliefQuad quad(load_relief(a.relief, &m));
+    o.views = a.quick ? quick_compare_views() : default_compare_views();
+    o.methods = compare_sweep(a.quick);
+
+    std::vector<std::unique_ptr<CompareSource>> owned;
+    for (const std::string& r : a.reliefs) owned.push_back(load_relief_source(r));
+    if (!a.object.empty()) owned.push_back(load_object_source(a.object));
+    if (!a.scene.empty()) owned.push_back(load_scene_source(a.scene));
+    std::set<std::string> names;  // unique names: they name the image folders and the rows
+    std::vector<CompareSource*> sources;
+    for (auto& s : owned) {
+        const std::string base = s->name;
+        for (int k = 2; names.count(s->name); ++k) s->name = base + "-" + std::to_string(k);
+        names.insert(s->name);
+        sources.push_back(s.get());
+    }
+
     std::error_code ec;
     std::filesystem::create_directories(a.out, ec);
     if (ec || !std::filesystem::is_directory(a.out)) throw IoError(a.out + ": cannot create the output folder");
-    if (!a.no_images)
-        o.on_image = [&](const std::string& view, const std::string& method, const ImageRGBA8& img) {
-            write_rgba8(a.out + "/" + view + "_" + method + ".png", img);
-        };
-    const size_t steps = o.views.size();
-    size_t done = 0;
-    o.on_progress = [&](const std::string& what) {
-        ++done;
-        std::fprintf(stderr, "compare %s: %s (%zu/%zu)\n", m.name.c_str(), what.c_str(), done, steps);
+    check_output_file(a.out + "/results.json", "--out");
+    o.out_dir = a.out;
+    o.on_progress = [](size_t done, size_t total, const std::string& what) {
+        std::fprintf(stderr, "compare %zu/%zu: %s\n", done, total, what.c_str());
     };
-    const std::vector<CompareRow> rows = run_comparison(quad, o);
-    const std::string md = comparison_markdown(m.name + " (" + std::to_string(quad.relief().width) + "x" +
-                                                   std::to_string(quad.relief().height) + " texels, " + a.size +
-                                                   " pixels)",
-                                               rows);
-    nlohmann::json j = nlohmann::json::array();
-    for (const CompareRow& r : rows)
-        j.push_back({{"view", r.view},
-                     {"method", r.method},
-                     {"total_ms", r.ms},
-                     {"prewarp_ms", r.prewarp_ms},
-                     {"psnr", std::isfinite(r.error.psnr) ? nlohmann::json(r.error.psnr) : nlohmann::json(nullptr)},
-                     {"rmse", r.error.rmse},
-                     {"iou", r.error.iou},
-                     {"psnr_vs_micromesh", std::isfinite(r.vs_micromesh.psnr) ? nlohmann::json(r.vs_micromesh.psnr)
-                                                                              : nlohmann::json(nullptr)},
-                     {"iou_vs_micromesh", r.vs_micromesh.iou}});
-    write_json(a.out + "/compare.json", {{"relief", a.relief}, {"rows", j}});
+    const CompareRun run = run_comparison(sources, o);
+
+    std::string title;
+    for (const CompareSource* s : sources)
+        title += (title.empty() ? "" : ", ") + s->name + " (" + std::to_string(s->width) + "x" +
+                 std::to_string(s->height) + " texels)";
+    title += ", " + std::to_string(o.width) + "x" + std::to_string(o.height) + " pixels";
+    const nlohmann::json meta = {{"title", title},
+                                 {"machine", machine_description()},
+                                 {"threads", o.threads},
+                                 {"quick", a.quick}};
+    const nlohmann::json results = comparison_json(sources, o, run, meta);
+    write_json(a.out + "/results.json", results);
+    write_text_atomically(a.out + "/results.csv", comparison_csv(results));
+    const std::string md = comparison_markdown(results);
     write_text_atomically(a.out + "/compare.md", md);
+
+    ComparePageInput page;
+    page.out_dir = a.out;
+    page.results = results;
+    for (CompareSource* s : sources)
+        if (ReliefQuad* q = s->relief()) {  // the step-by-step section: the first relief, an oblique view
+            page.steps_relief = q;
+            page.steps_camera = compare_camera(*q, orbit_view(45, 20), o.width, o.height);
+            break;
+        }
+    write_compare_page(page);
     std::printf("%s", md.c_str());
+    std::fprintf(stderr, "compare: wrote %s/index.html, results.csv, results.json\n", a.out.c_str());
 }
 
 }  // namespace
 
 void add_compare_command(CLI::App& app) {
     auto a = std::make_shared<CompareArgs>();
-    CLI::App* sub = app.add_subcommand("compare", "Render one relief with every method; time against error");
-    sub->add_option("--relief", a->relief, "Relief texture manifest")->required();
+    CLI::App* sub = app.add_subcommand(
+        "compare", "Every method at every setting from frontal to grazing views: time against error, a web page");
+    sub->add_option("--relief", a->reliefs, "Relief texture manifest (repeat for several)");
+    sub->add_option("--object", a->object, "Six-face object manifest");
+    sub->add_option("--scene", a->scene, "Scene manifest");
     sub->add_option("--out", a->out, "Output folder")->required();
-    sub->add_option("--size", a->size, "Image size WxH")->capture_default_str();
-    sub->add_option("--repeat", a->repeat, "Frames timed per method and view")->capture_default_str();
+    sub->add_flag("--quick", a->quick, "3 views, 2 settings per method, 1 timed frame, 128x128 pixels");
+    sub->add_option("--size", a->size, "Image size WxH (default 512x512; --quick 128x128)");
+    sub->add_option("--repeat", a->repeat, "Frames timed per method and view after a warm-up (default 3; --quick 1)");
     sub->add_option("--threads", a->threads, "Threads (0 = all)")->capture_default_str();
-    sub->add_flag("--no-images", a->no_images, "Only the table");
     sub->callback([a] { run_compare(*a); });
 }
 

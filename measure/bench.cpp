@@ -37,6 +37,8 @@ std::string read_first_line(const char* path) {
     return line;
 }
 
+}  // namespace
+
 std::string machine_description() {
     std::string model = "unknown CPU";
     std::ifstream cpu("/proc/cpuinfo");
@@ -57,8 +59,6 @@ std::string machine_description() {
                   std::thread::hardware_concurrency(), double(mem_kb) / (1024.0 * 1024.0));
     return buf;
 }
-
-}  // namespace
 
 std::string to_string(CoordinatePath p) { return p == CoordinatePath::exact ? "exact" : "lut"; }
 std::string to_string(BenchKernel k) { return k == BenchKernel::fast ? "fast" : "reference"; }

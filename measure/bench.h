@@ -121,6 +121,9 @@ struct BenchResult {
     std::vector<ObjectFrameRow> objects;
 };
 
+// "CPU model, N logical CPUs, M GiB memory" of this machine (/proc/cpuinfo, /proc/meminfo).
+std::string machine_description();
+
 BenchResult run_bench(const BenchConfig& config);
 // The relief and size pairs of `result` that have both reconstructions, in the order of the rows.
 std::vector<PipelinedRatio> pipelined_ratios(const BenchResult& result);

@@ -1,11 +1,20 @@
-// The comparison of methods on one relief: each method renders the same views, and each picture is measured
-// against the ray-cast truth (run time next to error). Used by `rtm compare` and by the accuracy tests.
+// The comparison engine of `rtm compare` (docs/COMPARE.md): every method of the sweep (measure/compare_sweep.h) at
+// every setting renders each source (measure/compare_source.h) from a set of views from frontal to grazing; each
+// frame is timed (median over repeats, the pre-warp's stages split) and measured against the truths (PSNR, RMSE over
+// common pixels, coverage IoU, silhouette error). The results become results.json / results.csv / compare.md here;
+// the web page is measure/compare_page.h's.
 #pragma once
 
 #include <functional>
+#include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
+#include "measure/compare_source.h"
+#include "measure/compare_sweep.h"
 #include "measure/image_diff.h"
 #include "objects/relief_quad.h"
 #include "texmap/camera.h"
@@ -22,42 +31,58 @@ CompareView orbit_view(double azimuth, double elevation, double distance = 2.2);
 
 // Eight views from frontal to grazing (azimuth 85 degrees: 5 degrees above the relief plane).
 std::vector<CompareView> default_compare_views();
+// Three of them for --quick: frontal, oblique, grazing.
+std::vector<CompareView> quick_compare_views();
 
-struct CompareMethod {
-    std::string name;  // "two-pass", "two-pass-exact", ...
-    RenderMethod method = RenderMethod::two_pass;
-    PrewarpOptions prewarp;
-};
-
-// flat, two-pass without and with side polygons, two-pass-exact, pipelined (with side polygons), micromesh.
-std::vector<CompareMethod> default_compare_methods();
-
-struct CompareRow {
-    std::string view, method;
-    double ms = 0;  // median total frame time (raycast: one run)
-    double prewarp_ms = 0;
-    DiffResult error;         // against raycast
-    DiffResult vs_micromesh;  // against the micro-polygon mesh
-};
+// Camera for a view of what `bounds` encloses (orbit about its bounding sphere, 45 degree field of view).
+Camera compare_camera(const Bounds& bounds, const CompareView& v, int width, int height);
+Camera compare_camera(const ReliefQuad& quad, const CompareView& v, int width, int height);
 
 struct CompareOptions {
     int width = 512, height = 512;
-    int repeat = 5;  // frames timed per method and view (median)
+    int repeat = 5;  // frames timed per method and view after one warm-up (median); raycast: one frame
     int threads = 0;
     std::vector<CompareView> views = default_compare_views();
-    std::vector<CompareMethod> methods = default_compare_methods();
-    // Called with each picture (view, method name, image) so the caller can save it; may be empty.
-    std::function<void(const std::string&, const std::string&, const ImageRGBA8&)> on_image;
-    std::function<void(const std::string&)> on_progress;  // one line per finished step
+    std::vector<CompareEntry> methods = compare_sweep(false);
+    // Where the pictures go (DIR/images/...); empty: none are written and the rows' paths stay empty.
+    std::string out_dir;
+    // Called after each step (one source, view and method): steps done, steps in all, what was done.
+    std::function<void(size_t, size_t, const std::string&)> on_progress;
 };
 
-// Camera for a view of `quad` (orbit about the relief's bounding sphere, 45 degree field of view).
-Camera compare_camera(const ReliefQuad& quad, const CompareView& v, int width, int height);
+constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
 
-// Needs no current GL context: creates an offscreen one.
-std::vector<CompareRow> run_comparison(ReliefQuad& quad, const CompareOptions& options);
+struct CompareRow {
+    std::string source, view, method_id, method, setting, family;
+    double ms = 0;      // median frame time
+    StageTimes stages;  // medians per stage (pre-warp family only; `other` = total - the three)
+    bool has_stages = false;
+    DiffResult error;                   // against the reference truth (raycast for a relief, micromesh otherwise)
+    DiffResult vs_micromesh;            // against the micro-polygon mesh
+    double silhouette_px = kNoValue;    // silhouette error against the reference truth
+    double iterations_mean = kNoValue;  // per-pixel search iterations over the covered pixels
+    std::string image, heatmap, iterations_image;  // relative to out_dir; empty = none
+};
 
-// A Markdown table of the rows, and a per-method summary (mean PSNR, mean IoU, median time over the views).
-std::string comparison_markdown(const std::string& title, const std::vector<CompareRow>& rows);
+struct CompareRun {
+    std::vector<CompareView> views;
+    std::vector<const CompareEntry*> methods;  // the entries that rendered at least one source
+    std::vector<CompareRow> rows;              // per source, view, method in that order
+    // truths[source][view]["raycast" | "micromesh"] = image path ("" when not rendered or not written)
+    std::map<std::string, std::map<std::string, std::map<std::string, std::string>>> truths;
+};
+
+// Needs no current GL context: creates an offscreen one. Throws IoError when a picture cannot be written.
+CompareRun run_comparison(const std::vector<CompareSource*>& sources, const CompareOptions& options);
+
+// The results.json object (fields: docs/COMPARE.md) of a run; `meta` holds title, machine, threads, quick,
+// image_size (copied in).
+nlohmann::json comparison_json(const std::vector<CompareSource*>& sources, const CompareOptions& options,
+                               const CompareRun& run, const nlohmann::json& meta);
+// results.csv from the results.json object: a header row, then one row per element of "rows", the columns being
+// the rows' fields (stages as stage_prewarp, stage_upload, stage_texmap, stage_other); null is an empty cell.
+std::string comparison_csv(const nlohmann::json& results);
+// A Markdown table of the summary rows (per source and method id).
+std::string comparison_markdown(const nlohmann::json& results);
 
 }  // namespace rtm

@@ -39,20 +39,36 @@ std::map<std::string, Expect> expected_for(const std::string& media) {
 
 class Accuracy : public ::testing::TestWithParam<std::string> {};
 
+// The method names of accuracy_expected.inc and the sweep entries (measure/compare_sweep.h) they stand for.
+const std::map<std::string, std::string> kSweepIds = {
+    {"flat", "flat"},
+    {"two-pass-no-sidewalls", "two-pass:no-sides"},
+    {"two-pass", "two-pass:tables"},
+    {"two-pass-exact", "two-pass:exact"},
+    {"pipelined", "pipelined:tables"},
+    {"micromesh", "micromesh"},
+};
+
 TEST_P(Accuracy, MethodsAgainstRaycastTruth) {
     const std::string name = GetParam();
-    ReliefQuad quad(load_relief(std::string(RTM_SOURCE_DIR) + "/media/" + name + ".relief.json"));
+    const auto source = load_relief_source(std::string(RTM_SOURCE_DIR) + "/media/" + name + ".relief.json");
     CompareOptions o;
     o.width = o.height = 256;
     o.repeat = 1;
-    const std::vector<CompareRow> rows = run_comparison(quad, o);
+    std::map<std::string, std::string> name_of;  // sweep id -> table name
+    for (const auto& [table, id] : kSweepIds) name_of[id] = table;
+    o.methods.clear();
+    for (const CompareEntry& e : compare_sweep(false))
+        if (name_of.count(e.id)) o.methods.push_back(e);
+    ASSERT_EQ(o.methods.size(), kSweepIds.size());
+    const CompareRun run = run_comparison({source.get()}, o);
     std::map<std::string, Expect> got;
     std::map<std::string, int> n;
-    for (const CompareRow& r : rows) {
-        if (r.method == "raycast") continue;
-        got[r.method].psnr += r.error.psnr;
-        got[r.method].iou += r.error.iou;
-        ++n[r.method];
+    for (const CompareRow& r : run.rows) {
+        const std::string m = name_of.at(r.method_id);
+        got[m].psnr += r.error.psnr;
+        got[m].iou += r.error.iou;
+        ++n[m];
     }
     const bool print = std::getenv("RTM_PRINT_ACCURACY") != nullptr;
     for (auto& [m, e] : got) {

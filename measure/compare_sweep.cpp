@@ -1,0 +1,141 @@
+#include "measure/compare_sweep.h"
+
+namespace rtm {
+
+namespace {
+
+// One pre-warp setting. More pre-warp settings (an output scale, ...) go here: a field, and a line in the table.
+struct PrewarpSetting {
+    const char* name;
+    Reconstruction reconstruction;
+    bool exact;          // unquantized double-precision coordinates instead of the lookup tables
+    bool side_polygons;  // keep the samples that leave the quad (the paper's section 3.3)
+    int level;           // relief texture pyramid level
+    Filter filter;
+    bool quick;  // in the --quick sweep
+};
+
+// The paper's default (tables, side polygons, level 0, point filter) for both reconstructions, then one change
+// each: the exact path, no side polygons, the next pyramid level, the coverage filter (two-pass only: the pipelined
+// reconstruction has no coverage filter). Not the full product: each
+// line answers one question (what the tables cost in error, what the side polygons add, ...).
+const PrewarpSetting kPrewarpSettings[] = {
+    {"tables", Reconstruction::two_pass, false, true, 0, Filter::point, true},
+    {"exact", Reconstruction::two_pass, true, true, 0, Filter::point, true},
+    {"no-sides", Reconstruction::two_pass, false, false, 0, Filter::point, false},
+    {"level1", Reconstruction::two_pass, false, true, 1, Filter::point, false},
+    {"coverage", Reconstruction::two_pass, false, true, 0, Filter::coverage, false},
+    {"tables", Reconstruction::pipelined, false, true, 0, Filter::point, true},
+    {"exact", Reconstruction::pipelined, true, true, 0, Filter::point, true},
+    {"level1", Reconstruction::pipelined, false, true, 1, Filter::point, false},
+};
+
+CompareEntry entry(RenderMethod m, const std::string& setting, const std::string& family, nlohmann::json params) {
+    CompareEntry e;
+    e.method = to_string(m);
+    e.setting = setting;
+    e.id = setting.empty() ? e.method : e.method + ":" + setting;
+    e.family = family;
+    e.params = std::move(params);
+    e.render.method = m;
+    e.render.draw.skips = false;  // every frame does all the work: the times compare methods, not caches
+    return e;
+}
+
+// A list of settings of which --quick keeps the first (the cheapest) and the one marked default.
+template <class T>
+struct Setting {
+    T value;
+    bool is_default;
+};
+
+template <class T>
+std::vector<T> pick(const std::vector<Setting<T>>& all, bool quick) {
+    std::vector<T> out;
+    for (size_t i = 0; i < all.size(); ++i)
+        if (!quick || i == 0 || all[i].is_default) out.push_back(all[i].value);
+    return out;
+}
+
+std::string steps(const char* a, int x, const char* b, int y) {
+    return a + std::to_string(x) + "-" + b + std::to_string(y);
+}
+
+}  // namespace
+
+std::vector<CompareEntry> compare_sweep(bool quick) {
+    std::vector<CompareEntry> out;
+    out.push_back(entry(RenderMethod::flat, "", "conventional", nlohmann::json::object()));
+
+    for (const PrewarpSetting& p : kPrewarpSettings) {
+        if (quick && !p.quick) continue;
+        const RenderMethod m = p.reconstruction == Reconstruction::two_pass ? RenderMethod::two_pass
+                                                                            : RenderMethod::pipelined;
+        CompareEntry e = entry(m, p.name, "pre-warp",
+                               {{"reconstruction", to_string(p.reconstruction)},
+                                {"lookup", p.exact ? "exact" : "tables"},
+                                {"side_polygons", p.side_polygons},
+                                {"level", p.level},
+                                {"filter", to_string(p.filter)}});
+        e.render.prewarp.method = p.reconstruction;
+        e.render.prewarp.exact = p.exact;
+        e.render.prewarp.keep_outliers = p.side_polygons;
+        e.render.prewarp.filter = p.filter;
+        e.render.draw.level = p.level;
+        out.push_back(e);
+    }
+
+    // Per-pixel methods: unlit colour (as the pre-warp), depth correction on (relief mapping's paper). The first
+    // setting of each list is the cheapest; the default is the paper's recommendation (perpixel_method.h).
+    const auto perpixel = [&](RenderMethod m, const std::string& setting, nlohmann::json params, const auto& set) {
+        CompareEntry e = entry(m, setting, "per-pixel", std::move(params));
+        set(e.render.perpixel);
+        out.push_back(e);
+    };
+    perpixel(RenderMethod::parallax, "", {{"scale", 1.0}, {"bias", 0.0}}, [](PerPixelSettings&) {});
+    perpixel(RenderMethod::parallax_offset_limiting, "", {{"scale", 1.0}, {"bias", 0.0}}, [](PerPixelSettings&) {});
+
+    using MinMax = std::pair<int, int>;
+    for (const MinMax& s :
+         pick<MinMax>({{{4, 16}, false}, {{8, 32}, false}, {{10, 60}, true}, {{32, 128}, false}}, quick))
+        perpixel(RenderMethod::steep_parallax, steps("n", s.first, "", s.second),
+                 {{"min_steps", s.first}, {"max_steps", s.second}}, [&](PerPixelSettings& p) {
+                     p.steep_parallax.min_steps = s.first;
+                     p.steep_parallax.max_steps = s.second;
+                 });
+    for (const MinMax& s :
+         pick<MinMax>({{{4, 16}, false}, {{8, 50}, true}, {{16, 100}, false}, {{32, 200}, false}}, quick))
+        perpixel(RenderMethod::parallax_occlusion, steps("n", s.first, "", s.second),
+                 {{"nMinSamples", s.first}, {"nMaxSamples", s.second}}, [&](PerPixelSettings& p) {
+                     p.parallax_occlusion.nMinSamples = s.first;
+                     p.parallax_occlusion.nMaxSamples = s.second;
+                 });
+    using LinBin = std::pair<int, int>;
+    const std::vector<Setting<LinBin>> search = {{{8, 2}, false}, {{16, 4}, false}, {{32, 8}, true}, {{64, 16}, false}};
+    for (const LinBin& s : pick(search, quick))
+        perpixel(RenderMethod::relief_mapping, steps("l", s.first, "b", s.second),
+                 {{"linear_search_steps", s.first}, {"binary_search_steps", s.second}}, [&](PerPixelSettings& p) {
+                     p.relief_mapping.linear_search_steps = s.first;
+                     p.relief_mapping.binary_search_steps = s.second;
+                 });
+    for (const LinBin& s :
+         pick<LinBin>({{{8, 2}, false}, {{16, 5}, false}, {{32, 10}, true}, {{64, 20}, false}}, quick))
+        perpixel(RenderMethod::interval_mapping, steps("l", s.first, "i", s.second),
+                 {{"linear_search_steps", s.first}, {"max_iterations", s.second}, {"convergence_threshold", 0.01}},
+                 [&](PerPixelSettings& p) {
+                     p.interval_mapping.linear_search_steps = s.first;
+                     p.interval_mapping.max_iterations = s.second;
+                 });
+    for (const LinBin& s : pick(search, quick))
+        perpixel(RenderMethod::protruded_displacement, steps("l", s.first, "b", s.second),
+                 {{"linear_search_steps", s.first}, {"binary_search_steps", s.second}}, [&](PerPixelSettings& p) {
+                     p.protruded_displacement.linear_search_steps = s.first;
+                     p.protruded_displacement.binary_search_steps = s.second;
+                 });
+
+    out.push_back(entry(RenderMethod::micromesh, "", "truth", nlohmann::json::object()));
+    out.push_back(entry(RenderMethod::raycast, "", "truth", nlohmann::json::object()));
+    return out;
+}
+
+}  // namespace rtm

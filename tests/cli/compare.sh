@@ -1,0 +1,103 @@
+#!/usr/bin/env bash
+# rtm compare --quick: two reliefs in one run (results.csv and results.json hold every source, method id and view,
+# with the fields of docs/COMPARE.md, and the pictures they name exist), an object (no per-pixel or raycast rows),
+# and bad input: a missing relief (exit 1), two kinds of source, no source, a bad --size (exit 2), one line each.
+. "$(dirname "$0")/lib.bash"
+
+check_results() {  # check_results DIR KINDS: the CSV and JSON agree with the sweep
+  if python3 - "$1" "$2" <<'PY'; then passes=$((passes + 1)); else fails=$((fails + 1)); fi
+import csv, json, os, sys
+d, kind = sys.argv[1], sys.argv[2]
+j = json.load(open(os.path.join(d, "results.json")))
+errors = []
+for k in ["title", "image_size", "machine", "threads", "quick", "sources", "views", "methods", "truths", "rows",
+          "summary"]:
+    if k not in j:
+        errors.append("results.json has no " + k)
+row_fields = ["source", "view", "method_id", "method", "setting", "family", "ms", "stages", "psnr", "rmse", "iou",
+              "silhouette_px", "psnr_vs_micromesh", "iou_vs_micromesh", "iterations_mean", "image", "heatmap",
+              "iterations_image"]
+sources = [s["name"] for s in j["sources"]]
+views = [v["name"] for v in j["views"]]
+ids = [m["id"] for m in j["methods"]]
+if len(views) != 3:
+    errors.append("--quick has %d views, not 3" % len(views))
+if len(set(ids)) != len(ids):
+    errors.append("method ids are not unique")
+have = {m["method"] for m in j["methods"]}
+if kind == "relief":
+    want = {"flat", "two-pass", "pipelined", "parallax", "parallax-offset-limiting", "steep-parallax",
+            "parallax-occlusion", "relief-mapping", "interval-mapping", "protruded-displacement", "micromesh",
+            "raycast"}
+else:
+    want = {"flat", "two-pass", "pipelined", "micromesh"}
+if have != want:
+    errors.append("methods %s, expected %s" % (sorted(have), sorted(want)))
+for m in j["methods"]:  # --quick: at most 2 settings per method
+    if sum(1 for x in j["methods"] if x["method"] == m["method"]) > 2:
+        errors.append("more than 2 settings of " + m["method"])
+rows = j["rows"]
+if len(rows) != len(sources) * len(ids) * len(views):
+    errors.append("%d rows, expected %d sources x %d methods x %d views" % (len(rows), len(sources), len(ids),
+                                                                          len(views)))
+keys = {(r["source"], r["method_id"], r["view"]) for r in rows}
+for s in sources:
+    for m in ids:
+        for v in views:
+            if (s, m, v) not in keys:
+                errors.append("no row for %s %s %s" % (s, m, v))
+for r in rows:
+    for f in row_fields:
+        if f not in r:
+            errors.append("row without " + f)
+    for f in ["image", "heatmap", "iterations_image"]:
+        if r.get(f) and not os.path.isfile(os.path.join(d, r[f])):
+            errors.append("missing picture " + r[f])
+    if r["family"] == "pre-warp" and set(r["stages"]) != {"prewarp", "upload", "texmap", "other"}:
+        errors.append("pre-warp row without its stages")
+    if r["family"] == "per-pixel" and (r["iterations_image"] is None or r["iterations_mean"] is None):
+        errors.append("per-pixel row without iteration counts: " + r["method_id"])
+    if r["image"] is None or r["ms"] is None:
+        errors.append("row without image or time: " + r["method_id"])
+with open(os.path.join(d, "results.csv")) as f:
+    c = list(csv.DictReader(f))
+if len(c) != len(rows):
+    errors.append("results.csv has %d rows, results.json %d" % (len(c), len(rows)))
+for f in ["source", "view", "method_id", "method", "setting", "family", "ms", "psnr", "rmse", "iou",
+          "silhouette_px", "stage_prewarp"]:
+    if c and f not in c[0]:
+        errors.append("results.csv has no column " + f)
+if len(j["summary"]) != (len(sources) + 1) * len(ids):
+    errors.append("summary has %d rows, expected %d" % (len(j["summary"]), (len(sources) + 1) * len(ids)))
+if not any(s["pareto"] for s in j["summary"]):
+    errors.append("no summary row on the Pareto front")
+for f in ["index.html", "compare.md"]:
+    if not os.path.isfile(os.path.join(d, f)):
+        errors.append("no " + f)
+for e in errors[:10]:
+    print("FAIL:", e)
+sys.exit(1 if errors else 0)
+PY
+}
+
+expect_ok compare --relief "$SRC/media/bumps.relief.json" --relief "$SRC/media/ridges.relief.json" --quick \
+  --size 48x48 --out "$T/two"
+grep -q '^compare 1/[0-9]*: bumps' "$T/stderr" && passes=$((passes + 1)) || {
+  echo "FAIL: no progress line 1/N on stderr"
+  fails=$((fails + 1))
+}
+check_results "$T/two" relief
+
+expect_ok compare --object "$SRC/media/cross-box.object.json" --quick --size 48x48 --out "$T/object"
+check_results "$T/object" object
+
+expect_fail 1 'nope.relief.json' -- compare --relief "$T/nope.relief.json" --quick --out "$T/bad1"
+expect_fail 2 'one kind of source' -- compare --relief "$SRC/media/bumps.relief.json" \
+  --object "$SRC/media/cross-box.object.json" --quick --out "$T/bad2"
+expect_fail 2 'one kind of source' -- compare --quick --out "$T/bad3"
+expect_fail 2 '--size' -- compare --relief "$SRC/media/bumps.relief.json" --size 0x10 --out "$T/bad4"
+expect_fail 2 '--repeat' -- compare --relief "$SRC/media/bumps.relief.json" --repeat 0 --out "$T/bad5"
+for d in bad1 bad2 bad3 bad4 bad5; do
+  [ -e "$T/$d/results.json" ] && { echo "FAIL: results.json after an error ($d)"; fails=$((fails + 1)); }
+done
+finish
