@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <system_error>
 
 #include "formats/atomic_file.h"
 #include "measure/compare_reading.h"
@@ -31,12 +32,12 @@ th, td { border: 1px solid #ddd; padding: 2px 8px; } td.n { text-align: right; f
 th { background: #f3f3f3; cursor: pointer; user-select: none; } th.sorted-up::after { content: " \25B2"; }
 th.sorted-down::after { content: " \25BC"; } tr.front td { background: #fff7e0; }
 .views { display: flex; flex-wrap: wrap; gap: 10px; align-items: flex-start; }
-.cell { width: 170px; margin: 0; font-size: 12px; }
-.cell img { width: 170px; display: block; background: #000; image-rendering: pixelated; margin-bottom: 2px; }
+.cell { width: 140px; margin: 0; font-size: 12px; }
+.cell img { width: 140px; display: block; background: #000; image-rendering: pixelated; margin-bottom: 2px; }
 .cell.truth figcaption { font-weight: bold; }
 .steps { display: flex; flex-wrap: wrap; gap: 14px; } .step { margin: 0; width: 260px; font-size: 12px; }
 .stack { position: relative; } .stack img { display: block; image-rendering: pixelated; background: #000; }
-.stack svg.overlay { position: absolute; left: 0; top: 0; width: 100%; height: 100%; }
+.stack svg.overlay { position: absolute; left: 0; top: 0; width: 100%; height: 100%; overflow: visible; }
 #page-errors { color: #b00; }
 )";
 
@@ -189,10 +190,14 @@ std::string summary_table(const CompareResults& r) {
     return s + "</tbody></table>\n</section>\n";
 }
 
+// A picture with, below it, its error heat map and its iteration-count map where given (hover names each).
 std::string cell(const std::string& caption, const std::vector<std::string>& images, bool truth = false) {
+    static const char* kinds[] = {"the frame", "error heat map against the ray caster", "search iterations per pixel"};
     std::string s = std::string("<figure class=\"cell") + (truth ? " truth" : "") + "\">";
-    for (const std::string& img : images)
-        if (!img.empty()) s += "<img src=\"" + esc(img) + "\" alt=\"" + esc(img) + "\"/>";
+    for (size_t i = 0; i < images.size(); ++i)
+        if (!images[i].empty())
+            s += "<img src=\"" + esc(images[i]) + "\" alt=\"" + esc(images[i]) + "\" title=\"" +
+                 kinds[std::min<size_t>(i, 2)] + "\"/>";
     return s + "<figcaption>" + caption + "</figcaption></figure>\n";
 }
 
@@ -254,7 +259,8 @@ std::string compare_page_html(const nlohmann::json& results, const std::string& 
 }
 
 void write_compare_page(const ComparePageInput& input) {
-    std::filesystem::create_directories(input.out_dir);
+    std::error_code ec;  // a folder that cannot be made shows as the IoError of the first file written into it
+    std::filesystem::create_directories(input.out_dir, ec);
     std::string steps;
     if (input.steps_relief && input.steps_camera) {
         PrewarpFiguresInput f;

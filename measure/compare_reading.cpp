@@ -273,8 +273,10 @@ std::string missing_sentence(const CompareResults& r) {
 std::vector<std::string> compare_reading(const CompareResults& r) {
     std::vector<std::string> out;
     for (std::string s : {front_sentence(r), prewarp_cost_sentence(r), grazing_sentence(r), silhouette_sentence(r),
-                          iterations_sentence(r), missing_sentence(r)})
+                          iterations_sentence(r), missing_sentence(r)}) {
+        while (!s.empty() && s.back() == ' ') s.pop_back();
         if (!s.empty()) out.push_back(std::move(s));
+    }
     return out;
 }
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <system_error>
 
 #include "formats/image_io.h"
 #include "measure/html_text.h"
@@ -69,7 +70,8 @@ std::string figure(const std::string& src, int w, int h, const std::string& capt
 std::string prewarp_figures(const PrewarpFiguresInput& in) {
     const ReliefTexture& t = *in.relief;
     const std::string dir = in.out_dir + "/steps";
-    std::filesystem::create_directories(dir);
+    std::error_code ec;  // a folder that cannot be made shows as the IoError of the first picture written into it
+    std::filesystem::create_directories(dir, ec);
     const PrewarpCoefficients k = compute_coefficients(t.geometry, in.camera.eye);
     const PrewarpSteps steps = prewarp_steps(t, k, {});
     write_rgba8(dir + "/source.png", source_colour(t));

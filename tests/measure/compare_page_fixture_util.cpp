@@ -174,7 +174,7 @@ void write_compare_fixture_page(const std::string& dir) {
     ReliefQuad quad(to_relief(make_bumps(64)));
     const Bounds b = relief_bounds(quad.relief());
     in.steps_relief = &quad;
-    in.steps_camera = orbit_camera(b.centre(), b.radius(), {35, 25, 2.2}, 128, 128);
+    in.steps_camera = orbit_camera(b.centre(), b.radius(), {10, 8, 1.6}, 128, 128);
     write_compare_page(in);
 }
 
