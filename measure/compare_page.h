@@ -11,6 +11,7 @@
 
 #include "objects/relief_quad.h"
 #include "texmap/camera.h"
+#include "warp/image.h"
 
 namespace rtm {
 
@@ -21,10 +22,17 @@ struct ComparePageInput {
     // absent the page has no such section.
     ReliefQuad* steps_relief = nullptr;
     std::optional<Camera> steps_camera;
+    // The step-by-step section's final frame (the two-pass pre-warp without side polygons, from steps_camera) if
+    // the caller rendered it. Absent: write_compare_page renders it in an offscreen OpenGL context of its own, which
+    // leaves no context current afterwards (a caller that keeps its own context calls make_current() again).
+    std::optional<ImageRGBA8> steps_frame;
 };
 
 // Writes out_dir/index.html (and the step-by-step pictures under out_dir/steps/). Throws IoError naming the file
-// that cannot be written.
+// that cannot be written, std::invalid_argument naming a results field of the wrong type.
 void write_compare_page(const ComparePageInput& input);
+
+// The page's HTML (what write_compare_page writes, given the step-by-step section's HTML or an empty string).
+std::string compare_page_html(const nlohmann::json& results, const std::string& steps_section);
 
 }  // namespace rtm

@@ -10,6 +10,8 @@
 #include <cstdint>
 #include <cstdio>
 
+#include "warp/quadrants.h"
+
 namespace rtm::viewer {
 
 bool project(const Camera& cam, const glm::dvec3& p, glm::dvec2& px) {
@@ -27,6 +29,8 @@ glm::dvec2 inset_position(const DrawnQuad& q, const glm::dvec2& uv, const glm::d
 }
 
 namespace {
+
+ImU32 colour(const Rgba& c) { return IM_COL32(c[0], c[1], c[2], c[3]); }
 
 void polygon(ImDrawList* list, const Camera& cam, const std::array<glm::dvec3, 4>& c, float scale, ImU32 colour) {
     for (size_t i = 0; i < 4; ++i) {
@@ -72,18 +76,17 @@ glm::vec4 draw_insets(ImDrawList* list, const FrameReport& report, float display
         if (q.warped && std::isfinite(q.epipole.x) && std::isfinite(q.epipole.y)) {
             // The four occlusion-compatible quadrants about the epipole, clipped to the inset, then the epipole.
             const glm::dvec2 e = inset_position(q, q.epipole, size);
-            const float ex = std::clamp(p0.x + float(e.x), p0.x, p1.x), ey = std::clamp(p0.y + float(e.y), p0.y, p1.y);
-            list->AddRectFilled(p0, ImVec2(ex, ey), IM_COL32(255, 60, 60, 40));
-            list->AddRectFilled(ImVec2(ex, p0.y), ImVec2(p1.x, ey), IM_COL32(60, 255, 60, 40));
-            list->AddRectFilled(ImVec2(p0.x, ey), ImVec2(ex, p1.y), IM_COL32(60, 120, 255, 40));
-            list->AddRectFilled(ImVec2(ex, ey), p1, IM_COL32(255, 255, 60, 40));
-            list->AddLine(ImVec2(ex, p0.y), ImVec2(ex, p1.y), IM_COL32(255, 255, 255, 160));
-            list->AddLine(ImVec2(p0.x, ey), ImVec2(p1.x, ey), IM_COL32(255, 255, 255, 160));
-            const bool inside = ex == p0.x + float(e.x) && ey == p0.y + float(e.y);
-            if (inside)
-                list->AddCircleFilled(ImVec2(ex, ey), 4.f, IM_COL32(255, 0, 255, 255));
+            const QuadrantOverlay o = quadrant_overlay({p0.x, p0.y}, {p1.x, p1.y}, {p0.x + e.x, p0.y + e.y});
+            for (const QuadrantOverlay::Box& b : o.quadrants)
+                list->AddRectFilled(ImVec2(float(b.p0.x), float(b.p0.y)), ImVec2(float(b.p1.x), float(b.p1.y)),
+                                    colour(b.colour));
+            const float ex = float(o.epipole.x), ey = float(o.epipole.y);
+            list->AddLine(ImVec2(ex, p0.y), ImVec2(ex, p1.y), colour(kQuadrantLineColour));
+            list->AddLine(ImVec2(p0.x, ey), ImVec2(p1.x, ey), colour(kQuadrantLineColour));
+            if (o.inside)
+                list->AddCircleFilled(ImVec2(ex, ey), 4.f, colour(kEpipoleColour));
             else
-                list->AddCircle(ImVec2(ex, ey), 5.f, IM_COL32(255, 0, 255, 255), 0, 2.f);  // beyond the inset
+                list->AddCircle(ImVec2(ex, ey), 5.f, colour(kEpipoleColour), 0, 2.f);  // beyond the inset
         }
         // The box reaches the epipole's circle (radius 5, line 2) where it is clamped to the inset's border.
         x0 = std::min(x0, p0.x - 7);
