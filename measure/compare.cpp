@@ -59,7 +59,7 @@ Timed render_timed(CompareSource& src, Renderer& renderer, const Camera& cam, co
     Timed t;
     for (int i = 0; i < frames; ++i) {
         StageTimes st;
-        t.image = src.render(renderer, cam, s, st);
+        t.image = src.render(renderer, cam, s, e.output_scale, st);
         if (frames > 1 && i == 0) continue;  // the first frame warms up (uploads, shader compiles, caches)
         total.push_back(st.total_ms);
         pre.push_back(st.prewarp_ms);
@@ -173,7 +173,7 @@ CompareRun run_comparison(const std::vector<CompareSource*>& sources, const Comp
                     RenderSettings s = e->render;
                     s.perpixel.common.iteration_counts = true;
                     StageTimes ignored;
-                    const ImageRGBA8 counts = src->render(renderer, cam, s, ignored);
+                    const ImageRGBA8 counts = src->render(renderer, cam, s, e->output_scale, ignored);
                     r.iterations_mean = mean_iterations(counts, t.image);
                     r.iterations_image = save(dir + file_stem(e->id) + ".iter.png", counts);
                 }

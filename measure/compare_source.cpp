@@ -6,6 +6,9 @@
 #include "objects/render_relief.h"
 #include "objects/scene.h"
 #include "warp/timing.h"
+#include "warp/upsample.h"
+
+#include <map>
 
 namespace rtm {
 
@@ -21,21 +24,27 @@ public:
     explicit ReliefSource(ReliefQuad quad) : quad_(std::move(quad)) {}
     Bounds bounds() const override { return relief_bounds(quad_.relief()); }
     bool renders(const CompareEntry&) const override { return true; }
-    ImageRGBA8 render(Renderer& renderer, const Camera& cam, const RenderSettings& s, StageTimes& times) override {
-        return render_relief_frame(quad_, &renderer, cam, s, times);
+    ImageRGBA8 render(Renderer& renderer, const Camera& cam, const RenderSettings& s, int output_scale,
+                      StageTimes& times) override {
+        if (output_scale == 1) return render_relief_frame(quad_, &renderer, cam, s, times);
+        auto it = scaled_.find(output_scale);
+        if (it == scaled_.end())
+            it = scaled_.emplace(output_scale, ReliefQuad(upsample(quad_.relief(), output_scale))).first;
+        return render_relief_frame(it->second, &renderer, cam, s, times);
     }
     ReliefQuad* relief() override { return &quad_; }
 
 private:
     ReliefQuad quad_;
+    std::map<int, ReliefQuad> scaled_;  // the relief at each output scale asked for, built once
 };
 
 class ObjectSource final : public CompareSource {
 public:
     explicit ObjectSource(SixFaceObject o) : object_(std::move(o)) {}
     Bounds bounds() const override { return object_.bounds(); }
-    bool renders(const CompareEntry& e) const override { return is_textured(e.render.method); }
-    ImageRGBA8 render(Renderer& renderer, const Camera& cam, const RenderSettings& s, StageTimes& times) override {
+    bool renders(const CompareEntry& e) const override { return is_textured(e.render.method) && e.output_scale == 1; }
+    ImageRGBA8 render(Renderer& renderer, const Camera& cam, const RenderSettings& s, int, StageTimes& times) override {
         return render_object_frame(object_, renderer, cam, s.method, s.prewarp, s.draw, times);
     }
     ReliefObject& object() { return object_; }
@@ -48,8 +57,8 @@ class SceneSource final : public CompareSource {
 public:
     explicit SceneSource(Scene s) : scene_(std::move(s)) {}
     Bounds bounds() const override { return scene_.bounds(); }
-    bool renders(const CompareEntry& e) const override { return is_textured(e.render.method); }
-    ImageRGBA8 render(Renderer& renderer, const Camera& cam, const RenderSettings& s, StageTimes& times) override {
+    bool renders(const CompareEntry& e) const override { return is_textured(e.render.method) && e.output_scale == 1; }
+    ImageRGBA8 render(Renderer& renderer, const Camera& cam, const RenderSettings& s, int, StageTimes& times) override {
         DrawOptions draw = s.draw;
         draw.depth_correction = true;  // as rtm render --scene: reliefs and polygons occlude each other
         SceneFrameReport rep;

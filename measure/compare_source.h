@@ -27,8 +27,10 @@ public:
     virtual bool renders(const CompareEntry& e) const = 0;
     // Whether the ray caster renders it (else micromesh is the reference of the errors).
     bool has_raycast() const { return kind == "relief"; }
-    // One frame (begin_frame included) read back; `times` accumulates the stage times.
-    virtual ImageRGBA8 render(Renderer& renderer, const Camera& cam, const RenderSettings& s, StageTimes& times) = 0;
+    // One frame (begin_frame included) read back; `times` accumulates the stage times. `output_scale` > 1 (reliefs
+    // only: renders() is false for it elsewhere) draws the relief resampled onto a finer grid (warp/upsample.h).
+    virtual ImageRGBA8 render(Renderer& renderer, const Camera& cam, const RenderSettings& s, int output_scale,
+                              StageTimes& times) = 0;
     // The relief quad (for the page's step-by-step section); null for objects and scenes.
     virtual ReliefQuad* relief() { return nullptr; }
 };

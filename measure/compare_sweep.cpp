@@ -12,12 +12,13 @@ struct PrewarpSetting {
     bool side_polygons;  // keep the samples that leave the quad (the paper's section 3.3)
     int level;           // relief texture pyramid level
     Filter filter;
-    bool quick;  // in the --quick sweep
+    bool quick;            // in the --quick sweep
+    int output_scale = 1;  // pre-warp into a texture this many times the relief's size (docs/DESIGN.md)
 };
 
 // The paper's default (tables, side polygons, level 0, point filter) for both reconstructions, then one change
 // each: the exact path, no side polygons, the next pyramid level, the coverage filter (two-pass only: the pipelined
-// reconstruction has no coverage filter). Not the full product: each
+// reconstruction has no coverage filter), the output scale 2 (two-pass; a relief only). Not the full product: each
 // line answers one question (what the tables cost in error, what the side polygons add, ...).
 const PrewarpSetting kPrewarpSettings[] = {
     {"tables", Reconstruction::two_pass, false, true, 0, Filter::point, true},
@@ -25,6 +26,7 @@ const PrewarpSetting kPrewarpSettings[] = {
     {"no-sides", Reconstruction::two_pass, false, false, 0, Filter::point, false},
     {"level1", Reconstruction::two_pass, false, true, 1, Filter::point, false},
     {"coverage", Reconstruction::two_pass, false, true, 0, Filter::coverage, false},
+    {"scale2", Reconstruction::two_pass, false, true, 0, Filter::point, false, 2},
     {"tables", Reconstruction::pipelined, false, true, 0, Filter::point, true},
     {"exact", Reconstruction::pipelined, true, true, 0, Filter::point, true},
     {"level1", Reconstruction::pipelined, false, true, 1, Filter::point, false},
@@ -76,7 +78,9 @@ std::vector<CompareEntry> compare_sweep(bool quick) {
                                 {"lookup", p.exact ? "exact" : "tables"},
                                 {"side_polygons", p.side_polygons},
                                 {"level", p.level},
-                                {"filter", to_string(p.filter)}});
+                                {"filter", to_string(p.filter)},
+                                {"output_scale", p.output_scale}});
+        e.output_scale = p.output_scale;
         e.render.prewarp.method = p.reconstruction;
         e.render.prewarp.exact = p.exact;
         e.render.prewarp.keep_outliers = p.side_polygons;

@@ -19,6 +19,7 @@ struct CompareEntry {
     std::string family;     // "pre-warp", "per-pixel", "conventional" (flat) or "truth" (micromesh, raycast)
     nlohmann::json params;  // the setting's values by name (the papers' names for the per-pixel methods)
     RenderSettings render;  // method, pre-warp options, draw options, per-pixel settings
+    int output_scale = 1;   // the pre-warp's output scale (warp/upsample.h); reliefs only
     bool counts_iterations() const { return family == "per-pixel"; }
 };
 
