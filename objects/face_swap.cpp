@@ -243,7 +243,10 @@ long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geo
     const double foot_u = glm::dot(rel, g.geometry.a) / glm::dot(g.geometry.a, g.geometry.a);
     const double foot_v = glm::dot(rel, g.geometry.b) / glm::dot(g.geometry.b, g.geometry.b);
     const int split_u = split_index(foot_u, gw), split_v = split_index(foot_v, gh);
-    if (ws.mid.width != n1 || ws.mid.height != gh) ws.mid = Image2D<AdjacentSample>(n1, gh);
+    // Two samples (64 bytes) of padding per row: with a row of 2^k samples the column pass's reads, one row apart,
+    // would all fall in the same few cache sets and evict each other before the next column reads the same lines.
+    const int stride = n1 + 2;
+    if (ws.mid.width != stride || ws.mid.height != gh) ws.mid = Image2D<AdjacentSample>(stride, gh);
 
     // The reference's p = offset + m * (u_s, v_s, d), term by term: each component is offset[i] + m[j][i] * source j
     // (the zero entries add zeros, which change no value), so the terms of G's columns, of a row and of each
