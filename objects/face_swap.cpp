@@ -7,6 +7,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -102,9 +103,9 @@ int first_pass_coordinate(const FaceSwap& s) {
     return std::abs(s.m[2][0]) >= std::abs(s.m[2][1]) ? 0 : 1;
 }
 
-long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geom, int width, int height,
-                             const PrewarpCoefficients& kf, bool exact, AdjacentWorkspace& ws, AdjacentBuffer& out,
-                             int threads) {
+long long warp_adjacent_face_reference(const ReliefTexture& g, const ReliefGeometry& f_geom, int width, int height,
+                                       const PrewarpCoefficients& kf, bool exact, AdjacentWorkspace& ws,
+                                       AdjacentBuffer& out, int threads) {
     const int gw = g.width, gh = g.height;
     const FaceSwap swap = make_face_swap(g.geometry, f_geom);
     // Which of F's final coordinates the pass along G's rows computes: the one G's rows spread along (u_i for a
@@ -186,6 +187,151 @@ long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geo
                 pos[size_t(j)] = ws.mid_v.at(c, r);
                 attr[size_t(j)] = {ws.mid_d.at(c, r), ws.mid_g.at(c, r)};
             }
+            auto connected = [&](int a, int b) {
+                return !(threshold > 0.0) || std::abs(attr[size_t(a)].g - attr[size_t(b)].g) <= threshold;
+            };
+            auto put = [&](int j, Rgba8 col, const ColAttr& a) {
+                const int x = first == 0 ? c : j;
+                const int row = height - 1 - (first == 0 ? j : c);
+                float& z = out.depth.at(x, row);
+                if (float(a.d) > z) {
+                    z = float(a.d);
+                    out.color.at(x, row) = col;
+                }
+            };
+            LineInput<double, ColAttr> in{gh, pos.data(), color.data(), attr.data(), valid.data()};
+            warp_line_to(in, split_v, n2, put, connected);
+        }
+    });
+    long long dropped = 0;
+    for (long long n : dropped_rows) dropped += n;
+    return dropped;
+}
+
+namespace {
+
+// For the faces of one box every component of the map has a single source: component i = offset[i] +
+// m[src[i]][i] * (G's coordinate src[i]), every other entry of m exactly 0 (make_face_swap inverts a signed
+// permutation with scales, whose cofactors are exact). False for any other pair of frames.
+bool single_source_terms(const FaceSwap& s, std::array<int, 3>& src) {
+    for (int i = 0; i < 3; ++i) {
+        src[size_t(i)] = -1;
+        for (int j = 0; j < 3; ++j) {
+            if (s.m[j][i] == 0.0) continue;
+            if (src[size_t(i)] >= 0) return false;
+            src[size_t(i)] = j;
+        }
+        if (src[size_t(i)] < 0) return false;
+    }
+    return src[0] != src[1] && src[1] != src[2] && src[0] != src[2];
+}
+
+}  // namespace
+
+long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geom, int width, int height,
+                             const PrewarpCoefficients& kf, bool exact, AdjacentWorkspace& ws, AdjacentBuffer& out,
+                             int threads) {
+    const FaceSwap swap = make_face_swap(g.geometry, f_geom);
+    std::array<int, 3> src{};
+    if (!single_source_terms(swap, src))
+        return warp_adjacent_face_reference(g, f_geom, width, height, kf, exact, ws, out, threads);
+    const int gw = g.width, gh = g.height;
+    const int first = first_pass_coordinate(swap);
+    const int n1 = first == 0 ? width : height;
+    const int n2 = first == 0 ? height : width;
+    const glm::dvec3 rel = kf.eye - g.geometry.origin;
+    const double foot_u = glm::dot(rel, g.geometry.a) / glm::dot(g.geometry.a, g.geometry.a);
+    const double foot_v = glm::dot(rel, g.geometry.b) / glm::dot(g.geometry.b, g.geometry.b);
+    const int split_u = split_index(foot_u, gw), split_v = split_index(foot_v, gh);
+    // Two samples (64 bytes) of padding per row: with a row of 2^k samples the column pass's reads, one row apart,
+    // would all fall in the same few cache sets and evict each other before the next column reads the same lines.
+    const int stride = n1 + 2;
+    if (ws.mid.width != stride || ws.mid.height != gh) ws.mid = Image2D<AdjacentSample>(stride, gh);
+
+    // The reference's p = offset + m * (u_s, v_s, d), term by term: each component is offset[i] + m[j][i] * source j
+    // (the zero entries add zeros, which change no value), so the terms of G's columns, of a row and of each
+    // quantization level are computed once, with the same operations.
+    auto term = [&](int i, double c) { return swap.offset[i] + swap.m[src[size_t(i)]][i] * c; };
+    int by_u = 0, by_v = 0, by_d = 0;  // the component each of G's coordinates feeds
+    for (int i = 0; i < 3; ++i) (src[size_t(i)] == 0 ? by_u : src[size_t(i)] == 1 ? by_v : by_d) = i;
+    std::vector<double> col_term(static_cast<size_t>(gw)), level_term(256), level_d(256);
+    for (int x = 0; x < gw; ++x) col_term[size_t(x)] = term(by_u, x + 0.5);
+    for (int q = 0; q < 256; ++q) {
+        level_d[size_t(q)] = g.quant.decode(uint8_t(q));
+        level_term[size_t(q)] = term(by_d, level_d[size_t(q)]);
+    }
+    std::vector<long long> dropped_rows(size_t(gh), 0);
+
+    // Pass 1: as the reference's, into one array of intermediate samples.
+    run_parallel(gh, threads, [&](int r0, int r1) {
+        std::vector<double> pos(static_cast<size_t>(gw));
+        std::vector<SwapAttr> attr(static_cast<size_t>(gw));
+        std::vector<Rgba8> color(static_cast<size_t>(gw));
+        std::vector<uint8_t> valid(static_cast<size_t>(gw));
+        for (int r = r0; r < r1; ++r) {
+            AdjacentSample* o = ws.mid.row(r);
+            std::fill(o, o + n1, AdjacentSample{});
+            const double row_term = term(by_v, (gh - 1 - r) + 0.5);
+            const ReliefTexel* tr = &g.texels[size_t(r) * size_t(gw)];
+            const float* dr = exact ? &g.displacement[size_t(r) * size_t(gw)] : nullptr;
+            long long nd = 0;
+            bool any = false;
+            for (int x = 0; x < gw; ++x) {
+                const ReliefTexel& t = tr[x];
+                color[size_t(x)] = {t.r, t.g, t.b, 255};
+                if (t.q == kEmptyIndex) {
+                    valid[size_t(x)] = 0;
+                    continue;
+                }
+                double d, dt;
+                if (exact) {
+                    d = double(dr[x]);
+                    dt = term(by_d, d);
+                } else {
+                    d = level_d[t.q];
+                    dt = level_term[t.q];
+                }
+                glm::dvec3 p;
+                p[by_u] = col_term[size_t(x)];
+                p[by_v] = row_term;
+                p[by_d] = dt;
+                const double den = 1.0 + kf.k3 * p.z;
+                const bool ok = den > 0.0;
+                valid[size_t(x)] = ok;
+                nd += !ok;
+                any |= ok;
+                const double ui = ok ? (p.x + kf.k1 * p.z) / den : 0.0, vi = ok ? (p.y + kf.k2 * p.z) / den : 0.0;
+                pos[size_t(x)] = first == 0 ? ui : vi;
+                attr[size_t(x)] = {first == 0 ? vi : ui, p.z, d};
+            }
+            dropped_rows[size_t(r)] = nd;
+            if (!any) continue;
+            const uint8_t* brk = g.breaks.empty() ? nullptr : &g.breaks[size_t(r) * size_t(gw)];
+            auto connected = [&](int a, int b) { return !brk || !(brk[std::min(a, b)] & kBreakRight); };
+            auto put = [&](int x, Rgba8 c, const SwapAttr& a) { o[x] = {a.v, a.d, a.g, c}; };
+            LineInput<double, SwapAttr> in{gw, pos.data(), color.data(), attr.data(), valid.data()};
+            warp_line_to(in, split_u, n1, put, connected);
+        }
+    });
+
+    // Pass 2: as the reference's, gathering each intermediate column from the one array.
+    const double threshold = g.breaks.empty() ? 0.0 : g.discontinuity_threshold;
+    run_parallel(n1, threads, [&](int c0, int c1) {
+        std::vector<double> pos(static_cast<size_t>(gh));
+        std::vector<ColAttr> attr(static_cast<size_t>(gh));
+        std::vector<Rgba8> color(static_cast<size_t>(gh));
+        std::vector<uint8_t> valid(static_cast<size_t>(gh));
+        for (int c = c0; c < c1; ++c) {
+            bool any = false;
+            for (int j = 0; j < gh; ++j) {
+                const AdjacentSample& s = ws.mid.at(c, gh - 1 - j);
+                color[size_t(j)] = s.c;
+                valid[size_t(j)] = s.c.a != 0;
+                any |= s.c.a != 0;
+                pos[size_t(j)] = s.v;
+                attr[size_t(j)] = {s.d, s.g};
+            }
+            if (!any) continue;
             auto connected = [&](int a, int b) {
                 return !(threshold > 0.0) || std::abs(attr[size_t(a)].g - attr[size_t(b)].g) <= threshold;
             };

@@ -52,18 +52,36 @@ struct AdjacentBuffer {
     void reset(int width, int height);
 };
 
+// One pixel of the row pass's output in warp_adjacent_face: F's other coordinate, d', G's displacement, colour
+// (alpha 0: nothing landed), together so that the column pass reads one cache line per sample.
+struct AdjacentSample {
+    double v = 0, d = 0, g = 0;
+    Rgba8 c{};
+};
+
 // Scratch for warp_adjacent_face, reused across calls.
 struct AdjacentWorkspace {
-    ImageRGBA8 mid_color;
+    ImageRGBA8 mid_color;  // the reference's row-pass output
     Image2D<double> mid_v, mid_d, mid_g;
+    Image2D<AdjacentSample> mid;  // the fast path's
 };
 
 // Pre-warps relief `g` (an adjacent face) onto the plane of `f_geom` (width x height texels) for the eye in `kf`
 // (compute_coefficients(f_geom, eye)), z-testing into `out` (already sized width x height). With `exact` the
 // displacement is g's exact one, else its 8-bit quantized level. Returns the number of texels that could not be
 // pre-warped (1 + k3*d' <= 0; none when the eye is in front of F and G lies behind F's plane).
+//
+// For two faces of one box (every component of the swap has one source, FaceSwap::source_of) it runs a faster
+// schedule of the same computation: the swap's terms per column of G, per row and per quantization level computed
+// once, the row pass's output kept together (AdjacentSample), rows and columns where nothing landed skipped. Its
+// output is the reference's, value for value (tests/objects/face_swap_test.cpp compares them over a random sweep).
 long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geom, int width, int height,
                              const PrewarpCoefficients& kf, bool exact, AdjacentWorkspace& ws, AdjacentBuffer& out,
                              int threads = 0);
+
+// The reference: the swap applied to every texel as a matrix, the generic schedule; any two frames.
+long long warp_adjacent_face_reference(const ReliefTexture& g, const ReliefGeometry& f_geom, int width, int height,
+                                       const PrewarpCoefficients& kf, bool exact, AdjacentWorkspace& ws,
+                                       AdjacentBuffer& out, int threads = 0);
 
 }  // namespace rtm

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "objects/object_plan.h"
 #include "objects/view_analysis.h"
 #include "truth/micromesh.h"
 #include "warp/timing.h"
@@ -16,20 +17,6 @@ namespace {
 
 void add_skip(std::vector<std::string>& skips, const std::string& s) {
     if (std::find(skips.begin(), skips.end(), s) == skips.end()) skips.push_back(s);
-}
-
-// Largest parallax (texels) of any point of the box behind face t (displacement in [-depth, 0]) for view k:
-// u_i - u_s = (u_s - e_u) (1 / (1 + k3 d) - 1) is linear in u_s and monotonic in d (max_parallax_texels's bound).
-double box_parallax_texels(const ReliefTexture& t, const PrewarpCoefficients& k, double depth) {
-    double m = 0.0;
-    for (double d : {-depth, 0.0}) {
-        const double den = 1.0 + k.k3 * d;
-        if (!(den > 0.0)) return std::numeric_limits<double>::infinity();
-        const double s = 1.0 / den - 1.0;
-        for (double u : {0.0, double(t.width)}) m = std::max(m, std::abs((u - k.epipole_u) * s));
-        for (double v : {0.0, double(t.height)}) m = std::max(m, std::abs((v - k.epipole_v) * s));
-    }
-    return m;
 }
 
 // Closes cracks one pixel wide in a face's composite texture. The line warp covers a surface only between its
@@ -107,6 +94,7 @@ void ReliefObject::prewarp_face(int face, const glm::dvec3& eye, int level, cons
         warp_adjacent_face(gt, ft.geometry, w, h, k, options.exact, adjacent_ws_, adjacent_, options.threads);
         out.texels += (long long)gt.width * gt.height;
     }
+    out.adjacent_ms = ms_since(t0);
     // Then the face itself over them, keeping the adjacent samples only where it left a hole.
     PrewarpOptions o = options;
     o.keep_outliers = false;
@@ -164,72 +152,87 @@ void ReliefObject::draw(Renderer& renderer, const Camera& cam, RenderMethod meth
     }
     if (rep.region.visible_faces().size() < size_t(kFaceCount)) add_skip(rep.skips, kSkipBackFacing);
 
+    // Every face is pre-warped and uploaded first, then all are drawn: one wait for the OpenGL pipeline after the
+    // uploads and one after the draws, not one per face (llvmpipe's threads wake for each, which a loaded machine makes
+    // expensive). The same draws in the same order: the same image.
+    std::vector<std::pair<ReliefSurface, const GlTexture*>> quads;
+    double upload_ms = 0.0;
     for (int f : rep.region.visible_faces()) {
         ReliefQuad& q = quads_[size_t(f)];
+        const ObjectFacePlan plan = plan_object_face(
+            cam, method, options, d, rep.region, f, q.relief(),
+            [&](int i) -> const ReliefTexture& { return q.level(i); }, box_.extent()[face_axis(f)], last_[size_t(f)]);
+        for (const std::string& s : plan.skips) add_skip(rep.skips, s);
+        if (plan.action == FrameAction::nothing) continue;
         ObjectFaceReport fr;
         fr.face = f;
-        const std::array<glm::dvec3, 4> corners = q.corners();
-        Bounds quad_bounds;
-        for (const glm::dvec3& c : corners) quad_bounds.extend(c);
-        if (d.skips && outside_frustum(cam, quad_bounds)) {
-            add_skip(rep.skips, kSkipOutsideFrustum);
-            continue;
+        fr.level = plan.level;
+        fr.skips = plan.skips;
+        const ReliefTexture& ft = q.level(plan.level);
+        ObjectFacePrewarp& warped = warped_[size_t(f)];
+        TextureContent content;
+        if (plan.action == FrameAction::flat) {
+            if (!(uploaded_[size_t(f)].source == TextureContent::Source::flat &&
+                  uploaded_[size_t(f)].level == plan.level)) {
+                warped.image = flat_texture(ft);
+                warped.face = f;
+            }
+            last_[size_t(f)].valid = false;  // warped.image no longer holds the pre-warp
+            content = {TextureContent::Source::flat, plan.level};
+        } else {
+            if (plan.action == FrameAction::prewarp) {
+                prewarp_face(f, cam.eye, plan.level, plan.prewarp, d.depth_correction, warped);
+                last_[size_t(f)] = {true, plan.setup, plan.k};
+                ++versions_[size_t(f)];
+                fr.prewarp_ms = warped.prewarp_ms;
+                fr.adjacent_ms = warped.adjacent_ms;
+                times.prewarp_ms += warped.prewarp_ms;
+            }
+            fr.adjacent = warped.adjacent;
+            content = {TextureContent::Source::prewarp, plan.level};
         }
-        fr.level = d.level < 0 ? q.auto_level(cam) : std::clamp(d.level, 0, q.levels() - 1);
-        const ReliefTexture& ft = q.level(fr.level);
         ReliefSurface rs;
         rs.origin = ft.geometry.origin;
         rs.a = ft.geometry.a;
         rs.b = ft.geometry.b;
         rs.width = ft.width;
         rs.height = ft.height;
-        ObjectFacePrewarp& warped = warped_[size_t(f)];
-        bool plain = !warp_method;
-        if (warp_method && d.skips) {
-            const double area = projected_area_pixels(cam, corners);
-            if (area >= 0) {
-                const PrewarpCoefficients k = compute_coefficients(ft.geometry, cam.eye);
-                const double pixels_per_texel = std::sqrt(area / (double(ft.width) * ft.height));
-                const double parallax = box_parallax_texels(ft, k, box_.extent()[face_axis(f)]);
-                if (parallax * pixels_per_texel < d.subpixel_parallax) {
-                    plain = true;
-                    fr.skips.push_back(kSkipSubpixelParallax);
-                    add_skip(rep.skips, kSkipSubpixelParallax);
-                }
-            }
-        }
-        if (plain) {
-            warped.image = flat_texture(ft);
-            warped.face = f;
-        } else {
-            PrewarpOptions o = options;
-            o.method = method == RenderMethod::two_pass ? Reconstruction::two_pass : Reconstruction::pipelined;
-            o.copy_still_runs = options.copy_still_runs && d.skips;
-            prewarp_face(f, cam.eye, fr.level, o, d.depth_correction, warped);
-            fr.adjacent = warped.adjacent;
-            fr.prewarp_ms = warped.prewarp_ms;
-            times.prewarp_ms += warped.prewarp_ms;
-        }
-        auto t0 = Clock::now();
+        const auto t0 = Clock::now();
+        // A reused pre-warp, or the same flat level again, is already in the texture (with skips on).
+        const bool same = d.skips && textures_[size_t(f)] && uploaded_[size_t(f)] == content &&
+                          uploaded_versions_[size_t(f)] == versions_[size_t(f)];
         if (!textures_[size_t(f)]) textures_[size_t(f)] = std::make_unique<GlTexture>();
-        textures_[size_t(f)]->upload(warped.image);
-        if (!plain && d.depth_correction) {
-            if (!displ_textures_[size_t(f)]) displ_textures_[size_t(f)] = std::make_unique<GlTexture>();
-            displ_textures_[size_t(f)]->upload_gray(warped.displ);
+        const bool depth = plan.action != FrameAction::flat && d.depth_correction;
+        if (!same) {
+            textures_[size_t(f)]->upload(warped.image);
+            if (depth) {
+                if (!displ_textures_[size_t(f)]) displ_textures_[size_t(f)] = std::make_unique<GlTexture>();
+                displ_textures_[size_t(f)]->upload_gray(warped.displ);
+            }
+            uploaded_[size_t(f)] = d.skips ? content : TextureContent{};
+            uploaded_versions_[size_t(f)] = versions_[size_t(f)];
+        } else {
+            fr.skips.push_back(kSkipPartialUpload);
+            add_skip(rep.skips, kSkipPartialUpload);
+        }
+        if (depth) {
             rs.displ = displ_textures_[size_t(f)].get();
             rs.k3 = warped.k.k3;
             rs.dmin = warped.depth_quant.min;
             rs.dmax = warped.depth_quant.max;
             rs.qs = warped.depth_quant.qs;
         }
-        renderer.finish();
-        times.upload_ms += ms_since(t0);
-        t0 = Clock::now();
-        renderer.draw_relief(cam, rs, *textures_[size_t(f)]);
-        renderer.finish();
-        times.texture_map_ms += ms_since(t0);
+        upload_ms += ms_since(t0);
+        quads.emplace_back(rs, textures_[size_t(f)].get());
         rep.faces.push_back(std::move(fr));
     }
+    auto t0 = Clock::now();
+    renderer.finish();
+    times.upload_ms += upload_ms + ms_since(t0);
+    t0 = Clock::now();
+    for (const auto& [rs, tex] : quads) renderer.draw_relief(cam, rs, *tex);
+    renderer.finish();
+    times.texture_map_ms += ms_since(t0);
     done();
 }
 

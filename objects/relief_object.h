@@ -9,16 +9,20 @@
 // Samples of F that leave its quad are not lost: they land on the neighbouring visible face when that face pre-warps F,
 // so no side polygons are needed (nor drawn) for an object.
 //
-// Skips (names as for a single relief, objects/relief_quad.h): back-facing (the faces not visible: not pre-warped,
-// not drawn), outside-frustum (per visible face), subpixel-parallax (per visible face: when the box's whole depth
-// moves by less than the threshold the face is drawn as a plain texture), inside-slab-micromesh (the eye inside the
-// box: the six faces' micro-polygon meshes are drawn). Depth correction (section 4.2): the depth seen at each pixel
-// of F's pre-warped texture (F's own or an adjacent face's, along F's normal) is quantized over the box's depth
-// behind F and scales the fragment depth by 1 + k3*d, so the faces occlude each other and other geometry.
+// Skips (names as for a single relief, objects/relief_quad.h), planned per face by plan_object_face
+// (objects/object_plan.h): back-facing (the faces not visible: not pre-warped, not drawn), outside-frustum (per
+// visible face), subpixel-parallax (per visible face: when the box's whole depth moves by less than the threshold the
+// face is drawn as a plain texture), reuse-prewarp (per visible face: the eye barely moved for every point of the box
+// behind it, and the same faces are pre-warped onto it: neither pre-warped nor uploaded again), partial-upload
+// (reported when a face's texture already holds what is drawn: nothing is uploaded; a new pre-warp is uploaded whole),
+// inside-slab-micromesh (the eye inside the box: the six faces' micro-polygon meshes are drawn). Depth correction
+// (section 4.2): the depth seen at each pixel of F's pre-warped texture (F's own or an adjacent face's, along F's
+// normal) is quantized over the box's depth behind F and scales the fragment depth by 1 + k3*d, so the faces occlude
+// each other and other geometry.
 //
 // Limitations: the adjacent faces are reconstructed two-pass with point sampling whatever the face's own method and
-// filter; the reuse and partial-upload skips of the single relief do not apply (every visible face is pre-warped
-// and uploaded whole every frame).
+// filter, in double precision on the CPU's scalar units (objects/face_swap.h), so they, not the face itself, are
+// most of an object's pre-warp time (docs/BENCHMARKS.md).
 #pragma once
 
 #include <array>
@@ -28,6 +32,7 @@
 
 #include "objects/bounds.h"
 #include "objects/face_swap.h"
+#include "objects/object_plan.h"
 #include "objects/object_region.h"
 #include "objects/relief_quad.h"
 #include "warp/box_faces.h"
@@ -44,6 +49,7 @@ struct ObjectFacePrewarp {
     Quantizer depth_quant;
     PrewarpCoefficients k;
     double prewarp_ms = 0.0;        // adjacent faces and the face itself
+    double adjacent_ms = 0.0;       // of which the adjacent faces
     long long texels = 0;           // source texels visited (the face and its adjacent faces)
     long long adjacent_pixels = 0;  // pixels filled by adjacent faces' samples
     long long crack_pixels = 0;     // one-pixel cracks closed between the face's and the adjacent faces' samples
@@ -54,6 +60,7 @@ struct ObjectFaceReport {
     int level = 0;
     std::vector<int> adjacent;
     double prewarp_ms = 0.0;
+    double adjacent_ms = 0.0;  // of which pre-warping the adjacent faces onto it
     std::vector<std::string> skips;
 };
 
@@ -99,6 +106,11 @@ private:
     Image2D<uint8_t> own_displ_;
     std::array<ObjectFacePrewarp, kFaceCount> warped_;
     std::array<std::unique_ptr<GlTexture>, kFaceCount> textures_, displ_textures_;
+    // Per face: the pre-warp warped_ holds (for the reuse skip), how many pre-warps it has had, and what its texture
+    // holds (content and pre-warp count when uploaded; none after a draw with skips off).
+    std::array<LastFacePrewarp, kFaceCount> last_;
+    std::array<long long, kFaceCount> versions_{}, uploaded_versions_{};
+    std::array<TextureContent, kFaceCount> uploaded_;
 };
 
 // One frame of an object with any method (flat, two-pass, pipelined, micromesh), begin_frame included; returns

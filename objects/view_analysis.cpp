@@ -59,13 +59,18 @@ double max_parallax_texels(const ReliefTexture& t, const PrewarpCoefficients& k)
 }
 
 double max_texel_motion(const ReliefTexture& t, const PrewarpCoefficients& k0, const PrewarpCoefficients& k1) {
+    return max_motion_texels(t.width, t.height, t.quant.min, t.quant.max, k0, k1);
+}
+
+double max_motion_texels(int w, int h, double dmin, double dmax, const PrewarpCoefficients& k0,
+                         const PrewarpCoefficients& k1) {
     if (k0.side == ViewSide::on_plane || k1.side == ViewSide::on_plane) return std::numeric_limits<double>::infinity();
     double worst = 0;
     const int levels = 33;
     for (int i = 0; i < levels; ++i) {
-        const double d = t.quant.min + (t.quant.max - t.quant.min) * i / (levels - 1);
-        for (double us : {0.0, double(t.width)})
-            for (double vs : {0.0, double(t.height)}) {
+        const double d = dmin + (dmax - dmin) * i / (levels - 1);
+        for (double us : {0.0, double(w)})
+            for (double vs : {0.0, double(h)}) {
                 double u0, v0, u1, v1;
                 const bool ok0 = k0.warp(us, vs, d, u0, v0), ok1 = k1.warp(us, vs, d, u1, v1);
                 if (ok0 != ok1) return std::numeric_limits<double>::infinity();

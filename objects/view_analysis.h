@@ -29,6 +29,10 @@ double max_parallax_texels(const ReliefTexture& t, const PrewarpCoefficients& k)
 // Largest change (in texels) of any texel's pre-warped position between two views. The change is linear in
 // u_s (so the extremes are at u_s = 0 and w) and smooth in d, which is sampled at 33 levels across the range.
 double max_texel_motion(const ReliefTexture& t, const PrewarpCoefficients& k0, const PrewarpCoefficients& k1);
+// The same over any point of [0, w] x [0, h] x [dmin, dmax] (texel units, world displacement): for a face of an
+// object, every point of the box behind it (its adjacent faces' samples included).
+double max_motion_texels(int w, int h, double dmin, double dmax, const PrewarpCoefficients& k0,
+                         const PrewarpCoefficients& k1);
 
 // The eye is inside the relief's bounding slab: its distance from the plane along f lies in [dmin, dmax] (and
 // dmax > 0 or dmin < 0), so some texels are at or above the eye's plane and cannot be pre-warped.

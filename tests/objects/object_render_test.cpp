@@ -193,6 +193,43 @@ namespace {
 // Depth correction (section 4.2) lets the object occlude and be occluded by other geometry: a square through the
 // sphere's centre (z = 0) cuts it in half. With the perceived depth the object's pixels and the square's agree with
 // the micro-polygon truth drawn with the same square; without it the box faces' own depths hide the square.
+// The per-face plans carried out (objects/object_plan.h): the same eye again reuses every face's pre-warp and uploads
+// nothing, and draws the same image; a moved eye pre-warps again and draws what a fresh object draws. Skips off
+// pre-warps every frame.
+TEST(ObjectRender, ReusedFacesDrawTheSameImage) {
+    Gl gl;
+    ReliefObject object(make_synthetic_object(SyntheticShape::sphere, kTexels));
+    const Camera cam = camera(orbit(45, 35, 3));
+    PrewarpOptions o;
+    DrawOptions d;
+    d.depth_correction = true;
+    StageTimes t;
+    ObjectReport first, again;
+    const ImageRGBA8 a = render_object_frame(object, gl.renderer, cam, RenderMethod::two_pass, o, d, t, &first);
+    const ImageRGBA8 b = render_object_frame(object, gl.renderer, cam, RenderMethod::two_pass, o, d, t, &again);
+    ASSERT_EQ(first.faces.size(), 3u);
+    ASSERT_EQ(again.faces.size(), 3u);
+    for (const ObjectFaceReport& f : again.faces) {
+        EXPECT_EQ(f.skips, (std::vector<std::string>{kSkipReuse, kSkipPartialUpload})) << kFaceKeys[size_t(f.face)];
+        EXPECT_EQ(f.prewarp_ms, 0.0);
+        EXPECT_EQ(f.adjacent.size(), 2u);
+    }
+    EXPECT_TRUE(a == b) << "a reused frame differs";
+
+    const Camera moved = camera(orbit(50, 30, 3));
+    ObjectReport rep;
+    const ImageRGBA8 c = render_object_frame(object, gl.renderer, moved, RenderMethod::two_pass, o, d, t, &rep);
+    for (const ObjectFaceReport& f : rep.faces) EXPECT_TRUE(f.skips.empty()) << kFaceKeys[size_t(f.face)];
+    ReliefObject fresh(make_synthetic_object(SyntheticShape::sphere, kTexels));
+    const ImageRGBA8 e = render_object_frame(fresh, gl.renderer, moved, RenderMethod::two_pass, o, d, t);
+    EXPECT_TRUE(c == e) << "a pre-warp after a reuse differs from a fresh object's";
+
+    DrawOptions off = d;
+    off.skips = false;
+    render_object_frame(object, gl.renderer, moved, RenderMethod::two_pass, o, off, t, &rep);
+    for (const ObjectFaceReport& f : rep.faces) EXPECT_TRUE(f.skips.empty()) << kFaceKeys[size_t(f.face)];
+}
+
 TEST(ObjectRender, DepthCorrectionOccludesOtherGeometry) {
     Gl gl;
     ReliefObject object(make_synthetic_object(SyntheticShape::sphere, kTexels));
