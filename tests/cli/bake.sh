@@ -89,6 +89,19 @@ PY
   done
 fi
 
+# compare --mesh: bake, render both over the ring of views, a summary per method (docs/ACCURACY.md).
+expect_ok compare --mesh "$T/m/bump.obj" --texels 16 --size 32x32 --no-images --out "$T/cmp"
+python3 - "$T/cmp/compare.json" <<'PY' || { echo "FAIL: compare --mesh json"; fails=$((fails + 1)); }
+import json, sys
+j = json.load(open(sys.argv[1]))
+assert [s['method'] for s in j['summary']] == ['two-pass', 'pipelined'], j['summary']
+assert all(s['views'] == 32 for s in j['summary'])
+assert len(j['rows']) == 64
+PY
+expect_fail 2 'one of --relief M and --mesh' -- compare --out "$T/o_cmp"
+expect_fail 2 'apply to --mesh' -- compare --relief x.relief.json --texels 8 --out "$T/o_cmp"
+expect_fail 1 'nothere\.obj' -- compare --mesh "$T/m/nothere.obj" --out "$T/o_cmp"
+
 # Flat meshes still bake, with a one-line warning.
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$T/m/flat.obj"
 expect_ok bake --mesh "$T/m/flat.obj" --size 16 --out "$T/flat"
