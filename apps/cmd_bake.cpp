@@ -85,8 +85,13 @@ void bake_mesh(const BakeArgs& a) {
 }
 
 void bake_height(const BakeArgs& a) {
-    if (a.size_given) throw UsageError("--size applies to --mesh; a height map bakes at its own size");
     HeightBakeOptions o;
+    if (a.size_given) {
+        if (a.size < 1 || a.size > 16384)
+            throw UsageError("--size: expected N texels along the longer side, 1..16384, found " +
+                             std::to_string(a.size));
+        o.size = a.size;
+    }
     o.height_path = a.height;
     o.color_path = a.color;
     if (!a.range.empty()) {
@@ -131,7 +136,9 @@ void add_bake_command(CLI::App& app) {
     sub->add_option("--color", a->color, "Colour image for --height (default: grey levels of the height)");
     sub->add_option("--range", a->range, "MIN,MAX world units the height's 0..1 map onto (default 0, width/10)");
     auto* texel = sub->add_option("--texel", a->texel, "World size of a height-map texel (default 1/width)");
-    auto* size = sub->add_option("--size", a->size, "Mesh bake: texels along the box's longest side")
+    auto* size = sub->add_option("--size", a->size,
+                                 "Texels along the mesh box's longest side, or the height map's longer side "
+                                 "(resampled; default: its own size)")
                      ->capture_default_str();
     sub->add_option("--out", a->out, "Output folder (created if missing)")->required();
     sub->callback([a, texel, size] {

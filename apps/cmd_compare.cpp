@@ -1,12 +1,14 @@
 // rtm compare: every method at every quality setting on one or more reliefs, an object or a scene, from views from
 // frontal to grazing: time against error. Writes DIR/results.json, DIR/results.csv, DIR/compare.md, the pictures
-// under DIR/images/ and the page DIR/index.html (docs/COMPARE.md).
+// under DIR/images/ and the page DIR/index.html (docs/COMPARE.md). With --mesh: a baked mesh against the mesh
+// (apps/cmd_compare_mesh.h).
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <set>
 
 #include "cli_common.h"
+#include "cmd_compare_mesh.h"
 #include "formats/atomic_file.h"
 #include "measure/bench.h"
 #include "measure/compare.h"
@@ -21,12 +23,28 @@ struct CompareArgs {
     std::string object, scene, out, size;
     int repeat = -1, threads = 0;
     bool quick = false;
+    CompareMeshArgs mesh;  // --mesh and its options
 };
 
 void run_compare(const CompareArgs& a) {
+    const bool mesh = !a.mesh.mesh.empty();
+    if (mesh) {
+        if (!a.reliefs.empty() || !a.scene.empty() || a.quick || a.repeat != -1)
+            throw UsageError(
+                "--mesh takes --object, --texels, --discontinuity, --size, --threads and --no-images only");
+        CompareMeshArgs m = a.mesh;
+        m.object = a.object;
+        m.out = a.out;
+        m.threads = a.threads;
+        if (!a.size.empty()) m.size = a.size;
+        return run_compare_mesh(m);
+    }
+    if (a.mesh.texels_given || a.mesh.discontinuity != -1 || a.mesh.no_images)
+        throw UsageError("--texels, --discontinuity and --no-images apply to --mesh");
     const int kinds = int(!a.reliefs.empty()) + int(!a.object.empty()) + int(!a.scene.empty());
     if (kinds != 1)
-        throw UsageError("compare needs one kind of source: --relief M (repeatable), --object O or --scene S");
+        throw UsageError(
+            "compare needs one kind of source: --relief M (repeatable), --object O, --scene S or --mesh FILE");
     if (a.repeat != -1 && a.repeat < 1)
         throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
     if (a.threads < 0) throw UsageError("--threads: expected N >= 0, found " + std::to_string(a.threads));
@@ -96,14 +114,25 @@ void add_compare_command(CLI::App& app) {
     CLI::App* sub = app.add_subcommand(
         "compare", "Every method at every setting from frontal to grazing views: time against error, a web page");
     sub->add_option("--relief", a->reliefs, "Relief texture manifest (repeat for several)");
-    sub->add_option("--object", a->object, "Six-face object manifest");
+    sub->add_option("--object", a->object, "Six-face object manifest (with --mesh: baked from it, instead of baking)");
     sub->add_option("--scene", a->scene, "Scene manifest");
+    sub->add_option("--mesh", a->mesh.mesh,
+                    "A mesh: bake it (or take --object) and compare the object with the mesh over 32 views");
+    sub->add_option("--discontinuity", a->mesh.discontinuity,
+                    "With --mesh: re-mark every face's discontinuities (world units, 0 = none); default: the "
+                    "manifest's");
+    auto* texels = sub->add_option("--texels", a->mesh.texels, "With --mesh: bake texels along the box's longest side")
+                       ->capture_default_str();
+    sub->add_flag("--no-images", a->mesh.no_images, "With --mesh: only the table");
     sub->add_option("--out", a->out, "Output folder")->required();
     sub->add_flag("--quick", a->quick, "3 views, 2 settings per method, 1 timed frame, 128x128 pixels");
     sub->add_option("--size", a->size, "Image size WxH (default 512x512; --quick 128x128)");
     sub->add_option("--repeat", a->repeat, "Frames timed per method and view after a warm-up (default 3; --quick 1)");
     sub->add_option("--threads", a->threads, "Threads (0 = all)")->capture_default_str();
-    sub->callback([a] { run_compare(*a); });
+    sub->callback([a, texels] {
+        a->mesh.texels_given = texels->count() > 0;
+        run_compare(*a);
+    });
 }
 
 }  // namespace rtm::cli

@@ -27,6 +27,7 @@ struct RenderArgs {
     std::string relief, object, scene, mesh, frames_dir, out, json, method = "two-pass", level = "0", filter = "point";
     CameraArgs camera;
     bool exact = false, progress = false, no_sidewalls = false, depth_correction = false, no_skips = false;
+    bool method_given = false;
     double discontinuity = -1;
     int repeat = 1, threads = 0, path_frame = -1, output_scale = 1;
 };
@@ -57,6 +58,9 @@ void run_render(const RenderArgs& a) {
         return run_render_scene(s);
     }
     if (!a.frames_dir.empty() || a.path_frame >= 0) throw UsageError("--frames and --camera-path need --scene");
+    // A mesh is drawn conventionally (docs/BAKE.md): `flat` (plain texture mapping) is the only method it has.
+    if (!a.mesh.empty() && a.method_given && a.method != "flat")
+        throw UsageError("--method " + a.method + ": a mesh is drawn conventionally; --mesh takes only --method flat");
     RenderMethod method;
     try {
         method = parse_render_method(a.method);
@@ -169,11 +173,13 @@ void add_render_command(CLI::App& app) {
     sub->add_option("--frames", a->frames_dir, "Scene: render every frame of its camera path into DIR");
     sub->add_option("--mesh", a->mesh, "A mesh (any file assimp reads), rendered with conventional OpenGL");
     a->camera.add_to(*sub);
-    sub->add_option("--method", a->method,
-                    "flat, two-pass, pipelined, micromesh, raycast, or a per-pixel method: parallax, "
-                    "parallax-offset-limiting, steep-parallax, parallax-occlusion, relief-mapping, interval-mapping, "
-                    "protruded-displacement, quadric-silhouettes (on a cylinder patch)")
-        ->capture_default_str();
+    auto* method =
+        sub->add_option(
+               "--method", a->method,
+               "flat, two-pass, pipelined, micromesh, raycast, or a per-pixel method: parallax, "
+               "parallax-offset-limiting, steep-parallax, parallax-occlusion, relief-mapping, interval-mapping, "
+               "protruded-displacement, quadric-silhouettes (on a cylinder patch); --mesh: flat only")
+            ->capture_default_str();
     sub->add_flag("--exact", a->exact, "Pre-warp with unquantized displacement and double-precision coordinates");
     sub->add_option("--filter", a->filter, "Pre-warp resampling: point or coverage (Fant-style, two-pass only)")
         ->capture_default_str();
@@ -191,7 +197,10 @@ void add_render_command(CLI::App& app) {
     sub->add_flag("--depth-correction", a->depth_correction, "Per-fragment depth from the perceived displacement");
     sub->add_option("--discontinuity", a->discontinuity,
                     "Depth threshold (world units) marking surface discontinuities; 0 = off; default: the manifest's");
-    sub->callback([a] { run_render(*a); });
+    sub->callback([a, method] {
+        a->method_given = method->count() > 0;
+        run_render(*a);
+    });
 }
 
 }  // namespace rtm::cli

@@ -1,12 +1,14 @@
 #include "formats/height_map.h"
 
 #include <cmath>
+#include <algorithm>
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
 
 #include "formats/image_io.h"
 #include "formats/relief_manifest.h"
+#include "warp/image_resample.h"
 
 namespace rtm {
 namespace {
@@ -20,7 +22,10 @@ std::string num(double v) {
 }  // namespace
 
 std::string bake_height_map(const HeightBakeOptions& o, const std::string& out_dir) {
-    const ImageF height = read_gray(o.height_path);
+    if (o.size && (*o.size < 1 || *o.size > 16384))
+        throw std::invalid_argument("--size: expected N texels along the longer side, 1..16384, found " +
+                                    std::to_string(*o.size));
+    ImageF height = read_gray(o.height_path);
     const int w = height.width, h = height.height;
     for (size_t p = 0; p < height.pixels.size(); ++p) {
         const float v = height.pixels[p];
@@ -45,8 +50,20 @@ std::string bake_height_map(const HeightBakeOptions& o, const std::string& out_d
             throw IoError(o.color_path + ": colour image is " + std::to_string(color.width) + "x" +
                           std::to_string(color.height) + " but height map " + o.height_path + " is " +
                           std::to_string(w) + "x" + std::to_string(h));
-    } else {
-        color = ImageRGBA8(w, h);
+    }
+    // The written size: --size along the longer side, the other in proportion.
+    int out_w = w, out_h = h;
+    if (o.size) {
+        const double scale = double(*o.size) / double(std::max(w, h));
+        out_w = w >= h ? *o.size : std::max(1, int(std::lround(w * scale)));
+        out_h = h >= w ? *o.size : std::max(1, int(std::lround(h * scale)));
+    }
+    if (out_w != w || out_h != h) {
+        height = resample_tent(height, out_w, out_h);
+        if (!color.empty()) color = resample_tent(color, out_w, out_h);
+    }
+    if (color.empty()) {
+        color = ImageRGBA8(out_w, out_h);
         for (size_t p = 0; p < color.pixels.size(); ++p) {
             const auto g = uint8_t(std::lround(height.pixels[p] * 255.0f));
             color.pixels[p] = Rgba8{g, g, g, 255};
@@ -58,8 +75,8 @@ std::string bake_height_map(const HeightBakeOptions& o, const std::string& out_d
     m.range_min = lo;
     m.range_max = hi;
     m.geometry.origin = glm::dvec3(0.0);
-    m.geometry.a = glm::dvec3(texel, 0.0, 0.0);
-    m.geometry.b = glm::dvec3(0.0, texel, 0.0);
+    m.geometry.a = glm::dvec3(texel * w / out_w, 0.0, 0.0);  // the relief keeps its world size
+    m.geometry.b = glm::dvec3(0.0, texel * h / out_h, 0.0);
     const std::string manifest = (std::filesystem::path(out_dir.empty() ? "." : out_dir) / (m.name + ".relief.json"))
                                      .string();
     write_relief(manifest, m, color, height);

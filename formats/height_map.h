@@ -15,12 +15,16 @@ struct HeightBakeOptions {
     std::string color_path;           // empty: grey levels from the height
     std::optional<double> range_min;  // default 0
     std::optional<double> range_max;  // default a tenth of the relief's width (texel * width / 10)
-    std::optional<double> texel;      // world units per texel; default 1 / width (a relief one unit wide)
+    std::optional<double> texel;      // world units per texel of the height image; default 1 / width (one unit wide)
+    // Texels along the longer side of the written relief (the other side in proportion, rounded, at least 1): the
+    // height map and the colour are resampled with a tent filter (warp/image_resample.h) and the relief keeps its
+    // world size (each written texel is `texel * image width / written width` wide). Default: the image's size.
+    std::optional<int> size;
 };
 
 // Writes DIR/NAME.relief.json with NAME_color.png and NAME_disp.png beside it (NAME: the height image's stem) and
 // returns the manifest's path. Throws IoError naming the file and what is wrong (unreadable image, sizes that
-// differ, a float image with values outside 0..1), std::invalid_argument for a bad range or texel size.
+// differ, a float image with values outside 0..1), std::invalid_argument for a bad range, texel size or size.
 std::string bake_height_map(const HeightBakeOptions& options, const std::string& out_dir);
 
 }  // namespace rtm

@@ -169,6 +169,8 @@ BakedObject bake_object(const TriangleMesh& mesh, int n, const std::function<voi
         face.displacement = std::move(view.displacement);
         face.range_lo = view.range_lo;
         face.range_hi = view.range_hi;
+        face.discontinuity = kBakeDiscontinuityTexels *
+                             std::max(glm::length(face.geometry.a), glm::length(face.geometry.b));
         if (progress) progress(int(i) + 1, int(kFaces.size()));
     }
     return obj;
@@ -213,6 +215,7 @@ std::string write_object(const std::string& dir, const std::string& name, const 
                                {"displacement", disp_file},
                                {"displacement_range", {num(face.range_lo), num(face.range_hi)}},
                                {"size", {face.color.width, face.color.height}}};
+            if (face.discontinuity > 0) faces[face.key]["discontinuity"] = num(face.discontinuity);
         }
         nlohmann::json j = {{"name", name},
                             {"box",

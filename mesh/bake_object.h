@@ -20,12 +20,11 @@
 #include <vector>
 
 #include "mesh/triangle_mesh.h"
+#include "warp/box_faces.h"  // kFaceKeys
 #include "warp/image.h"
 #include "warp/relief_texture.h"
 
 namespace rtm {
-
-inline constexpr std::array<const char*, 6> kFaceKeys = {"+x", "-x", "+y", "-y", "+z", "-z"};
 
 // The box a bake uses: the mesh bounds, each axis thickened to at least one texel, and the texel counts.
 struct BakeBox {
@@ -48,7 +47,17 @@ struct BakedFace {
     ImageRGBA8 color;                       // alpha 255 seen, 0 empty
     ImageF displacement;                    // world units along f, <= 0; 0 where empty
     double range_lo = 0.0, range_hi = 0.0;  // over the seen texels; [0, 0] when none
+    // Surface discontinuities (paper section 4.1.1): neighbouring texels whose displacements differ by more than
+    // this (world units) are not connected, so no skin is stretched across a silhouette and the adjacent faces,
+    // which see what lies behind it, fill the hole. kBakeDiscontinuityTexels texel spacings; 0 = none.
+    double discontinuity = 0.0;
 };
+
+// The bake's discontinuity threshold in texel spacings (the larger of the face's two): a surface is cut where it
+// turns steeper than atan(12) = 85 degrees from the face, where an adjacent face sees it better. Chosen by the ring
+// of views of measure/object_accuracy.h on three models, 2, 6 and 12 tried (docs/ACCURACY.md, "Objects baked from
+// meshes").
+inline constexpr double kBakeDiscontinuityTexels = 12.0;
 
 struct BakedObject {
     BakeBox box;

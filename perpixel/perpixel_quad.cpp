@@ -161,6 +161,8 @@ void PerPixelQuad::draw(Renderer& renderer, const Camera& cam, const ReliefTextu
             glUniform1f(loc("u_convergence_threshold"), s.interval_mapping.convergence_threshold);
             glUniform1i(loc("u_max_iterations"), s.interval_mapping.max_iterations);
             break;
+        case PerPixelMethod::quadric_silhouettes:  // returned above: draw_quadric sets its own parameters
+            break;
     }
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_2D, relief_map_->id());

@@ -89,6 +89,20 @@ PY
   done
 fi
 
+# compare --mesh: bake, render both over the ring of views, a summary per method (docs/ACCURACY.md).
+expect_ok compare --mesh "$T/m/bump.obj" --texels 16 --size 32x32 --no-images --out "$T/cmp"
+python3 - "$T/cmp/compare.json" <<'PY' || { echo "FAIL: compare --mesh json"; fails=$((fails + 1)); }
+import json, sys
+j = json.load(open(sys.argv[1]))
+assert [s['method'] for s in j['summary']] == ['two-pass', 'pipelined'], j['summary']
+assert all(s['views'] == 32 for s in j['summary'])
+assert len(j['rows']) == 64
+PY
+expect_fail 2 'one kind of source.*--mesh FILE' -- compare --out "$T/o_cmp"
+expect_fail 2 'apply to --mesh' -- compare --relief x.relief.json --texels 8 --out "$T/o_cmp"
+expect_fail 2 '--mesh takes' -- compare --mesh x.obj --relief x.relief.json --out "$T/o_cmp"
+expect_fail 1 'nothere\.obj' -- compare --mesh "$T/m/nothere.obj" --out "$T/o_cmp"
+
 # Flat meshes still bake, with a one-line warning.
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$T/m/flat.obj"
 expect_ok bake --mesh "$T/m/flat.obj" --size 16 --out "$T/flat"
@@ -118,6 +132,11 @@ expect_fail 2 'one of --mesh' -- bake --out "$T/o_none"
 expect_fail 2 'one of --mesh' -- bake --mesh "$T/m/bump.obj" --height "$T/h.png" --out "$T/o_both"
 expect_fail 2 'range' -- bake --height "$T/h.png" --range 1,0 --out "$T/o_range"
 expect_fail 2 'relief.*mesh|mesh.*relief' -- render --mesh "$T/m/bump.obj" --relief x.relief.json --orbit 0,0,3
+# A mesh is drawn conventionally: --method flat (or none) is accepted, any other method refused.
+expect_ok render --mesh "$T/m/bump.obj" --method flat --orbit 0,0,3 --size 16x16 --out "$T/bump_flat.png"
+for m in two-pass pipelined micromesh raycast relief-mapping nonsense; do
+  expect_fail 2 "--method $m: a mesh is drawn conventionally" -- render --mesh "$T/m/bump.obj" --method $m --orbit 0,0,3
+done
 
 # bake --planes: one relief per rectangle, readable by render --relief; malformed planes exit 1; --size exit 2.
 cat >"$T/planes.json" <<'JSON'
@@ -138,6 +157,26 @@ printf 'P3\n4 2\n255\n' >"$T/c.ppm"; for i in $(seq 8); do printf '10 20 30\n' >
 expect_ok bake --height "$T/h.pgm" --color "$T/c.ppm" --range -0.5,0.5 --texel 0.25 --out "$T/hm"
 [ -f "$T/hm/h.relief.json" ] || { echo "FAIL: no h.relief.json: $(ls "$T/hm")"; fails=$((fails + 1)); }
 expect_ok render --relief "$T/hm/h.relief.json" --orbit 0,30,3 --size 32x32 --out "$T/hm.png"
+# --size N resamples the height map and the colour to N texels along the longer side (tent filter, docs/BAKE.md)
+# and keeps the relief's world size: 4x2 at texel 0.25 -> 8x4 at texel 0.125; 2x1 at texel 0.5.
+for n in 8 2; do
+  expect_ok bake --height "$T/h.pgm" --color "$T/c.ppm" --size $n --texel 0.25 --out "$T/hm$n"
+  got=$(python3 - "$T/hm$n/h.relief.json" <<'PY'
+import json, sys, os
+import subprocess
+j = json.load(open(sys.argv[1]))
+d = os.path.dirname(sys.argv[1])
+def size(f):
+    out = subprocess.run(['oiiotool', '--info', os.path.join(d, f)], capture_output=True, text=True).stdout
+    return out.split(':', 1)[1].split(',')[0].strip().replace(' ', '')
+print(j['a'][0], j['b'][1], size(j['color']), size(j['displacement']))
+PY
+)
+  want=$( [ $n = 8 ] && echo "0.125 0.125 8x4 8x4" || echo "0.5 0.5 2x1 2x1")
+  [ "$got" = "$want" ] || { echo "FAIL: bake --height --size $n: got '$got', want '$want'"; fails=$((fails + 1)); }
+done
+expect_ok render --relief "$T/hm8/h.relief.json" --orbit 0,30,3 --size 32x32 --out "$T/hm8.png"
+expect_fail 2 'size' -- bake --height "$T/h.pgm" --size 0 --out "$T/o_size0"
 printf 'P3\n3 2\n255\n' >"$T/c32.ppm"; for i in $(seq 6); do printf '10 20 30\n' >>"$T/c32.ppm"; done
 expect_fail 1 'c32\.ppm.*3x2.*4x2' -- bake --height "$T/h.pgm" --color "$T/c32.ppm" --out "$T/o_c32"
 [ -e "$T/o_c32" ] && { echo "FAIL: o_c32 left behind"; fails=$((fails + 1)); }

@@ -1,6 +1,8 @@
 // bake_height_map (formats/height_map.h): a height map and a colour image -> a relief the relief reader takes.
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+
 #include "common/temp_dir.h"
 #include "formats/height_map.h"
 #include "formats/image_io.h"
@@ -85,6 +87,36 @@ TEST(HeightMap, RefusesMismatchedColourNamingBothFiles) {
     o.range_min = 1.0;
     o.range_max = 0.0;
     EXPECT_THROW(bake_height_map(o, dir.file("out")), std::invalid_argument);
+}
+
+TEST(HeightMap, SizeResamplesAndKeepsTheWorldSize) {
+    // A 6x3 ramp resampled to 4 texels along the longer side: 4x2, each written texel 6/4 of the given one wide.
+    TempDir dir;
+    ImageF height(6, 3);
+    for (int r = 0; r < 3; ++r)
+        for (int i = 0; i < 6; ++i) height.at(i, r) = float(i) / 5.0f;
+    write_gray(dir.file("ramp.png"), height);
+    HeightBakeOptions o;
+    o.height_path = dir.file("ramp.png");
+    o.range_min = 0.0;
+    o.range_max = 1.0;
+    o.texel = 0.5;
+    o.size = 4;
+    ReliefManifest m;
+    const ReliefTexture t = load_relief(bake_height_map(o, dir.file("out")), &m);
+    ASSERT_EQ(t.width, 4);
+    ASSERT_EQ(t.height, 2);
+    EXPECT_DOUBLE_EQ(t.geometry.a.x * t.width, 3.0);  // 6 texels of 0.5: the same 3 units wide
+    EXPECT_DOUBLE_EQ(t.geometry.b.y * t.height, 1.5);
+    for (int r = 0; r < 2; ++r) {
+        // Output texel 1 is centred on source texel coordinate 1.5 * 1.5 - 0.5 = 1.75, tent radius 1.5: weights
+        // 1/2, 5/6, 1/6 on texels 1, 2, 3 (sum 3/2), so (1/2 + 10/6 + 3/6) / (3/2) / 5 = 16/45; texel 2, centred
+        // on 3.25: 1/6, 5/6, 1/2 on texels 2, 3, 4, 29/45. Tolerance: the two 16-bit quantizations.
+        EXPECT_NEAR(t.displ(1, r), 16.0 / 45, 2.0 / 65535 + 1e-6) << r;
+        EXPECT_NEAR(t.displ(2, r), 29.0 / 45, 2.0 / 65535 + 1e-6) << r;
+    }
+    o.size = 0;
+    EXPECT_THROW(bake_height_map(o, dir.file("out0")), std::invalid_argument);
 }
 
 }  // namespace

@@ -1,8 +1,10 @@
 // The six-face bake (mesh/bake_object.h) and the mesh renderer behind it, on meshes of known geometry.
 #include <gtest/gtest.h>
 
+#include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 
@@ -173,6 +175,10 @@ TEST_F(BakeTest, DuckSixFacesAndWrittenObject) {
         const double lo = jf["displacement_range"][0], hi = jf["displacement_range"][1];
         EXPECT_EQ(lo, f.range_lo);
         EXPECT_EQ(hi, f.range_hi);
+        // Discontinuities (section 4.1.1): 12 spacings of the face's larger texel, read back by the object reader.
+        const double spacing = std::max(glm::length(f.geometry.a), glm::length(f.geometry.b));
+        EXPECT_DOUBLE_EQ(f.discontinuity, kBakeDiscontinuityTexels * spacing) << f.key;
+        EXPECT_DOUBLE_EQ(jf["discontinuity"].get<double>(), f.discontinuity) << f.key;
         for (size_t p = 0; p < d.pixels.size(); ++p) {
             if (f.color.pixels[p].a != 255) continue;
             // 16-bit quantization over the face's range: half a step, plus float rounding.
