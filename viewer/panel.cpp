@@ -60,7 +60,7 @@ glm::vec4 draw_panel(ViewSettings& s, PanelContext& c, KeyRequests& r) {
     const FrameStats* ts = c.timed_stats ? c.timed_stats : c.stats;
     const FrameSample m = ts ? ts->mean() : FrameSample{};
     ImGui::Text("%.1f fps   %.2f ms/frame", c.stats ? c.stats->fps() : 0.0, all.frame_ms);
-    ImGui::TextDisabled("stages: timed frames (1 in 16), %.1f ms", m.frame_ms);
+    ImGui::TextDisabled("stages: timed frames (1 in %d), %.1f ms", c.timed_every, m.frame_ms);
     if (ImGui::BeginTable("stages", 3, ImGuiTableFlags_SizingFixedFit)) {
         auto row = [&](const char* name, double ms) {
             ImGui::TableNextRow();

@@ -19,6 +19,7 @@ struct PanelContext {
     const FrameReport* report = nullptr;
     const FrameStats* stats = nullptr;        // every frame: frames per second, frame time, the plot
     const FrameStats* timed_stats = nullptr;  // the frames whose stages were timed: the table
+    int timed_every = 16;                     // 1 frame of this many is timed
     FlyCamera* fly = nullptr;
     bool has_path = false;
     double* path_time = nullptr;

@@ -417,6 +417,7 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
             pc.report = &report;
             pc.stats = &stats;
             pc.timed_stats = &timed_stats;
+            pc.timed_every = std::max(o.timed_every, 1);
             pc.fly = &fly;
             pc.has_path = path.has_value();
             pc.path_time = &path_time;
