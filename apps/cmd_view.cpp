@@ -6,8 +6,9 @@
 
 #include "cli_common.h"
 #include "formats/image_io.h"
+#include "objects/scene.h"
 #include "viewer/keys.h"
-#include "viewer/loaded.h"
+#include "viewer/open_file.h"
 #include "viewer/viewer_app.h"
 
 namespace rtm::cli {
@@ -18,7 +19,7 @@ struct ViewArgs {
     std::string relief, object, scene, file, screenshot, json, camera_path, keys, method = "two-pass", level = "0",
                                                                                   split, filter = "point";
     CameraArgs camera;
-    int frames = 0, threads = 0;
+    int frames = 0, threads = 0, timed_every = 16;
     bool panel = false, insets = false, outlines = false, fly = false, no_sidewalls = false, depth_correction = false,
          no_skips = false, no_vsync = false;
     double discontinuity = -1;
@@ -31,6 +32,7 @@ void run_view(const ViewArgs& a) {
     if (!a.screenshot.empty() && a.frames == 0) throw UsageError("--screenshot needs --frames N");
     if (!a.json.empty() && a.frames == 0) throw UsageError("--json needs --frames N");
     if (a.threads < 0) throw UsageError("--threads: expected N >= 0, found " + std::to_string(a.threads));
+    if (a.timed_every < 1) throw UsageError("--timed-every: expected N >= 1, found " + std::to_string(a.timed_every));
     if (!(a.discontinuity >= 0 || a.discontinuity == -1))
         throw UsageError("--discontinuity: expected a threshold >= 0, found " + std::to_string(a.discontinuity));
     viewer::ViewerOptions o;
@@ -76,21 +78,34 @@ void run_view(const ViewArgs& a) {
                              : !a.object.empty() ? a.object
                              : !a.scene.empty()  ? a.scene
                                                  : a.file;
+    if (!a.relief.empty() && a.relief.find(".relief.json") == std::string::npos)
+        throw IoError(a.relief + ": --relief expects NAME.relief.json");
     if (!a.object.empty() && a.object.find(".object.json") == std::string::npos)
         throw IoError(a.object + ": --object expects NAME.object.json");
     if (!a.scene.empty() && a.scene.find(".scene.json") == std::string::npos)
         throw IoError(a.scene + ": --scene expects NAME.scene.json");
     std::unique_ptr<viewer::Loaded> loaded = viewer::open_file(file);
     o.camera = ca.resolve(loaded->bounds());
+    // A scene without a CAMERA starts at its own camera, as rtm render --scene does.
+    const std::optional<SceneCameraKey> own = loaded->own_camera();
+    const bool own_start = !a.camera.has_eye() && own.has_value();
+    if (own_start) o.camera = key_camera(*own, o.camera);
+    // --camera-path given the scene itself plays the scene's own path.
+    if (a.camera_path == file) {
+        if (!loaded->own_camera_path()) throw IoError(file + ": has no camera_path for --camera-path");
+        o.own_camera_path = true;
+    } else {
+        o.camera_path = a.camera_path;
+    }
     if (!ca.orbit.empty()) {
         const glm::dvec3 v = parse_vec3(ca.orbit, "--orbit");
         o.orbit = {v.x, v.y, v.z};
     }
-    o.start_fly = !ca.eye.empty() || a.fly;
+    o.start_fly = !ca.eye.empty() || a.fly || own_start;
     if (a.fly && ca.eye.empty()) o.camera.eye = o.orbit.eye(loaded->bounds());
     o.frames = a.frames;
+    o.timed_every = a.timed_every;
     o.screenshot = a.screenshot;
-    o.camera_path = a.camera_path;
 
     const viewer::ViewerResult r = viewer::run_viewer(std::move(loaded), o);
     if (!a.json.empty()) {
@@ -126,13 +141,15 @@ void run_view(const ViewArgs& a) {
 void add_view_command(CLI::App& app) {
     auto a = std::make_shared<ViewArgs>();
     CLI::App* sub = app.add_subcommand("view", "Interactive viewer (GLFW window, Dear ImGui panel)");
-    sub->add_option("file", a->file, "A file opened by its kind (NAME.relief.json)");
+    sub->add_option("file", a->file,
+                    "A file opened by its kind: NAME.relief.json, NAME.object.json, NAME.scene.json or a mesh");
     sub->add_option("--relief", a->relief, "Relief texture manifest");
-    sub->add_option("--object", a->object, "Six-face object manifest (not viewable by this build yet)");
-    sub->add_option("--scene", a->scene, "Scene manifest (not viewable by this build yet)");
+    sub->add_option("--object", a->object, "Six-face object manifest");
+    sub->add_option("--scene", a->scene, "Scene manifest");
     a->camera.size = "1280x720";
     a->camera.add_to(*sub);
-    sub->add_option("--method", a->method, "flat, two-pass, pipelined, micromesh or raycast")->capture_default_str();
+    sub->add_option("--method", a->method, "flat, two-pass, pipelined, micromesh, raycast or a per-pixel method")
+        ->capture_default_str();
     sub->add_option("--level", a->level, "Relief texture pyramid level N or auto")->capture_default_str();
     sub->add_option("--filter", a->filter, "Pre-warp resampling: point or coverage (two-pass only)")
         ->capture_default_str();
@@ -149,8 +166,12 @@ void add_view_command(CLI::App& app) {
     sub->add_flag("--no-vsync", a->no_vsync, "Start with vsync off (scripted runs always run without it)");
     sub->add_option("--frames", a->frames, "Render N frames in a hidden window and exit (0 = until closed)")
         ->capture_default_str();
+    sub->add_option("--timed-every", a->timed_every,
+                    "Time the stages (each waiting for the GPU) in 1 frame of N; 1 = every frame")
+        ->capture_default_str();
     sub->add_option("--screenshot", a->screenshot, "Write the last frame to IMG (with --frames)");
-    sub->add_option("--camera-path", a->camera_path, "Play a camera path (JSON keyframes, docs/VIEWER.md)");
+    sub->add_option("--camera-path", a->camera_path,
+                    "Play a camera path (JSON keyframes, docs/VIEWER.md; the scene's own path given the scene)");
     sub->add_option("--keys", a->keys, "Key presses applied before the first frame, e.g. \"2,G,I\"");
     sub->add_option("--json", a->json, "Write frame times and the panel's rectangle as JSON (with --frames)");
     sub->callback([a] { run_view(*a); });

@@ -95,6 +95,10 @@ public:
               StageTimes& times, const DrawOptions& draw = {}, ObjectReport* report = nullptr);
     // The ground truth: the six faces' micro-polygon meshes.
     void draw_micromesh(Renderer& renderer, const Camera& cam);
+    // What the last draw() mapped on face f (for the viewer's insets): the texture (null before the face was first
+    // drawn) and the pre-warp it holds.
+    const GlTexture* face_texture(int f) const { return textures_[size_t(f)].get(); }
+    const ObjectFacePrewarp& face_prewarp(int f) const { return warped_[size_t(f)]; }
 
 private:
     std::string name_;

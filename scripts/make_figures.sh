@@ -17,4 +17,7 @@ eye=$($R render --relief media/facade.relief.json $view --method flat --json /tm
       sed -n '/"eye"/,/]/p' /tmp/rtm_eye.json | tr -d ' \n' | sed 's/"eye":\[\(.*\)\],*/\1/')
 $R prewarp --relief media/facade.relief.json --eye "$eye" --out "$D/facade_prewarped.png"
 cp media/facade_color.png "$D/facade_source.png"
+# The viewer with its panel, the insets (the visible faces' pre-warps, Figure 17) and the outlines, of an object.
+xvfb-run -a -s "-screen 0 1280x720x24" $R view media/rounded-cube.object.json --orbit 35,25,1.7 --size 1280x720 \
+    --panel --insets --outlines --frames 20 --screenshot "$D/viewer.png"
 echo "figures written to $D"

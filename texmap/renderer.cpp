@@ -270,6 +270,7 @@ void GlTexture::upload_rect(const ImageRGBA8& img, int x, int row, int w, int h)
 // Renderer
 
 struct Renderer::Impl {
+    bool timed = true;  // finish() waits for the GPU
     GLuint quad_program = 0, mesh_program = 0;
     GLuint relief_program[2][2] = {};  // [depth correction][side polygon]
     GLuint relief_vao = 0, relief_vbo = 0;
@@ -553,7 +554,13 @@ void Renderer::draw_mesh(const Camera& cam, const std::vector<MeshVertex>& verti
     check_gl("Renderer::draw_mesh");
 }
 
-void Renderer::finish() { glFinish(); }
+void Renderer::finish() {
+    if (impl_->timed) glFinish();
+}
+
+void Renderer::set_timed(bool timed) { impl_->timed = timed; }
+
+bool Renderer::timed() const { return impl_->timed; }
 
 ImageRGBA8 Renderer::read_pixels(int width, int height) {
     if (width <= 0 || height <= 0)

@@ -86,7 +86,11 @@ public:
     // texels are (0, 0, 0, 0), so bilinear filtering divided by alpha gives no dark fringe at silhouettes.
     void draw_relief(const Camera& cam, const ReliefSurface& surface, const GlTexture& color);
     void draw_mesh(const Camera& cam, const std::vector<MeshVertex>& vertices, const std::vector<uint32_t>& indices);
-    void finish();                                  // glFinish, so a timer around draw calls measures them
+    void finish();  // glFinish, so a timer around draw calls measures them
+    // While not timed, finish() returns at once: the stage timers then measure only the CPU's side, and llvmpipe
+    // renders a frame's draws without waiting between them. Timed by default; the viewer times 1 frame in 16.
+    void set_timed(bool timed);
+    bool timed() const;
     ImageRGBA8 read_pixels(int width, int height);  // top row first
 
 private:

@@ -73,6 +73,11 @@ CameraPath parse_camera_path(const std::string& text, const std::string& name) {
                 key.has_look_at = true;
             }
         }
+        if (k.contains("fov")) {
+            if (!k["fov"].is_number() || !(k["fov"].get<double>() > 0 && k["fov"].get<double>() < 180))
+                throw IoError(where + ": \"fov\" must be a number of degrees in (0, 180)");
+            key.fov_deg = k["fov"].get<double>();
+        }
         p.keys.push_back(key);
     }
     return p;
@@ -86,14 +91,35 @@ CameraPath load_camera_path(const std::string& path) {
     return parse_camera_path(ss.str(), path);
 }
 
+namespace {
+
+// The keys around time t and the fraction of the way from the first to the second.
+void bracket(const std::vector<PathKey>& keys, double t, size_t& i0, size_t& i1, double& s) {
+    i0 = 0;
+    while (i0 + 1 < keys.size() && keys[i0 + 1].t <= t) ++i0;
+    i1 = std::min(i0 + 1, keys.size() - 1);
+    s = i0 == i1 ? 0.0 : (t - keys[i0].t) / (keys[i1].t - keys[i0].t);
+}
+
+}  // namespace
+
+double CameraPath::fov_at(double t) const {
+    if (keys.empty()) return 0;
+    size_t i0 = 0, i1 = 0;
+    double s = 0;
+    bracket(keys, std::clamp(t, 0.0, duration()), i0, i1, s);
+    if (keys[i0].fov_deg <= 0 || keys[i1].fov_deg <= 0) return 0;
+    return keys[i0].fov_deg + s * (keys[i1].fov_deg - keys[i0].fov_deg);
+}
+
 void CameraPath::at(double t, const Bounds& b, glm::dvec3& eye, glm::dvec3& look_at) const {
     if (keys.empty()) return;
     t = std::clamp(t, 0.0, duration());
-    size_t i = 0;
-    while (i + 1 < keys.size() && keys[i + 1].t <= t) ++i;
-    const PathKey& k0 = keys[i];
-    const PathKey& k1 = keys[std::min(i + 1, keys.size() - 1)];
-    const double s = &k0 == &k1 ? 0.0 : (t - k0.t) / (k1.t - k0.t);
+    size_t i0 = 0, i1 = 0;
+    double s = 0;
+    bracket(keys, t, i0, i1, s);
+    const PathKey& k0 = keys[i0];
+    const PathKey& k1 = keys[i1];
     auto target = [&](const PathKey& k) { return k.has_look_at ? k.look_at : b.centre(); };
     if (k0.is_orbit && k1.is_orbit) {
         PathKey mid = k0;

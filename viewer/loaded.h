@@ -1,5 +1,6 @@
-// What the viewer has loaded: the one interface the window, the panel and the overlays see. A relief is one
-// implementation (loaded_relief.h); six-face objects and scenes plug in by implementing it too. draw() renders
+// What the viewer has loaded: the one interface the window, the panel and the overlays see. Implementations: a
+// relief (loaded_relief.h), a six-face object or a mesh baked into one (loaded_object.h), a scene
+// (loaded_scene.h); open_file (open_file.h) picks one by the file's kind. draw() renders
 // one frame into the current framebuffer and reports what it did: the stage times (the paper's Table 1), the
 // texels pre-warped, the skips that fired, and the quads drawn with their pre-warped textures, epipoles and side
 // polygons (for the insets and outlines).
@@ -9,14 +10,18 @@
 #include <glm/vec3.hpp>
 
 #include <array>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "objects/bounds.h"
+#include "formats/scene_manifest.h"
 #include "objects/relief_quad.h"
 #include "texmap/camera.h"
 #include "texmap/renderer.h"
+#include "viewer/camera_path.h"
 #include "viewer/view_settings.h"
 #include "warp/image.h"
 
@@ -43,23 +48,28 @@ struct FrameReport {
     std::vector<std::string> skips;  // names from objects/relief_quad.h
     int level = 0;
     std::vector<DrawnQuad> quads;
+    std::string note;  // why nothing (or less) was drawn, for the panel: a method this kind cannot draw, ...
 };
 
 class Loaded {
 public:
     virtual ~Loaded() = default;
     virtual std::string name() const = 0;
-    virtual std::string kind() const = 0;  // "relief", "object", "scene"
+    virtual std::string kind() const = 0;  // "relief", "object", "mesh", "scene"
     virtual Bounds bounds() const = 0;
-    // Draws with the settings' method (flat, two_pass, pipelined, micromesh) into the current frame; the caller
-    // has called renderer.begin_frame(cam).
+    // One-time work that needs the window's GL context (baking a mesh), before the first draw; `progress` gets
+    // one line per step. Throws IoError naming the file.
+    virtual void prepare(const std::function<void(const std::string&)>& progress) { (void)progress; }
+    // Draws with the settings' method into the current frame; the caller has called renderer.begin_frame(cam).
+    // A method this kind cannot draw draws nothing and says why in report.note.
     virtual void draw(Renderer& renderer, const Camera& cam, const ViewSettings& s, FrameReport& report) = 0;
+    // Why there is no ray-cast truth for this kind (empty: raycast() works).
+    virtual std::string raycast_unavailable() const { return {}; }
     // The ray-cast truth (CPU, slow: shown as a still).
     virtual ImageRGBA8 raycast(const Camera& cam, const ViewSettings& s) = 0;
+    // The file's own camera and camera path (a scene's "camera" and "camera_path"), if it has them.
+    virtual std::optional<SceneCameraKey> own_camera() const { return std::nullopt; }
+    virtual std::optional<CameraPath> own_camera_path() const { return std::nullopt; }
 };
-
-// Opens a file by its kind: NAME.relief.json now; .object.json, .scene.json and meshes are named in the error
-// until those kinds exist in this build. Throws IoError naming the file.
-std::unique_ptr<Loaded> open_file(const std::string& path);
 
 }  // namespace rtm::viewer

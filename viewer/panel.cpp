@@ -3,15 +3,14 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <string>
 #include <thread>
+#include <vector>
 
 namespace rtm::viewer {
 
 namespace {
 
-const char* kMethods[] = {"flat", "two-pass", "pipelined", "micromesh", "raycast (still)"};
-const RenderMethod kMethodValues[] = {RenderMethod::flat, RenderMethod::two_pass, RenderMethod::pipelined,
-                                      RenderMethod::micromesh, RenderMethod::raycast};
 const char* kSkips[] = {kSkipBackFacing,    kSkipOutsideFrustum, kSkipSubpixelParallax, kSkipReuse,
                         kSkipPartialUpload, kSkipInsideSlab,     kSkipZeroRuns};
 
@@ -21,10 +20,27 @@ void section(const char* title) {
     ImGui::TextDisabled("%s", title);
 }
 
-int method_index(RenderMethod m) {
-    for (int i = 0; i < 5; ++i)
-        if (kMethodValues[i] == m) return i;
-    return 1;
+// The methods in the panel's list: every render method, the per-pixel ones after the paper's (relief only).
+const std::vector<RenderMethod>& methods() {
+    static const std::vector<RenderMethod> m = render_methods();
+    return m;
+}
+
+std::string method_label(RenderMethod m) { return m == RenderMethod::raycast ? "raycast (still)" : to_string(m); }
+
+bool method_combo(const char* id, RenderMethod& m, bool with_raycast) {
+    bool changed = false;
+    if (ImGui::BeginCombo(id, method_label(m).c_str())) {
+        for (RenderMethod x : methods()) {
+            if (x == RenderMethod::raycast && !with_raycast) continue;
+            if (ImGui::Selectable(method_label(x).c_str(), x == m)) {
+                m = x;
+                changed = true;
+            }
+        }
+        ImGui::EndCombo();
+    }
+    return changed;
 }
 
 }  // namespace
@@ -40,8 +56,11 @@ glm::vec4 draw_panel(ViewSettings& s, PanelContext& c, KeyRequests& r) {
     if (!c.status.empty()) ImGui::TextColored(ImVec4(1, 0.5f, 0.3f, 1), "%s", c.status.c_str());
 
     // Frame time by stage (Table 1 of the paper), frames per second, texels pre-warped.
-    const FrameSample m = c.stats ? c.stats->mean() : FrameSample{};
-    ImGui::Text("%.1f fps   %.2f ms/frame", c.stats ? c.stats->fps() : 0.0, m.frame_ms);
+    const FrameSample all = c.stats ? c.stats->mean() : FrameSample{};
+    const FrameStats* ts = c.timed_stats ? c.timed_stats : c.stats;
+    const FrameSample m = ts ? ts->mean() : FrameSample{};
+    ImGui::Text("%.1f fps   %.2f ms/frame", c.stats ? c.stats->fps() : 0.0, all.frame_ms);
+    ImGui::TextDisabled("stages: timed frames (1 in %d), %.1f ms", c.timed_every, m.frame_ms);
     if (ImGui::BeginTable("stages", 3, ImGuiTableFlags_SizingFixedFit)) {
         auto row = [&](const char* name, double ms) {
             ImGui::TableNextRow();
@@ -64,12 +83,11 @@ glm::vec4 draw_panel(ViewSettings& s, PanelContext& c, KeyRequests& r) {
         ImGui::PlotLines("frame", frame.data(), int(frame.size()), 0, nullptr, 0.f, top, ImVec2(250, 40));
         ImGui::PlotLines("pre-warp", pre.data(), int(pre.size()), 0, nullptr, 0.f, top, ImVec2(250, 40));
     }
-    ImGui::Text("texels warped: %lld / frame", m.texels_warped);
+    ImGui::Text("texels warped: %lld / frame", all.texels_warped);
 
     section("method");
-    int mi = method_index(s.method);
-    if (ImGui::Combo("##method", &mi, kMethods, 5)) s.method = kMethodValues[mi];
-    ImGui::TextDisabled("per-pixel methods: not in this build");
+    method_combo("##method", s.method, true);
+    if (perpixel_method(s.method)) ImGui::TextDisabled("per-pixel method (reliefs), at its default settings");
     bool auto_level = s.level < 0;
     if (ImGui::Checkbox("auto level", &auto_level)) s.level = auto_level ? -1 : 0;
     if (!auto_level) {
@@ -132,23 +150,16 @@ glm::vec4 draw_panel(ViewSettings& s, PanelContext& c, KeyRequests& r) {
     ImGui::Checkbox("outlines", &s.outlines);
     ImGui::SameLine();
     ImGui::Checkbox("vsync", &s.vsync);
-    const char* splits[] = {"no split",         "split: flat",      "split: two-pass",
-                            "split: pipelined", "split: micromesh", "split: error vs truth"};
-    int si = 0;
-    if (s.split == SplitMode::truth)
-        si = 5;
-    else if (s.split == SplitMode::method)
-        si = method_index(s.split_method) + 1;
+    // The split view: off, the right half with another method (the per-pixel ones too: against the pre-warp), or
+    // the error against the truth.
+    const char* modes[] = {"no split", "split: method", "split: error vs truth"};
+    int si = s.split == SplitMode::off ? 0 : s.split == SplitMode::method ? 1 : 2;
     ImGui::SetNextItemWidth(200);
-    if (ImGui::Combo("##split", &si, splits, 6)) {
-        if (si == 0)
-            s.split = SplitMode::off;
-        else if (si == 5)
-            s.split = SplitMode::truth;
-        else {
-            s.split = SplitMode::method;
-            s.split_method = kMethodValues[si - 1];
-        }
+    if (ImGui::Combo("##split", &si, modes, 3))
+        s.split = si == 0 ? SplitMode::off : si == 1 ? SplitMode::method : SplitMode::truth;
+    if (s.split == SplitMode::method) {
+        ImGui::SetNextItemWidth(200);
+        method_combo("right half##splitmethod", s.split_method, false);
     }
     if (ImGui::Button("screenshot (P)")) r.screenshot = true;
     ImGui::SameLine();

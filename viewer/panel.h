@@ -17,7 +17,9 @@ namespace rtm::viewer {
 struct PanelContext {
     std::string loaded_name, loaded_kind, gl_renderer, status;
     const FrameReport* report = nullptr;
-    const FrameStats* stats = nullptr;
+    const FrameStats* stats = nullptr;        // every frame: frames per second, frame time, the plot
+    const FrameStats* timed_stats = nullptr;  // the frames whose stages were timed: the table
+    int timed_every = 16;                     // 1 frame of this many is timed
     FlyCamera* fly = nullptr;
     bool has_path = false;
     double* path_time = nullptr;

@@ -29,6 +29,7 @@ struct ViewSettings {
     RenderMethod split_method = RenderMethod::micromesh;
     bool vsync = true;
     bool fly = false;  // fly camera instead of orbit
+    bool operator==(const ViewSettings&) const = default;
 };
 
 // Parses a --split value: a method name (flat, two-pass, pipelined, micromesh) or "truth". Throws

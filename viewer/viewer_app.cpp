@@ -21,6 +21,7 @@
 #include "viewer/camera_path.h"
 #include "viewer/frame_stats.h"
 #include "viewer/keys.h"
+#include "viewer/open_file.h"
 #include "viewer/overlays.h"
 #include "viewer/panel.h"
 #include "viewer/screenshot.h"
@@ -37,6 +38,7 @@ struct Input {
     double drag_x = 0, drag_y = 0, wheel = 0;  // accumulated since the last frame
     std::vector<int> presses;
     std::optional<std::string> dropped;
+    bool changed = true;  // any event since the last frame drawn (an unchanged still view is not drawn again)
 };
 
 Input& input_of(GLFWwindow* w) { return *static_cast<Input*>(glfwGetWindowUserPointer(w)); }
@@ -45,12 +47,14 @@ void install_callbacks(GLFWwindow* win) {
     // Installed before ImGui's GLFW back end, which calls them after its own (unless the panel takes the input).
     glfwSetMouseButtonCallback(win, [](GLFWwindow* w, int button, int action, int) {
         Input& in = input_of(w);
+        in.changed = true;
         if (button != GLFW_MOUSE_BUTTON_LEFT) return;
         in.dragging = action == GLFW_PRESS && !ImGui::GetIO().WantCaptureMouse;
         glfwGetCursorPos(w, &in.last_x, &in.last_y);
     });
     glfwSetCursorPosCallback(win, [](GLFWwindow* w, double x, double y) {
         Input& in = input_of(w);
+        in.changed = true;
         if (in.dragging) {
             in.drag_x += x - in.last_x;
             in.drag_y += y - in.last_y;
@@ -59,14 +63,22 @@ void install_callbacks(GLFWwindow* win) {
         in.last_y = y;
     });
     glfwSetScrollCallback(win, [](GLFWwindow* w, double, double dy) {
+        input_of(w).changed = true;
         if (!ImGui::GetIO().WantCaptureMouse) input_of(w).wheel += dy;
     });
     glfwSetKeyCallback(win, [](GLFWwindow* w, int key, int, int action, int) {
+        input_of(w).changed = true;
         if (action == GLFW_PRESS && !ImGui::GetIO().WantCaptureKeyboard) input_of(w).presses.push_back(key);
     });
     glfwSetDropCallback(win, [](GLFWwindow* w, int count, const char** paths) {
+        input_of(w).changed = true;
         if (count > 0) input_of(w).dropped = std::string(paths[0]);
     });
+    glfwSetWindowRefreshCallback(win, [](GLFWwindow* w) { input_of(w).changed = true; });
+    glfwSetFramebufferSizeCallback(win, [](GLFWwindow* w, int, int) { input_of(w).changed = true; });
+    glfwSetCharCallback(win, [](GLFWwindow* w, unsigned) { input_of(w).changed = true; });
+    glfwSetWindowFocusCallback(win, [](GLFWwindow* w, int) { input_of(w).changed = true; });
+    glfwSetCursorEnterCallback(win, [](GLFWwindow* w, int) { input_of(w).changed = true; });
 }
 
 ImTextureID imgui_texture(const GlTexture& t) { return reinterpret_cast<ImTextureID>(static_cast<intptr_t>(t.id())); }
@@ -93,6 +105,19 @@ struct ImGuiSession {
         ImGui::CreateContext();
         ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the working folder
         ImGui::StyleColorsDark();
+        // High-DPI: the panel's font and sizes follow the screen's content scale, in ImGui's units (window
+        // coordinates; where the framebuffer is larger than the window, ImGui maps them onto it already).
+        float sx = 1.f, sy = 1.f;
+        glfwGetWindowContentScale(win, &sx, &sy);
+        int ww = 0, wh = 0, fw = 0, fh = 0;
+        glfwGetWindowSize(win, &ww, &wh);
+        glfwGetFramebufferSize(win, &fw, &fh);
+        const float fb_scale = ww > 0 && fw > 0 ? float(fw) / float(ww) : 1.f;
+        const float ui_scale = std::clamp(sx / fb_scale, 1.f, 4.f);
+        if (ui_scale > 1.f) {
+            ImGui::GetStyle().ScaleAllSizes(ui_scale);
+            ImGui::GetIO().FontGlobalScale = ui_scale;
+        }
         if (!ImGui_ImplGlfw_InitForOpenGL(win, true)) throw GlError("Dear ImGui: the GLFW back end failed to start");
         if (!ImGui_ImplOpenGL3_Init("#version 330 core")) {
             ImGui_ImplGlfw_Shutdown();
@@ -126,9 +151,14 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
     }
     bool was_fly = s.fly;
 
+    // The camera path: a file's, or the scene's own (played when asked for, else ready to play with Space).
     std::optional<CameraPath> path;
-    if (!o.camera_path.empty()) path = load_camera_path(o.camera_path);
-    bool path_active = path.has_value(), playing = path.has_value();
+    if (!o.camera_path.empty())
+        path = load_camera_path(o.camera_path);
+    else
+        path = loaded->own_camera_path();
+    const bool path_given = !o.camera_path.empty() || o.own_camera_path;
+    bool path_active = path.has_value() && path_given, playing = path_active;
     double path_time = 0;
 
     auto ctx = GlContext::create_window(cam.width, cam.height, "rtm view: " + loaded->name(), !scripted);
@@ -139,20 +169,38 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
     install_callbacks(win);
     Renderer renderer;
     ImGuiSession imgui(win);
+    std::string status;
+    // One-time work in the window's context (a mesh's bake), with progress on stderr, in the title and the panel.
+    auto prepare = [&](Loaded& l) {
+        bool shown = false;
+        l.prepare([&](const std::string& line) {
+            std::fprintf(stderr, "\r%s", line.c_str());
+            glfwSetWindowTitle(win, ("rtm view: " + line).c_str());
+            status = line;
+            ctx->poll_events();
+            shown = true;
+        });
+        if (shown) std::fprintf(stderr, "\n");
+        status.clear();
+    };
+    prepare(*loaded);
     if (scripted) s.vsync = false;  // scripted runs are timed: never wait for the display
     bool vsync = s.vsync;
     glfwSwapInterval(vsync ? 1 : 0);
 
     ViewerResult result;
     result.renderer = ctx->describe();
-    FrameStats stats;
+    FrameStats stats, timed_stats;  // every frame drawn; the timed ones (their stages)
+    long long drawn_frames = 0;
     FrameReport report;
-    std::string status;
     GlTexture still_tex, heat_tex;
     Camera still_for;  // the camera the ray-cast still was made for
     bool still_valid = false;
     ViewSettings still_settings;
     std::vector<int> pending = o.keys;
+    Camera drawn_cam;  // the camera and settings of the last frame drawn
+    ViewSettings drawn_settings;
+    int settle = 0;
     auto t_title = Clock::now();
     auto t_prev = Clock::now();
     const int warm = o.frames / 10;
@@ -181,8 +229,13 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
             const std::string file = *input.dropped;
             input.dropped.reset();
             try {
-                loaded = open_file(file);
+                std::unique_ptr<Loaded> opened = open_file(file);
+                prepare(*opened);
+                loaded = std::move(opened);
                 bounds = loaded->bounds();
+                path = loaded->own_camera_path();
+                path_active = playing = false;
+                path_time = 0;
                 orbit.frame();
                 fly.frame(bounds);
                 still_valid = false;
@@ -250,6 +303,7 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
             else if (playing)
                 path_time = std::min(path_time + dt, path->duration());
             path->at(path_time, bounds, eye, look_at);
+            if (const double fov = path->fov_at(path_time); fov > 0) cam.fov_deg = fov;
         } else if (s.fly) {
             eye = fly.eye;
             look_at = fly.eye + fly.forward() * look_distance;
@@ -266,11 +320,31 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
         }
         cam = make_camera(base, eye, look_at, bounds);
         const int W = cam.width, H = cam.height;
+        // Interactive and nothing changed (no event, the same camera and settings, no path playing): the window
+        // keeps the last frame, so none is drawn (a still view costs nothing). A few frames are drawn after each
+        // event, for the panel to settle (hover, layout).
+        if (input.changed) settle = 3;
+        input.changed = false;
+        const bool moving = path && path_active && playing && path_time < path->duration();
+        if (!scripted && settle == 0 && !moving && !req.screenshot && same_view(cam, drawn_cam) &&
+            s == drawn_settings) {
+            glfwWaitEventsTimeout(0.25);
+            continue;
+        }
+        if (settle > 0) --settle;
+        drawn_cam = cam;
+        drawn_settings = s;  // the panel may change s after the draw: the next frame then draws again
 
-        // The frame.
+        // The frame. Its stages are timed (each waits for the GPU) in 1 frame of o.timed_every only: the others run
+        // the GPU's work without waiting between stages, which on llvmpipe is most of a frame's cost.
+        const bool timed_frame = o.timed_every <= 1 || drawn_frames % o.timed_every == 0;
+        ++drawn_frames;
+        renderer.set_timed(timed_frame);
         report = FrameReport{};
-        bool drew = true;
-        if (s.method == RenderMethod::raycast) {
+        const std::string no_raycast = s.method == RenderMethod::raycast ? loaded->raycast_unavailable() : "";
+        if (!no_raycast.empty()) {
+            report.note = no_raycast;
+        } else if (s.method == RenderMethod::raycast) {
             // The truth as a still: ray cast again only when the camera or the settings changed.
             const bool settings_same = still_settings.discontinuity == s.discontinuity &&
                                        still_settings.threads == s.threads;
@@ -283,7 +357,6 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
                 still_valid = true;
                 still_settings = s;
             }
-            drew = false;
         } else {
             ImageRGBA8 truth;
             if (s.split == SplitMode::truth) {
@@ -296,8 +369,7 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
             }
             renderer.begin_frame(cam);
             loaded->draw(renderer, cam, s, report);
-            drew = !report.quads.empty() || s.method == RenderMethod::micromesh;
-            if (!drew) clear_framebuffer(W, H);
+            renderer.clear_if_pending();  // a frame with nothing drawn (every quad skipped) is still cleared
             if (s.split == SplitMode::truth) {
                 ImageRGBA8 heat;
                 diff_images(truth, read_framebuffer(W, H), &heat);
@@ -310,10 +382,7 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
                 glScissor(W / 2, 0, W - W / 2, H);
                 renderer.begin_frame(cam);
                 loaded->draw(renderer, cam, t, tr);
-                if (tr.quads.empty() && t.method != RenderMethod::micromesh) {
-                    glClearColor(0.f, 0.f, 0.f, 1.f);
-                    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-                }
+                renderer.clear_if_pending();
                 glDisable(GL_SCISSOR_TEST);
             }
         }
@@ -326,7 +395,9 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
         const float scale = io.DisplayFramebufferScale.x > 0 ? io.DisplayFramebufferScale.x : 1.f;
         const float dw = io.DisplaySize.x, dh = io.DisplaySize.y;
         ImDrawList* bg = ImGui::GetBackgroundDrawList();
-        if (s.method == RenderMethod::raycast) {
+        if (!no_raycast.empty()) {
+            clear_framebuffer(W, H);
+        } else if (s.method == RenderMethod::raycast) {
             clear_framebuffer(W, H);
             bg->AddImage(imgui_texture(still_tex), ImVec2(0, 0), ImVec2(dw, dh));
         } else if (s.split != SplitMode::off) {
@@ -342,9 +413,11 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
             pc.loaded_name = loaded->name();
             pc.loaded_kind = loaded->kind();
             pc.gl_renderer = result.renderer;
-            pc.status = status;
+            pc.status = status.empty() ? report.note : report.note.empty() ? status : status + "\n" + report.note;
             pc.report = &report;
             pc.stats = &stats;
+            pc.timed_stats = &timed_stats;
+            pc.timed_every = std::max(o.timed_every, 1);
             pc.fly = &fly;
             pc.has_path = path.has_value();
             pc.path_time = &path_time;
@@ -367,7 +440,7 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
         const auto t_overlay = Clock::now();
         ImGui::Render();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-        if (scripted) glFinish();  // timed apart from the swap (which would wait for it anyway)
+        if (timed_frame) glFinish();  // timed apart from the swap (which would wait for it anyway)
         const double overlay_ms = ms_since(t_overlay);
         result.panel = panel_box * scale;
         result.insets = inset_box * scale;
@@ -387,13 +460,16 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
         fs.stages = report.times;
         fs.texels_warped = report.texels_warped;
         stats.add(fs);
+        if (timed_frame) timed_stats.add(fs);
         if (scripted && frame >= warm) {
             result.frame_ms.push_back(fs.frame_ms);
+            result.texels_warped.push_back(fs.texels_warped);
+        }
+        if (scripted && frame >= warm && timed_frame) {
             result.prewarp_ms.push_back(fs.stages.prewarp_ms);
             result.upload_ms.push_back(fs.stages.upload_ms);
             result.texture_map_ms.push_back(fs.stages.texture_map_ms);
             result.other_ms.push_back(fs.other_ms());
-            result.texels_warped.push_back(fs.texels_warped);
             result.overlay_ms.push_back(overlay_ms);
             result.swap_ms.push_back(swap_ms);
         }
@@ -407,7 +483,6 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
             glfwSetWindowTitle(win, title);
             t_title = Clock::now();
         }
-        (void)drew;
     }
     if (scripted && result.frames > warm) {
         const double secs = std::chrono::duration<double>(Clock::now() - t_warm).count();

@@ -21,19 +21,24 @@ struct ViewerOptions {
     bool start_fly = false;  // start with the fly camera at camera.eye looking at camera.look_at (--eye)
     OrbitCamera orbit;       // the orbit camera's start (--orbit, or the default 30,20,2.2)
     ViewSettings settings;
-    int frames = 0;           // > 0: scripted, render this many frames and return
-    std::string screenshot;   // scripted: write the last frame here
-    std::string camera_path;  // a camera path file (viewer/camera_path.h)
-    std::vector<int> keys;    // scripted key presses, applied in order before the first frame
-    double fly_step_s = 0.1;  // a scripted fly key moves the eye by this many seconds of travel
+    int frames = 0;                // > 0: scripted, render this many frames and return
+    std::string screenshot;        // scripted: write the last frame here
+    std::string camera_path;       // a camera path file (viewer/camera_path.h)
+    bool own_camera_path = false;  // play what is loaded's own camera path (a scene's) instead
+    std::vector<int> keys;         // scripted key presses, applied in order before the first frame
+    double fly_step_s = 0.1;       // a scripted fly key moves the eye by this many seconds of travel
+    int timed_every = 16;          // the stage times (Table 1) are measured in 1 frame of this many (1: every frame)
 };
 
 // What a run measured (scripted runs report it with --json).
 struct ViewerResult {
     int frames = 0;
-    double fps = 0;  // frames after the first tenth, over their wall time
-    std::vector<double> frame_ms, prewarp_ms, upload_ms, texture_map_ms, other_ms;
-    std::vector<double> overlay_ms, swap_ms;  // parts of other_ms: the panel and overlays drawn, the buffer swap
+    double fps = 0;                // frames after the first tenth, over their wall time
+    std::vector<double> frame_ms;  // every frame
+    // The timed frames (1 in ViewerOptions::timed_every): the stages, and the parts of other_ms (the panel and
+    // overlays drawn, the buffer swap).
+    std::vector<double> prewarp_ms, upload_ms, texture_map_ms, other_ms;
+    std::vector<double> overlay_ms, swap_ms;
     std::vector<long long> texels_warped;
     glm::vec4 panel{0.f}, insets{0.f};  // the last frame's rectangles (x, y, w, h) in framebuffer pixels, top-left
     int width = 0, height = 0;

@@ -83,13 +83,80 @@ same v_two-pass file exact
 view eye --relief "$M" --eye 1.9,1.6,2.4 --size $S --level auto --depth-correction
 render r_eye --eye 1.9,1.6,2.4 --level auto --depth-correction
 same r_eye eye
-# Objects, scenes and meshes are not viewable by this build yet: one line naming the file, exit 1.
+# A per-pixel method draws as rtm render --method NAME draws it.
+view v_rm --relief "$M" --orbit 30,20,2.2 --size $S --method relief-mapping
+render r_rm --orbit 30,20,2.2 --method relief-mapping
+same r_rm v_rm
+
+# A six-face object, given by flag and by its kind: the same pixels as rtm render --object.
+O=$SRC/media/sphere.object.json
+for m in two-pass flat micromesh; do
+  view "vo_$m" --object "$O" --orbit 30,20,2.2 --size $S --method "$m"
+  expect_ok render --object "$O" --orbit 30,20,2.2 --size $S --method "$m" --out "$T/ro_$m.png"
+  same "ro_$m" "vo_$m"
+done
+view vo_cross "$SRC/media/cross-box.object.json" --orbit -40,25,2 --size $S --level auto
+expect_ok render --object "$SRC/media/cross-box.object.json" --orbit -40,25,2 --size $S --level auto \
+  --out "$T/ro_cross.png"
+same ro_cross vo_cross
+# The insets show the pre-warped faces (some drawn this frame), inside their rectangle only.
+view vo_insets --object "$O" --orbit 30,20,2.2 --size 640x480 --insets
+view vo_plain --object "$O" --orbit 30,20,2.2 --size 640x480
+differ vo_plain vo_insets
+read -r ix iy iw ih <<<"$(rect vo_insets insets)"
+blank vo_insets vo_insets_out "$ix" "$iy" "$iw" "$ih"
+blank vo_plain vo_plain_out "$ix" "$iy" "$iw" "$ih"
+same vo_plain_out vo_insets_out exact
+
+# The town scene: its own camera, an orbit, and its camera path frame by frame (--camera-path given the scene).
+TOWN=$SRC/media/town.scene.json
+view vs_own --scene "$TOWN" --size $S
+expect_ok render --scene "$TOWN" --size $S --out "$T/rs_own.png"
+same rs_own vs_own
+view vs_orbit "$TOWN" --orbit 20,35,1.6 --size $S
+expect_ok render --scene "$TOWN" --orbit 20,35,1.6 --size $S --out "$T/rs_orbit.png"
+same rs_orbit vs_orbit
+FRAMES=41 view vs_path --scene "$TOWN" --size $S --camera-path "$TOWN"
+expect_ok render --scene "$TOWN" --size $S --camera-path 40 --out "$T/rs_path.png"
+same rs_path vs_path
+
+# A mesh (a box with a pyramid on top, written here) is baked on the fly: the same pixels as rtm bake then
+# rtm render --object of the result.
+cat >"$T/hut.obj" <<'OBJ'
+v 0 0 0
+v 1 0 0
+v 1 0 1
+v 0 0 1
+v 0 1 0
+v 1 1 0
+v 1 1 1
+v 0 1 1
+v 0.5 1.6 0.5
+f 1 2 3 4
+f 5 8 7 6
+f 1 5 6 2
+f 2 6 7 3
+f 3 7 8 4
+f 4 8 5 1
+f 5 9 6
+f 6 9 7
+f 7 9 8
+f 8 9 5
+OBJ
+view vm "$T/hut.obj" --orbit 30,20,2.2 --size $S
+expect_ok bake --mesh "$T/hut.obj" --out "$T/hut"
+expect_ok render --object "$T/hut/hut.object.json" --orbit 30,20,2.2 --size $S --out "$T/rm.png"
+same rm vm
+
+# Files that cannot be opened: one line naming the file, exit 1.
 echo '{}' >"$T/a.object.json"
 echo '{}' >"$T/a.scene.json"
 : >"$T/a.obj"
-for f in "$T/a.object.json" "$T/a.scene.json" "$T/a.obj"; do
-  expect_fail 1 "a\.(object\.json|scene\.json|obj): .*this build" -- view "$f" --frames 1
+echo '{}' >"$T/a.json"
+for f in "$T/a.object.json" "$T/a.scene.json" "$T/a.obj" "$T/a.json"; do
+  expect_fail 1 "a\.(object\.json|scene\.json|obj|json)" -- view "$f" --frames 1
 done
+expect_fail 1 "has no camera_path" -- view --object "$O" --camera-path "$O" --frames 1
 expect_fail 2 "^rtm: --keys: unknown key \"nope\"" -- view --relief "$M" --keys nope --frames 1
 expect_fail 2 "^rtm: --split: raycast" -- view --relief "$M" --split raycast --frames 1
 echo '{"keys": []}' >"$T/bad_path.json"

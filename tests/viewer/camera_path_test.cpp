@@ -6,6 +6,7 @@
 #include "formats/image_io.h"
 #include "viewer/camera_path.h"
 #include "viewer/cameras.h"
+#include "viewer/loaded_scene.h"
 
 namespace rtm::viewer {
 namespace {
@@ -55,6 +56,40 @@ TEST(CameraPath, ErrorsNameTheFileAndField) {
     EXPECT_NE(message(R"({"keys": [{"t": 0, "eye": [0,0]}]})").find("\"eye\""), std::string::npos);
     EXPECT_NE(message(R"({"keys": [{"t": 0}]})").find("exactly one"), std::string::npos);
     EXPECT_NE(message(R"({"fps": 0, "keys": [{"t": 0, "eye": [0,0,1]}]})").find("\"fps\""), std::string::npos);
+}
+
+TEST(CameraPath, FieldOfViewBetweenKeysThatGiveOne) {
+    const CameraPath p = parse_camera_path(R"({"keys": [{"t": 0, "eye": [0, 0, 1], "fov": 40},
+        {"t": 2, "eye": [0, 0, 2], "fov": 60}, {"t": 3, "eye": [0, 0, 3]}]})",
+                                           "p.json");
+    EXPECT_EQ(p.fov_at(0), 40);
+    EXPECT_EQ(p.fov_at(1), 50);
+    EXPECT_EQ(p.fov_at(-1), 40);  // clamped
+    EXPECT_EQ(p.fov_at(2.5), 0);  // the next key gives none: the viewer's own
+    EXPECT_EQ(p.fov_at(3), 0);
+    EXPECT_THROW(parse_camera_path(R"({"keys": [{"t": 0, "eye": [0, 0, 1], "fov": 180}]})", "p.json"), IoError);
+}
+
+// A scene's path as the viewer plays it: key k at t = k / fps is the scene's frame k (rtm render --scene
+// --camera-path k), so scripted frame k shows it exactly.
+TEST(CameraPath, SceneFramesAreKeys) {
+    SceneManifest m;
+    m.path_keys = {SceneCameraKey{glm::dvec3(0, 1, 5), glm::dvec3(0), glm::dvec3(0, 1, 0), 40},
+                   SceneCameraKey{glm::dvec3(4, 1, 5), glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), 60},
+                   SceneCameraKey{glm::dvec3(4, 3, 1), glm::dvec3(1, 1, 0), glm::dvec3(0, 1, 0), 50}};
+    m.path_frames = 7;
+    const CameraPath p = scene_camera_path(m, 30);
+    ASSERT_EQ(p.keys.size(), 7u);
+    EXPECT_EQ(p.fps, 30);
+    for (int k = 0; k < 7; ++k) {
+        const SceneCameraKey want = camera_path_frame(m.path_keys, k, 7);
+        glm::dvec3 e, l;
+        p.at(k / 30.0, kBox, e, l);
+        EXPECT_EQ(e, want.eye) << k;
+        EXPECT_EQ(l, want.look_at) << k;
+        EXPECT_EQ(p.fov_at(k / 30.0), want.fov_deg) << k;
+    }
+    EXPECT_TRUE(scene_camera_path(SceneManifest{}).keys.empty());
 }
 
 }  // namespace

@@ -1,0 +1,18 @@
+// What the insets and outlines are told about one relief quad after ReliefQuad::draw: its corners, level, the
+// texture it mapped with its margins, the epipole and the side polygons. Shared by the relief and the scene.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "viewer/loaded.h"
+
+namespace rtm::viewer {
+
+// Describes `quad` as drawn this frame with the settings `s` at pyramid `level`, `skips` being the skips that
+// fired for it. False (and `out` untouched) when the quad was not drawn: left out by a skip, seen from behind, or
+// never given a texture.
+bool describe_drawn_quad(ReliefQuad& quad, const std::string& name, const Camera& cam, const ViewSettings& s,
+                         const std::vector<std::string>& skips, int level, DrawnQuad& out);
+
+}  // namespace rtm::viewer
