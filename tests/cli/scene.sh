@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # rtm render --scene: the default camera, a CAMERA, a frame of the camera path, every frame into a folder, the
-# --json counts, the shipped room with every method, object and mesh items, and the errors (one line, exit 1 for bad files, 2 for bad usage, no partial output).
+# --json counts, the shipped room with every method, object and mesh items, and the errors (one line, exit 1 for
+# bad files, 2 for bad usage, no partial output).
 . "$(dirname "$0")/lib.bash"
 cat >"$T/s.scene.json" <<JSON
 { "name": "s",
