@@ -56,8 +56,16 @@ cat >"$T/items.scene.json" <<JSON
   "camera": { "eye": [0.6, 0.7, 0.6], "look_at": [0, 0.5, 0] } }
 JSON
 for m in flat two-pass micromesh relief-mapping; do
-  expect_ok render --scene "$T/items.scene.json" --size 64x48 --method "$m" --out "$T/items_$m.png"
+  expect_ok render --scene "$T/items.scene.json" --size 64x48 --method "$m" --out "$T/items_$m.png" \
+    --json "$T/items_$m.json"
 done
+if python3 - "$T/items_two-pass.json" "$T/items_micromesh.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1])); t = json.load(open(sys.argv[2]))
+assert r["quads"] == 0 and 1 <= r["object_faces_drawn"] <= 3, r  # at most three faces of a box are seen
+assert t["object_faces_drawn"] == 6, t  # the truth draws all six faces' meshes
+PY
+then passes=$((passes + 1)); else echo "FAIL: object items JSON"; fails=$((fails + 1)); fi
 printf '{"items": [{"type": "object", "object": "nope.object.json"}]}' >"$T/noobj.scene.json"
 expect_fail 1 "nope.object.json" -- render --scene "$T/noobj.scene.json" --eye 0,0,3 --out "$T/x.png"
 printf '{"items": [{"type": "mesh", "mesh": "nope.ply"}]}' >"$T/nomesh.scene.json"
