@@ -21,6 +21,7 @@ nlohmann::json report_json(const SceneFrameReport& r) {
             {"quads_prewarped", r.prewarped},
             {"quads_skipped", r.skips},
             {"texels_warped", r.texels_warped},
+            {"object_faces_drawn", r.object_faces_drawn},
             {"prewarp_ms", r.times.prewarp_ms},
             {"upload_ms", r.times.upload_ms},
             {"texture_map_ms", r.times.texture_map_ms},
@@ -120,7 +121,8 @@ void run_render_scene(const SceneRenderArgs& a) {
                             {"size", {sized.width, sized.height}},
                             {"frames", frames}};
         if (frames.size() == 1)  // a single frame's counts also at the top level
-            for (const char* k : {"quads", "quads_drawn", "quads_prewarped", "quads_skipped", "texels_warped"})
+            for (const char* k :
+                 {"quads", "quads_drawn", "quads_prewarped", "quads_skipped", "texels_warped", "object_faces_drawn"})
                 j[k] = frames[0][k];
         // Stage times over the frames (min, median, ...), as rtm render writes them for a relief.
         j["prewarp_ms"] = timing_json(t_pre);

@@ -1,6 +1,7 @@
 // rtm-make-media: writes the procedural relief textures (procedural/procedural_media.h) as NAME.relief.json plus
 // NAME_color.png and NAME_disp.png, and the synthetic six-face objects (procedural/synthetic_object.h) as
-// NAME.object.json plus twelve images each, for the shipped media/ folder and for tests.
+// NAME.object.json plus twelve images each, the relief town and the registered room (procedural/town.h,
+// procedural/room.h), for the shipped media/ folder and for tests.
 //
 //   rtm-make-media --out DIR [--size N] [--object-size N]
 //
@@ -14,6 +15,8 @@
 #include "procedural/procedural_media.h"
 #include "formats/object_manifest.h"
 #include "procedural/town.h"
+#include "procedural/room.h"
+#include "texmap/gl_context.h"
 #include "formats/relief_manifest.h"
 #include "procedural/synthetic_object.h"
 #include "formats/image_io.h"
@@ -21,7 +24,8 @@
 int main(int argc, char** argv) {
     CLI::App app{"Writes the procedural relief textures (" + rtm::procedural_names_list() +
                  ") as DIR/NAME.relief.json plus colour and displacement images, the six-face objects "
-                 "DIR/NAME.object.json and the relief town DIR/town.scene.json."};
+                 "DIR/NAME.object.json, the relief town DIR/town.scene.json and the registered room "
+                 "DIR/room.scene.json (with its mesh DIR/room.ply)."};
     std::string out;
     int size = 256, object_size = 64;
     app.add_option("--out", out, "Output folder (created if missing)")->required();
@@ -73,6 +77,9 @@ int main(int argc, char** argv) {
         rtm::TownOptions town;
         town.texels = size;
         std::printf("wrote %s\n", rtm::write_town(out, town).c_str());
+        // The registered room (procedural/room.h): a generated mesh baked onto four wall planes (needs GL).
+        auto ctx = rtm::GlContext::create_offscreen(64, 64);
+        std::printf("wrote %s\n", rtm::write_room(out).c_str());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "rtm-make-media: %s\n", e.what());
         return 1;

@@ -21,6 +21,7 @@ namespace {
 constexpr size_t kMaxItems = 100000;
 constexpr int kMaxPathFrames = 1000000;
 constexpr size_t kMaxPathKeys = 10000;
+constexpr const char* kKinds = "\"relief\", \"polygon\", \"object\" or \"mesh\"";
 
 double get_number(const std::string& path, const json& j, const std::string& where, const char* key,
                   const char* expected) {
@@ -81,9 +82,8 @@ SceneCameraKey parse_camera(const std::string& path, const json& j, const std::s
 SceneItem parse_item(const std::string& path, const json& j, size_t index) {
     const std::string where = "item " + std::to_string(index) + ": ";
     if (!j.is_object()) fail(path, where + "must be an object, found " + describe(j));
-    const json& type = required(path, j, where, "type", "\"relief\" or \"polygon\"");
-    if (!type.is_string())
-        fail(path, where + "field \"type\" must be \"relief\" or \"polygon\", found " + describe(type));
+    const json& type = required(path, j, where, "type", kKinds);
+    if (!type.is_string()) fail(path, where + "field \"type\" must be " + kKinds + ", found " + describe(type));
     const std::string& kind = type.get_ref<const std::string&>();
     SceneItem item;
     item.transform = parse_transform(path, j, where);
@@ -117,13 +117,32 @@ SceneItem parse_item(const std::string& path, const json& j, size_t index) {
                          where + "field \"color\" must be [r, g, b], each in 0..1, found " + describe(j["color"]));
             item.color = {c[0], c[1], c[2]};
         }
+    } else if (kind == "object") {
+        item.kind = SceneItem::Kind::object;
+        item.file_path = resolve(path, get_file_name(path, j, where, "object"));
+    } else if (kind == "mesh") {
+        item.kind = SceneItem::Kind::mesh;
+        item.file_path = resolve(path, get_file_name(path, j, where, "mesh"));
     } else {
-        fail(path, where + "field \"type\" must be \"relief\" or \"polygon\", found " + describe(type));
+        fail(path, where + "field \"type\" must be " + kKinds + ", found " + describe(type));
     }
     return item;
 }
 
 json vec_json(const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); }
+
+// The transform's fields that differ from the identity (an empty object for none).
+json transform_json(const SceneTransform& tr) {
+    json t = json::object();
+    if (tr.translate != glm::dvec3(0.0)) t["translate"] = vec_json(tr.translate);
+    if (!tr.rotate.empty()) {
+        json r = json::array();
+        for (const glm::dvec4& q : tr.rotate) r.push_back(json::array({q.x, q.y, q.z, q.w}));
+        t["rotate"] = r;
+    }
+    if (tr.scale != 1.0) t["scale"] = tr.scale;
+    return t;
+}
 
 json camera_json(const SceneCameraKey& c) {
     return {{"eye", vec_json(c.eye)}, {"look_at", vec_json(c.look_at)}, {"up", vec_json(c.up)}, {"fov", c.fov_deg}};
@@ -180,18 +199,13 @@ void write_scene_manifest(const std::string& path, const SceneManifest& m) {
     json items = json::array();
     for (const SceneItem& it : m.items) {
         json j;
-        if (it.kind == SceneItem::Kind::relief) {
-            j["type"] = "relief";
-            j["relief"] = relative_to_manifest(path, it.relief_path);
-            json t;
-            if (it.transform.translate != glm::dvec3(0.0)) t["translate"] = vec_json(it.transform.translate);
-            if (!it.transform.rotate.empty()) {
-                json r = json::array();
-                for (const glm::dvec4& q : it.transform.rotate) r.push_back(json::array({q.x, q.y, q.z, q.w}));
-                t["rotate"] = r;
-            }
-            if (it.transform.scale != 1.0) t["scale"] = it.transform.scale;
-            if (!t.empty()) j["transform"] = t;
+        if (it.kind != SceneItem::Kind::polygon) {
+            const char* key = it.kind == SceneItem::Kind::relief   ? "relief"
+                              : it.kind == SceneItem::Kind::object ? "object"
+                                                                   : "mesh";
+            j["type"] = key;
+            j[key] = relative_to_manifest(path, it.kind == SceneItem::Kind::relief ? it.relief_path : it.file_path);
+            if (json t = transform_json(it.transform); !t.empty()) j["transform"] = t;
         } else {
             j["type"] = "polygon";
             json vs = json::array();

@@ -5,12 +5,15 @@
 //     "items": [
 //       { "type": "relief", "relief": "facade.relief.json",
 //         "transform": { "translate": [x, y, z], "rotate": [[ax, ay, az, deg], ...], "scale": s } },
-//       { "type": "polygon", "vertices": [[x, y, z], [x, y, z], [x, y, z], [x, y, z]], "color": [r, g, b] } ],
+//       { "type": "polygon", "vertices": [[x, y, z], [x, y, z], [x, y, z], [x, y, z]], "color": [r, g, b] },
+//       { "type": "object", "object": "duck.object.json", "transform": { ... } },
+//       { "type": "mesh", "mesh": "room.ply", "transform": { ... } } ],
 //     "camera": { "eye": [..], "look_at": [..], "up": [..], "fov": 45 },
 //     "camera_path": { "frames": 120, "keys": [ { "eye": [..], "look_at": [..], "fov": 45 }, ... ] } }
 // A transform is T * R * S: scale (uniform, > 0) first, then the rotations in the order listed (each about a
-// non-zero axis through the origin, right-handed, degrees), then the translation. Relief quads keep their shape
-// (a similarity), so displacements scale with `scale`. Polygons are convex, planar, 3 or 4 vertices, colour
+// non-zero axis through the origin, right-handed, degrees), then the translation. Relief quads and six-face
+// objects keep their shape (a similarity), so displacements scale with `scale`; a mesh (any file assimp reads) has
+// its vertices transformed. Polygons are convex, planar, 3 or 4 vertices, colour
 // components in 0..1. Unknown fields are ignored, malformed ones rejected: every error is an rtm::IoError, one line
 // that starts with the scene manifest's path and names the item and the field.
 #pragma once
@@ -32,9 +35,10 @@ struct SceneTransform {
 };
 
 struct SceneItem {
-    enum class Kind { relief, polygon };
+    enum class Kind { relief, polygon, object, mesh };
     Kind kind = Kind::relief;
     std::string relief_path;  // relief: resolved against the scene manifest's folder
+    std::string file_path;    // object (NAME.object.json) or mesh (any file assimp reads): resolved likewise
     SceneTransform transform;
     std::vector<glm::dvec3> vertices;  // polygon: world positions (the transform already applied)
     glm::dvec3 color{0.5};             // polygon: linear 0..1

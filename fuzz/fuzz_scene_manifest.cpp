@@ -43,6 +43,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         if (!(it.transform.scale > 0) || !std::isfinite(it.transform.scale) || !finite(it.transform.translate))
             finding("parse_scene_manifest accepted a bad transform");
         if (it.kind == SceneItem::Kind::relief && it.relief_path.empty()) finding("a relief item without a file");
+        if ((it.kind == SceneItem::Kind::object || it.kind == SceneItem::Kind::mesh) && it.file_path.empty())
+            finding("an object or mesh item without a file");
         if (it.kind == SceneItem::Kind::polygon) {
             if (it.vertices.size() < 3 || it.vertices.size() > 4) finding("a polygon of the wrong vertex count");
             for (const glm::dvec3& v : it.vertices)
@@ -66,5 +68,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         }))
         finding("a scene the reader accepted did not read back after writing");
     if (r.items.size() != m.items.size()) finding("the round trip changed the number of items");
+    for (size_t i = 0; i < r.items.size() && i < m.items.size(); ++i)
+        if (r.items[i].kind != m.items[i].kind) finding("the round trip changed an item's kind");
     return 0;
 }

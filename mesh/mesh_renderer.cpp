@@ -102,7 +102,36 @@ struct MeshRenderer::Impl {
         fb_width = w;
         fb_height = h;
     }
+    void draw_parts(const glm::dmat4& clip_from_world, const std::optional<glm::dvec4>& plane);
 };
+
+// One draw call per part into the bound framebuffer; `plane` (n, w) feeds the distance output.
+void MeshRenderer::Impl::draw_parts(const glm::dmat4& clip_from_world, const std::optional<glm::dvec4>& plane) {
+    Impl& m = *this;
+    glUseProgram(m.program);
+    const glm::mat4 clip(clip_from_world);
+    glUniformMatrix4fv(m.u_clip, 1, GL_FALSE, glm::value_ptr(clip));
+    const glm::vec4 pl = plane ? glm::vec4(*plane) : glm::vec4(0.0f);
+    glUniform4f(m.u_plane, pl.x, pl.y, pl.z, pl.w);
+    glUniform1i(m.u_texture, 0);
+    glActiveTexture(GL_TEXTURE0);
+    glBindVertexArray(m.vao);
+    for (const MeshPart& p : m.parts) {
+        const size_t mi = size_t(std::max(p.material, 0));
+        const bool tex = p.use_texture && mi < m.textures.size() && m.textures[mi] != 0;
+        // Vertex colours without a texture stand alone (mesh/triangle_mesh.h).
+        const glm::vec4 base = (p.use_vertex_color && !tex) || mi >= m.materials.size() ? glm::vec4(1.0f)
+                                                                                        : m.materials[mi].base_color;
+        glUniform4f(m.u_base, base.r, base.g, base.b, base.a);
+        glUniform1i(m.u_use_texture, tex ? 1 : 0);
+        glUniform1i(m.u_use_vertex_color, p.use_vertex_color ? 1 : 0);
+        glBindTexture(GL_TEXTURE_2D, tex ? m.textures[mi] : 0);
+        glDrawElements(GL_TRIANGLES, GLsizei(p.index_count), GL_UNSIGNED_INT,
+                       (void*)(size_t(p.first_index) * sizeof(uint32_t)));
+    }
+    glBindVertexArray(0);
+    check_gl("mesh rendering: draw");
+}
 
 MeshRenderer::MeshRenderer(const TriangleMesh& mesh) : impl_(new Impl) {
     Impl& m = *impl_;
@@ -207,29 +236,7 @@ MeshFrame MeshRenderer::render(const glm::dmat4& clip_from_world, int width, int
     glClearBufferfv(GL_COLOR, 1, zero);
     glClearBufferfv(GL_DEPTH, 0, &one);
 
-    glUseProgram(m.program);
-    const glm::mat4 clip(clip_from_world);
-    glUniformMatrix4fv(m.u_clip, 1, GL_FALSE, glm::value_ptr(clip));
-    const glm::vec4 pl = plane ? glm::vec4(*plane) : glm::vec4(0.0f);
-    glUniform4f(m.u_plane, pl.x, pl.y, pl.z, pl.w);
-    glUniform1i(m.u_texture, 0);
-    glActiveTexture(GL_TEXTURE0);
-    glBindVertexArray(m.vao);
-    for (const MeshPart& p : m.parts) {
-        const size_t mi = size_t(std::max(p.material, 0));
-        const bool tex = p.use_texture && mi < m.textures.size() && m.textures[mi] != 0;
-        // Vertex colours without a texture stand alone (mesh/triangle_mesh.h).
-        const glm::vec4 base = (p.use_vertex_color && !tex) || mi >= m.materials.size() ? glm::vec4(1.0f)
-                                                                                        : m.materials[mi].base_color;
-        glUniform4f(m.u_base, base.r, base.g, base.b, base.a);
-        glUniform1i(m.u_use_texture, tex ? 1 : 0);
-        glUniform1i(m.u_use_vertex_color, p.use_vertex_color ? 1 : 0);
-        glBindTexture(GL_TEXTURE_2D, tex ? m.textures[mi] : 0);
-        glDrawElements(GL_TRIANGLES, GLsizei(p.index_count), GL_UNSIGNED_INT,
-                       (void*)(size_t(p.first_index) * sizeof(uint32_t)));
-    }
-    glBindVertexArray(0);
-    check_gl("mesh rendering: draw");
+    m.draw_parts(clip_from_world, plane);
 
     MeshFrame frame;
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -253,6 +260,8 @@ MeshFrame MeshRenderer::render(const glm::dmat4& clip_from_world, int width, int
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     return frame;
 }
+
+void MeshRenderer::draw(const glm::dmat4& clip_from_world) { impl_->draw_parts(clip_from_world, std::nullopt); }
 
 ImageRGBA8 MeshRenderer::render(const Camera& cam) {
     return render(cam.projection() * cam.view(), cam.width, cam.height, Rgba8{0, 0, 0, 255}).color;

@@ -33,6 +33,9 @@ public:
                      const std::optional<glm::dvec4>& plane = std::nullopt);
     // Perspective view of the camera (texmap/camera.h), opaque black background (shared conventions).
     ImageRGBA8 render(const Camera& cam);
+    // Draws into the framebuffer that is bound, with its viewport and depth test as they are (no clear, no read
+    // back): a mesh among other geometry sharing one depth buffer (objects/scene_items.h).
+    void draw(const glm::dmat4& clip_from_world);
 
 private:
     struct Impl;

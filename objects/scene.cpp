@@ -4,10 +4,13 @@
 #include <glm/mat3x3.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "formats/image_io.h"
+#include "formats/object_manifest.h"
 #include "formats/relief_manifest.h"
+#include "perpixel/perpixel_quad.h"
 #include "truth/micromesh.h"
 #include "warp/timing.h"
 
@@ -15,15 +18,7 @@ namespace rtm {
 
 ReliefTexture transform_relief(ReliefTexture t, const glm::dmat4& m) {
     const glm::dmat3 l(m);
-    const double s = glm::length(l[0]);
-    // A similarity keeps the relief's shape: orthogonal columns of one length, no mirror (which would turn the
-    // displacement direction f against the transformed quad).
-    const double tol = 1e-9 * s;
-    const bool similar = s > 0 && std::abs(glm::length(l[1]) - s) <= tol && std::abs(glm::length(l[2]) - s) <= tol &&
-                         std::abs(glm::dot(l[0], l[1])) <= tol * s && std::abs(glm::dot(l[0], l[2])) <= tol * s &&
-                         std::abs(glm::dot(l[1], l[2])) <= tol * s && glm::determinant(l) > 0;
-    if (!similar)
-        throw std::invalid_argument("a relief's transform must be a rotation, a translation and a uniform scale > 0");
+    const double s = similarity_scale(m);  // a relief keeps its shape
     t.geometry.origin = glm::dvec3(m * glm::dvec4(t.geometry.origin, 1.0));
     t.geometry.a = l * t.geometry.a;
     t.geometry.b = l * t.geometry.b;
@@ -48,10 +43,16 @@ Scene Scene::load(const std::string& manifest_path) { return Scene(parse_scene_m
 
 Scene::Scene(SceneManifest manifest) : manifest_(std::move(manifest)) {
     std::map<std::string, ReliefTexture> loaded;  // each relief file read once
+    std::map<std::string, SixFaceObject> objects;
+    std::map<std::string, TriangleMesh> meshes;
     for (size_t i = 0; i < manifest_.items.size(); ++i) {
         const SceneItem& item = manifest_.items[i];
         if (item.kind == SceneItem::Kind::polygon) {
             polygons_.push_back({item.vertices, item.color});
+            continue;
+        }
+        if (item.kind == SceneItem::Kind::object || item.kind == SceneItem::Kind::mesh) {
+            load_placed_item(i, objects, meshes);
             continue;
         }
         auto it = loaded.find(item.relief_path);
@@ -71,8 +72,50 @@ Scene::Scene(SceneManifest manifest) : manifest_(std::move(manifest)) {
     }
 }
 
+void Scene::load_placed_item(size_t i, std::map<std::string, SixFaceObject>& objects,
+                             std::map<std::string, TriangleMesh>& meshes) {
+    const SceneItem& item = manifest_.items[i];
+    try {
+        if (item.kind == SceneItem::Kind::object) {
+            auto it = objects.find(item.file_path);
+            if (it == objects.end()) it = objects.emplace(item.file_path, load_object(item.file_path)).first;
+            objects_.emplace_back(it->second, item.transform.matrix());
+        } else {
+            auto it = meshes.find(item.file_path);
+            if (it == meshes.end()) it = meshes.emplace(item.file_path, load_mesh(item.file_path)).first;
+            for (const std::string& w : it->second.warnings) std::fprintf(stderr, "rtm: warning: %s\n", w.c_str());
+            it->second.warnings.clear();  // once per file
+            meshes_.emplace_back(it->second, item.transform.matrix());
+        }
+    } catch (const std::invalid_argument& e) {
+        throw IoError(manifest_.path + ": item " + std::to_string(i) + ": " + e.what());
+    }
+}
+
+void Scene::draw_placed_items(Renderer& renderer, const Camera& cam, RenderMethod method, const PrewarpOptions& options,
+                              const DrawOptions& draw, SceneFrameReport& report) {
+    for (PlacedMesh& m : meshes_) {
+        const auto tm = Clock::now();
+        m.draw(renderer, cam);
+        report.times.texture_map_ms += ms_since(tm);
+    }
+    for (PlacedObject& o : objects_) {
+        StageTimes st;
+        ObjectReport orep;
+        const auto tm = Clock::now();
+        o.draw(renderer, cam, method, options, draw, st, &orep);
+        if (method == RenderMethod::micromesh) st.texture_map_ms = ms_since(tm);
+        report.times.prewarp_ms += st.prewarp_ms;
+        report.times.upload_ms += st.upload_ms;
+        report.times.texture_map_ms += st.texture_map_ms;
+        report.object_faces_drawn += method == RenderMethod::micromesh ? kFaceCount : int(orep.faces.size());
+    }
+}
+
 Bounds Scene::bounds() const {
     Bounds b;
+    for (const PlacedObject& o : objects_) b.extend(o.bounds());
+    for (const PlacedMesh& m : meshes_) b.extend(m.bounds());
     for (const ReliefQuad& q : quads_) b.extend(relief_bounds(q.relief()));
     for (const ScenePolygon& p : polygons_)
         for (const glm::dvec3& v : p.vertices) b.extend(v);
@@ -92,12 +135,20 @@ void Scene::draw(Renderer& renderer, const Camera& cam, RenderMethod method, con
         renderer.draw_mesh(cam, polygon_vertices_, polygon_indices_);
         report.times.texture_map_ms += ms_since(tp);
     }
+    draw_placed_items(renderer, cam, method, options, draw, report);
     for (size_t qi = 0; qi < quads_.size(); ++qi) {
         ReliefQuad& quad = quads_[qi];
         if (method == RenderMethod::micromesh) {
             const auto tm = Clock::now();
             const MicroMesh& mesh = quad.micromesh();
             renderer.draw_mesh(cam, mesh.vertices, mesh.indices);
+            report.times.texture_map_ms += ms_since(tm);
+            ++report.drawn;
+            continue;
+        }
+        if (const auto pp = perpixel_method(method)) {  // the comparison's per-pixel methods, at their defaults
+            const auto tm = Clock::now();
+            quad.perpixel().draw(renderer, cam, quad.relief(), *pp, PerPixelSettings{});
             report.times.texture_map_ms += ms_since(tm);
             ++report.drawn;
             continue;

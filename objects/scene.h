@@ -1,7 +1,8 @@
-// A scene: relief quads and plain polygons in one world and one depth buffer (paper sections 1 and 4.4). Each
-// relief quad is drawn by ReliefQuad::draw with its own skips (back-facing, outside the frustum, sub-pixel
-// parallax, reuse of the last pre-warp, ...), so a frame costs what the view needs; depth correction (section 4.2)
-// is on by default, so reliefs and polygons occlude each other where their perceived surfaces do.
+// A scene: relief quads, plain polygons, six-face objects and meshes (objects/scene_items.h) in one world and one
+// depth buffer (paper sections 1 and 4.4). Each relief quad is drawn by ReliefQuad::draw with its own skips
+// (back-facing, outside the frustum, sub-pixel parallax, reuse of the last pre-warp, ...), so a frame costs what the
+// view needs; depth correction (section 4.2) is on by default, so reliefs and polygons occlude each other where their
+// perceived surfaces do.
 #pragma once
 
 #include <map>
@@ -11,6 +12,7 @@
 #include "formats/scene_manifest.h"
 #include "objects/bounds.h"
 #include "objects/relief_quad.h"
+#include "objects/scene_items.h"
 #include "texmap/renderer.h"
 
 namespace rtm {
@@ -36,6 +38,7 @@ struct SceneFrameReport {
     long long texels_warped = 0;                       // texels of the levels pre-warped this frame
     std::map<std::string, int> skips;                  // skip name -> quads it fired for
     std::vector<std::vector<std::string>> quad_skips;  // per relief quad, in manifest order: the skips that fired
+    int object_faces_drawn = 0;                        // faces of six-face objects drawn (objects/scene_items.h)
     StageTimes times;
 };
 
@@ -49,17 +52,29 @@ public:
     Bounds bounds() const;
     std::vector<ReliefQuad>& quads() { return quads_; }
     const std::vector<ScenePolygon>& polygons() const { return polygons_; }
+    std::vector<PlacedObject>& objects() { return objects_; }
+    std::vector<PlacedMesh>& meshes() { return meshes_; }
 
-    // One frame into the current framebuffer (begin_frame included). `method`: flat, two_pass, pipelined or
-    // micromesh (every relief replaced by its micro-polygon mesh: the ground truth). raycast is refused
+    // One frame into the current framebuffer (begin_frame included). `method`: flat, two_pass, pipelined,
+    // micromesh (every relief replaced by its micro-polygon mesh: the ground truth) or a per-pixel method (each
+    // relief quad drawn by it at its default settings; six-face objects by two_pass). raycast is refused
     // (std::invalid_argument): the ray caster traces one height field, not a scene.
     void draw(Renderer& renderer, const Camera& cam, RenderMethod method, const PrewarpOptions& options,
               const DrawOptions& draw, SceneFrameReport& report);
 
 private:
+    // Item i, an object or a mesh: each file read once (the maps hold what was read).
+    void load_placed_item(size_t i, std::map<std::string, SixFaceObject>& objects,
+                          std::map<std::string, TriangleMesh>& meshes);
+    // The meshes and the objects of a frame, after the polygons and before the relief quads.
+    void draw_placed_items(Renderer& renderer, const Camera& cam, RenderMethod method, const PrewarpOptions& options,
+                           const DrawOptions& draw, SceneFrameReport& report);
+
     SceneManifest manifest_;
     std::vector<ReliefQuad> quads_;
     std::vector<ScenePolygon> polygons_;
+    std::vector<PlacedObject> objects_;
+    std::vector<PlacedMesh> meshes_;
     std::vector<MeshVertex> polygon_vertices_;
     std::vector<uint32_t> polygon_indices_;
 };

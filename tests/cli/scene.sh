@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # rtm render --scene: the default camera, a CAMERA, a frame of the camera path, every frame into a folder, the
-# --json counts, and the errors (one line, exit 1 for bad files, 2 for bad usage, no partial output).
+# --json counts, the shipped room with every method, object and mesh items, and the errors (one line, exit 1 for
+# bad files, 2 for bad usage, no partial output).
 . "$(dirname "$0")/lib.bash"
 cat >"$T/s.scene.json" <<JSON
 { "name": "s",
@@ -33,6 +34,44 @@ for k in ("prewarp_ms", "upload_ms", "texture_map_ms", "total_ms"):
 assert len(f["frames"]) == 3 and all(x["quads"] == 2 for x in f["frames"])
 PY
 then passes=$((passes + 1)); else echo "FAIL: scene JSON"; fails=$((fails + 1)); fi
+
+# The shipped room (media/room.scene.json): every method draws it; raycast is refused as for every scene.
+ROOM=$SRC/media/room.scene.json
+for m in flat two-pass pipelined micromesh parallax parallax-offset-limiting steep-parallax parallax-occlusion \
+  relief-mapping interval-mapping protruded-displacement quadric-silhouettes; do
+  expect_ok render --scene "$ROOM" --size 64x48 --method "$m" --out "$T/room_$m.png"
+done
+expect_ok render --scene "$ROOM" --camera-path 40 --size 64x48 --json "$T/room.json"
+if python3 - "$T/room.json" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["quads"] == 4 and 1 <= d["quads_drawn"] <= 4, d
+PY
+then passes=$((passes + 1)); else echo "FAIL: room JSON"; fails=$((fails + 1)); fi
+# Object and mesh items, placed by transforms; a missing object or mesh file is one line naming it, exit 1.
+cat >"$T/items.scene.json" <<JSON
+{ "items": [ { "type": "mesh", "mesh": "$SRC/media/room.ply", "transform": { "scale": 0.5 } },
+             { "type": "object", "object": "$SRC/media/sphere.object.json",
+               "transform": { "translate": [0, 0.5, 0], "rotate": [0, 1, 0, 30], "scale": 0.1 } } ],
+  "camera": { "eye": [0.6, 0.7, 0.6], "look_at": [0, 0.5, 0] } }
+JSON
+for m in flat two-pass micromesh relief-mapping; do
+  expect_ok render --scene "$T/items.scene.json" --size 64x48 --method "$m" --out "$T/items_$m.png" \
+    --json "$T/items_$m.json"
+done
+if python3 - "$T/items_two-pass.json" "$T/items_micromesh.json" <<'PY'
+import json, sys
+r = json.load(open(sys.argv[1])); t = json.load(open(sys.argv[2]))
+assert r["quads"] == 0 and 1 <= r["object_faces_drawn"] <= 3, r  # at most three faces of a box are seen
+assert t["object_faces_drawn"] == 6, t  # the truth draws all six faces' meshes
+PY
+then passes=$((passes + 1)); else echo "FAIL: object items JSON"; fails=$((fails + 1)); fi
+printf '{"items": [{"type": "object", "object": "nope.object.json"}]}' >"$T/noobj.scene.json"
+expect_fail 1 "nope.object.json" -- render --scene "$T/noobj.scene.json" --eye 0,0,3 --out "$T/x.png"
+printf '{"items": [{"type": "mesh", "mesh": "nope.ply"}]}' >"$T/nomesh.scene.json"
+expect_fail 1 "nope.ply" -- render --scene "$T/nomesh.scene.json" --eye 0,0,3 --out "$T/x.png"
+printf '{"items": [{"type": "mesh", "mesh": "m.ply"}, {"type": "teapot"}]}' >"$T/kind.scene.json"
+expect_fail 1 "kind.scene.json: item 1: .*type" -- render --scene "$T/kind.scene.json" --eye 0,0,3 --out "$T/x.png"
 
 expect_fail 2 "raycast" -- render --scene "$S" --method raycast --out "$T/x.png"
 expect_fail 2 "camera-path" -- render --scene "$S" --camera-path 3 --out "$T/x.png"

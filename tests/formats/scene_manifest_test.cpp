@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -36,6 +38,17 @@ SceneManifest sample(const std::string& dir) {
     p.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 0, -1}, {0, 0, -1}};
     p.color = {0.25, 0.5, 1.0};
     m.items.push_back(p);
+    SceneItem o;
+    o.kind = SceneItem::Kind::object;
+    o.file_path = dir + "/media/duck.object.json";
+    o.transform.translate = {0, 0.5, 0};
+    o.transform.rotate = {{0, 1, 0, 30}};
+    m.items.push_back(o);
+    SceneItem mesh;
+    mesh.kind = SceneItem::Kind::mesh;
+    mesh.file_path = dir + "/meshes/room.ply";
+    mesh.transform.scale = 2;
+    m.items.push_back(mesh);
     m.camera = SceneCameraKey{{0, 1, 5}, {0, 0, 0}, {0, 1, 0}, 50};
     m.path_keys = {{{0, 1, 5}, {0, 0, 0}, {0, 1, 0}, 40}, {{5, 1, 5}, {5, 0, 0}, {0, 1, 0}, 60}};
     m.path_frames = 30;
@@ -48,7 +61,7 @@ TEST(SceneManifest, RoundTrip) {
     write_scene_manifest(m.path, m);
     const SceneManifest r = parse_scene_manifest(m.path);
     EXPECT_EQ(r.name, "s");
-    ASSERT_EQ(r.items.size(), 2u);
+    ASSERT_EQ(r.items.size(), 4u);
     EXPECT_EQ(r.items[0].relief_path, m.items[0].relief_path);
     EXPECT_EQ(r.items[0].transform.translate, m.items[0].transform.translate);
     ASSERT_EQ(r.items[0].transform.rotate.size(), 2u);
@@ -56,6 +69,17 @@ TEST(SceneManifest, RoundTrip) {
     EXPECT_EQ(r.items[0].transform.scale, 0.5);
     EXPECT_EQ(r.items[1].vertices, m.items[1].vertices);
     EXPECT_EQ(r.items[1].color, m.items[1].color);
+    EXPECT_EQ(r.items[2].kind, SceneItem::Kind::object);
+    EXPECT_EQ(r.items[2].file_path, m.items[2].file_path);
+    EXPECT_EQ(r.items[2].transform.translate, m.items[2].transform.translate);
+    ASSERT_EQ(r.items[2].transform.rotate.size(), 1u);
+    EXPECT_EQ(r.items[3].kind, SceneItem::Kind::mesh);
+    EXPECT_EQ(r.items[3].file_path, m.items[3].file_path);
+    EXPECT_EQ(r.items[3].transform.scale, 2.0);
+    // Paths are written relative to the manifest.
+    std::ifstream in(m.path);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("\"meshes/room.ply\""), std::string::npos) << text;
     ASSERT_TRUE(r.camera.has_value());
     EXPECT_EQ(r.camera->eye, m.camera->eye);
     EXPECT_EQ(r.path_frames, 30);
@@ -108,6 +132,16 @@ TEST(SceneManifest, HostileScenesGiveOneLineNamingTheField) {
         {"empty items", R"({"items": []})", {"\"items\""}},
         {"unknown type", R"({"items": [{"type": "teapot"}]})", {"item 0", "\"type\"", "teapot"}},
         {"relief without file", R"({"items": [{"type": "relief"}]})", {"item 0", "\"relief\""}},
+        {"object without file", R"({"items": [{"type": "object"}]})", {"item 0", "\"object\""}},
+        {"object file a number", R"({"items": [{"type": "object", "object": 7}]})", {"item 0", "\"object\""}},
+        {"mesh without file", R"({"items": [{"type": "mesh", "file": "room.ply"}]})", {"item 0", "\"mesh\""}},
+        {"mesh empty name", R"({"items": [{"type": "mesh", "mesh": ""}]})", {"item 0", "\"mesh\""}},
+        {"mesh bad transform",
+         R"({"items": [{"type": "mesh", "mesh": "a.ply", "transform": {"rotate": [[0, 1, 0]]}}]})",
+         {"item 0", "rotat"}},
+        {"object type not a string",
+         R"({"items": [{"type": ["object"], "object": "a.object.json"}]})",
+         {"item 0", "\"type\"", "\"mesh\""}},
         {"nan translate",
          R"({"items": [{"type": "relief", "relief": "a.relief.json", "transform": {"translate": [0, "x", 0]}}]})",
          {"item 0", "translate"}},
