@@ -28,6 +28,7 @@ namespace rtm::fast {
 struct PipelinedJob {
     const ReliefTexture* relief = nullptr;
     const FastTables* tables = nullptr;
+    const PrewarpTables* ref_tables = nullptr;  // the reference's tables (the Highway kernel)
     PrewarpExtent extent;
     int split_u = 0, split_v = 0;  // split_index of the epipole along rows and columns (source)
     int ysplit = 0;                // split of the output rows between the parts (v order)
@@ -65,3 +66,16 @@ void pipelined_composite(const PipelinedJob& job, const PipelinedChunk* chunks, 
 void pipelined_seam(const PipelinedJob& job);
 
 }  // namespace rtm::fast
+
+namespace rtm::simd {
+
+// The four entry points above of one target's pipelined kernel (the scheduling in warp/simd/schedule.cpp takes
+// them as a set): the hand-written AVX-512 ones, or the Highway ones (warp/simd/hwy_pipelined.h).
+struct PipelinedKernels {
+    void (*part)(const fast::PipelinedJob&, int, int, int) = nullptr;
+    void (*chunk)(const fast::PipelinedJob&, fast::PipelinedChunk&) = nullptr;
+    void (*composite)(const fast::PipelinedJob&, const fast::PipelinedChunk*, int, int, int) = nullptr;
+    void (*seam)(const fast::PipelinedJob&) = nullptr;
+};
+
+}  // namespace rtm::simd
