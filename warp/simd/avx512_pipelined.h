@@ -16,6 +16,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <vector>
 
 #include "warp/simd/avx512_tables.h"
 #include "warp/simd/kernel_policy.h"
@@ -40,6 +41,9 @@ struct PipelinedJob {
     bool copy_still = true;                          // PrewarpOptions::copy_still_runs
     KernelChoice reverse = KernelChoice::automatic;  // FastKernelPolicy::pipelined_reverse
     std::atomic<long long>* dropped = nullptr;
+    // The Highway kernel's buffers: each task takes the next of them (next_task counts the tasks of the pre-warp).
+    std::vector<std::vector<float>>* task_buffers = nullptr;
+    std::atomic<int>* next_task = nullptr;
 };
 
 // Part 0 (rows from the bottom up to the split, output v-rows [0, ysplit)) or 1 (rows from the top down to the

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "warp/line_warp.h"
@@ -35,30 +36,35 @@ PartRows part_rows(const fast::PipelinedJob& job, int part) {
     return {h - 1, -1, h - s, job.ysplit, job.out->height};
 }
 
-// Per thread, grown to the largest relief and output seen, never shrunk (steady state allocates nothing).
+// One task's buffers, carved out of its float vector in the workspace (PrewarpWorkspace::task_buffers), which grows
+// to the largest relief and output seen and never shrinks (steady state allocates nothing).
 struct PipeBuffers {
-    std::vector<float> row;  // one row's samples: positions, row coordinates, colours (RowScratch)
-    std::vector<uint32_t> rc, col_c, m_c;
-    std::vector<float> rv, col_v, m_v;
-    std::vector<int32_t> col_ok, m_ok, multi_flag;
-    std::vector<int> multi;  // the columns that received more than one pixel from the row
-
-    void reserve(int w, int ow) {
-        // Vectors are read up to a whole vector past the output width (ColumnStep): 64 lanes is SVE's most.
-        const size_t n = size_t(ow) + 64;
-        auto grow = [](auto& v, size_t size) {
-            if (v.size() < size) v.resize(size);
-        };
-        grow(row, 3 * size_t(w));
-        for (auto* v : {&rc, &col_c, &m_c}) grow(*v, n);
-        for (auto* v : {&rv, &col_v, &m_v}) grow(*v, n);
-        for (auto* v : {&col_ok, &m_ok, &multi_flag}) grow(*v, n);
-        if (multi.capacity() < size_t(ow)) multi.reserve(size_t(ow));
-    }
+    float* row;  // one row's samples: positions, row coordinates, colours (RowScratch)
+    uint32_t *rc, *col_c, *m_c;
+    float *rv, *col_v, *m_v;
+    int32_t *col_ok, *m_ok, *multi_flag;
+    int32_t* multi;  // the columns that received more than one pixel from the row, n_multi of them
+    int n_multi = 0;
 };
 
-PipeBuffers& pipe_buffers() {
-    static thread_local PipeBuffers b;
+PipeBuffers task_buffers(const fast::PipelinedJob& job) {
+    const int w = job.relief->width, ow = job.out->width;
+    std::vector<float>& v = (*job.task_buffers)[size_t(job.next_task->fetch_add(1))];
+    // Arrays are read up to a whole vector past the output width (ColumnStep): 64 lanes is SVE's most. Sizes are
+    // rounded up to 64, so that outputs a few pixels wider (the next view's margins) fit.
+    const size_t n = (size_t(ow) + 63) / 64 * 64 + 64, nr = 3 * ((size_t(w) + 63) / 64 * 64);
+    if (v.size() < nr + 10 * n) v.resize(nr + 10 * n);
+    float* p = v.data();
+    PipeBuffers b;
+    b.row = p;
+    p += nr;
+    auto take = [&](auto*& q) {
+        q = reinterpret_cast<std::remove_reference_t<decltype(q)>>(p);
+        p += n;
+    };
+    take(b.rc), take(b.col_c), take(b.m_c), take(b.rv), take(b.col_v), take(b.m_v);
+    take(b.col_ok), take(b.m_ok), take(b.multi_flag), take(b.multi);
+    std::fill(b.multi_flag, b.multi_flag + n, 0);
     return b;
 }
 
@@ -92,13 +98,12 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
     const PrewarpTables& tab = *job.ref_tables;
     const int w = t.width, h = t.height, ow = job.out->width, oh = job.out->height;
     const PartRows p = part_rows(job, part);
-    PipeBuffers& b = pipe_buffers();
-    b.reserve(w, ow);
-    const RowScratch s{b.row.data(), b.row.data() + w, reinterpret_cast<uint32_t*>(b.row.data() + 2 * size_t(w))};
-    const Columns col{b.col_v.data(), b.col_ok.data(), b.col_c.data()};
-    uint32_t* rc = b.rc.data();
-    float* rv = b.rv.data();
-    int32_t* flag = b.multi_flag.data();
+    PipeBuffers b = task_buffers(job);
+    const RowScratch s{b.row, b.row + w, reinterpret_cast<uint32_t*>(b.row + 2 * size_t(w))};
+    const Columns col{b.col_v, b.col_ok, b.col_c};
+    uint32_t* rc = b.rc;
+    float* rv = b.rv;
+    int32_t* flag = b.multi_flag;
     std::fill(col.ok + x0, col.ok + x1, 0);
     RowRange range{std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
     // Row j, drawing into v-rows [ya, yb); returns the texels dropped.
@@ -111,21 +116,21 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
                     range.hi = std::max(range.hi, s.v[x]);
                 }
         std::memset(rc, 0, size_t(ow) * 4);
-        b.multi.clear();
+        b.n_multi = 0;
         // Every pixel written has alpha 255: one written before in this row marks a column with more than one.
         WarpRow(s.pos, s.color, s.v, w, job.split_u, ow, [&](int x, uint32_t c, float v) {
             if ((rc[x] >> 24) && !flag[x]) {
                 flag[x] = 1;
-                b.multi.push_back(x);
+                b.multi[b.n_multi++] = x;
             }
             rc[x] = c;
             rv[x] = v;
         });
         ColumnStep<true>(col, ColumnTarget{pixels, ow, oh, ya, yb}, rc, rv, flag, x0, x1);
-        if (b.multi.empty()) return dropped;
+        if (b.n_multi == 0) return dropped;
         // The columns with more than one pixel: every pixel in the row warp's order, each from the column's
         // sample of the previous row (the reference's row_put); the column keeps the last finite one.
-        for (int x : b.multi) b.m_ok[size_t(x)] = 0;
+        for (int i = 0; i < b.n_multi; ++i) b.m_ok[b.multi[i]] = 0;
         WarpRow(s.pos, s.color, s.v, w, job.split_u, ow, [&](int x, uint32_t c, float v) {
             if (!flag[x] || x < x0 || x >= x1 || !std::isfinite(v)) return;
             auto put = [&](int y, Rgba8 cc, float) {
@@ -135,16 +140,17 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
                 raster_span(col.v[x], unpack(col.c[x]), 0.0f, v, unpack(c), 0.0f, oh, put);
             else
                 raster_point(v, unpack(c), 0.0f, oh, put);
-            b.m_v[size_t(x)] = v;
-            b.m_c[size_t(x)] = c;
-            b.m_ok[size_t(x)] = -1;
+            b.m_v[x] = v;
+            b.m_c[x] = c;
+            b.m_ok[x] = -1;
         });
-        for (int x : b.multi) {
+        for (int i = 0; i < b.n_multi; ++i) {
+            const int x = b.multi[i];
             flag[x] = 0;
             if (x < x0 || x >= x1) continue;
-            col.v[x] = b.m_v[size_t(x)];
-            col.c[x] = b.m_c[size_t(x)];
-            col.ok[x] = b.m_ok[size_t(x)];
+            col.v[x] = b.m_v[x];
+            col.c[x] = b.m_c[x];
+            col.ok[x] = b.m_ok[x];
         }
         return dropped;
     };

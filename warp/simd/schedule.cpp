@@ -389,6 +389,10 @@ PrewarpStats fast_pipelined(const simd::PipelinedKernels& kernels, const ReliefT
         job.seam_c[p] = reinterpret_cast<uint32_t*>(ws.mid_color.row(p));
     }
     job.dropped = &dropped;
+    std::atomic<int> next_task{0};
+    if (ws.task_buffers.size() < 2 * 64) ws.task_buffers.resize(2 * 64);  // the most tasks (two parts of 64)
+    job.task_buffers = &ws.task_buffers;
+    job.next_task = &next_task;
     const bool parts[2] = {job.split_v > 0, job.split_v < h};
     for (int p = 0; p < 2; ++p)
         if (!parts[p]) std::fill(job.seam_c[p], job.seam_c[p] + ow, 0u);  // no rows: nothing received
