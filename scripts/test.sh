@@ -2,8 +2,10 @@
 # Installs what is missing, checks the format (scripts/format.sh), builds, and runs the whole test suite: the
 # Release build's tests, then the same tests built with AddressSanitizer and UndefinedBehaviorSanitizer
 # (build-asan/), then the libFuzzer targets of fuzz/ for RTM_FUZZ_SECONDS (default 30) each, side by side
-# (scripts/fuzz.sh, build-fuzz/). Exit status non-zero on any failure. Set RTM_SKIP_SANITIZE=1 to run only the
-# Release suite, RTM_SKIP_FUZZ=1 to leave out the fuzzers.
+# (scripts/fuzz.sh, build-fuzz/). After the Release tests, the pre-warp kernels cross-built for aarch64 and tested
+# under qemu, NEON and SVE (scripts/arm.sh, build-arm/; a few minutes). Exit status non-zero on any failure. Set
+# RTM_SKIP_SANITIZE=1 to run only the Release suite, RTM_SKIP_FUZZ=1 to leave out the fuzzers, RTM_SKIP_ARM=1 to
+# leave out the ARM step.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -16,6 +18,11 @@ echo "== Release build and tests"
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j"$jobs"
 ctest --test-dir build --output-on-failure -j"$jobs"
+
+if [ "${RTM_SKIP_ARM:-0}" != 1 ]; then
+  echo "== aarch64: warp/ cross-built and tested under qemu (scripts/arm.sh)"
+  bash scripts/arm.sh
+fi
 
 if [ "${RTM_SKIP_SANITIZE:-0}" != 1 ]; then
   echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"

@@ -77,6 +77,9 @@ struct PrewarpWorkspace {
     // part's row count last, balanced by the times the chunks took in the last pre-warp (balance_row_chunks). Any
     // increasing bounds from 0 to the row count give the same output; others are replaced by equal chunks.
     std::array<std::vector<int>, 2> chunk_bounds;
+    // The Highway pipelined kernel's buffers (warp/simd/hwy_pipelined.cpp), one per task of a pre-warp (a part, a
+    // column range or a row chunk), whichever thread runs it: grown in the first pre-warps, then reused.
+    std::vector<std::vector<float>> task_buffers;
 };
 
 struct PrewarpStats {

@@ -61,7 +61,9 @@ TEST_F(IsaTest, GenericIsAlwaysSupportedAndLast) {
     EXPECT_THROW(resolve_isa(Isa::neon), std::invalid_argument);
 #elif defined(__aarch64__)
     EXPECT_FALSE(isa_supported(Isa::avx2));
+    EXPECT_FALSE(isa_supported(Isa::avx512));  // not compiled on ARM
     EXPECT_THROW(resolve_isa(Isa::avx2), std::invalid_argument);
+    EXPECT_TRUE(isa_supported(Isa::neon));  // every 64-bit ARM CPU has NEON
 #endif
 }
 
@@ -73,8 +75,16 @@ TEST_F(IsaTest, ForcedHighwayTargetsRestrictTheChoice) {
     EXPECT_TRUE(isa_supported(Isa::sse4));
     hwy::SetSupportedTargetsForTest(0);
     EXPECT_TRUE(isa_supported(Isa::avx2));
+#elif defined(__aarch64__)
+    if (!isa_supported(Isa::sve)) GTEST_SKIP() << "no SVE on this CPU";
+    hwy::SetSupportedTargetsForTest(HWY_NEON);  // as on a CPU with NEON but no SVE
+    EXPECT_FALSE(isa_supported(Isa::sve));
+    EXPECT_TRUE(isa_supported(Isa::neon));
+    EXPECT_EQ(default_isa(), Isa::neon);
+    hwy::SetSupportedTargetsForTest(0);
+    EXPECT_TRUE(isa_supported(Isa::sve));
 #else
-    GTEST_SKIP() << "x86-64 targets";
+    GTEST_SKIP() << "x86-64 and ARM targets";
 #endif
 }
 
@@ -111,8 +121,8 @@ TEST_F(IsaTest, StatsNameTheTargetThatRan) {
         o.exact = true;  // the reference kernels' path on every target
         EXPECT_EQ(prewarp(t, k, o, ws, out).isa, Isa::generic) << isa_name(isa);
         o.exact = false;
-        o.method = Reconstruction::pipelined;  // on avx512 only so far
-        EXPECT_EQ(prewarp(t, k, o, ws, out).isa, isa == Isa::avx512 ? Isa::avx512 : Isa::generic) << isa_name(isa);
+        o.method = Reconstruction::pipelined;
+        EXPECT_EQ(prewarp(t, k, o, ws, out).isa, isa) << isa_name(isa);
     }
     // RTM_ISA chooses for automatic.
     setenv("RTM_ISA", "generic", 1);

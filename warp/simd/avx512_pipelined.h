@@ -16,6 +16,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <vector>
 
 #include "warp/simd/avx512_tables.h"
 #include "warp/simd/kernel_policy.h"
@@ -28,6 +29,7 @@ namespace rtm::fast {
 struct PipelinedJob {
     const ReliefTexture* relief = nullptr;
     const FastTables* tables = nullptr;
+    const PrewarpTables* ref_tables = nullptr;  // the reference's tables (the Highway kernel)
     PrewarpExtent extent;
     int split_u = 0, split_v = 0;  // split_index of the epipole along rows and columns (source)
     int ysplit = 0;                // split of the output rows between the parts (v order)
@@ -39,6 +41,9 @@ struct PipelinedJob {
     bool copy_still = true;                          // PrewarpOptions::copy_still_runs
     KernelChoice reverse = KernelChoice::automatic;  // FastKernelPolicy::pipelined_reverse
     std::atomic<long long>* dropped = nullptr;
+    // The Highway kernel's buffers: each task takes the next of them (next_task counts the tasks of the pre-warp).
+    std::vector<std::vector<float>>* task_buffers = nullptr;
+    std::atomic<int>* next_task = nullptr;
 };
 
 // Part 0 (rows from the bottom up to the split, output v-rows [0, ysplit)) or 1 (rows from the top down to the
@@ -65,3 +70,16 @@ void pipelined_composite(const PipelinedJob& job, const PipelinedChunk* chunks, 
 void pipelined_seam(const PipelinedJob& job);
 
 }  // namespace rtm::fast
+
+namespace rtm::simd {
+
+// The four entry points above of one target's pipelined kernel (the scheduling in warp/simd/schedule.cpp takes
+// them as a set): the hand-written AVX-512 ones, or the Highway ones (warp/simd/hwy_pipelined.h).
+struct PipelinedKernels {
+    void (*part)(const fast::PipelinedJob&, int, int, int) = nullptr;
+    void (*chunk)(const fast::PipelinedJob&, fast::PipelinedChunk&) = nullptr;
+    void (*composite)(const fast::PipelinedJob&, const fast::PipelinedChunk*, int, int, int) = nullptr;
+    void (*seam)(const fast::PipelinedJob&) = nullptr;
+};
+
+}  // namespace rtm::simd

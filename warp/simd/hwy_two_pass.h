@@ -12,8 +12,9 @@
 // contraction: the file is compiled with -ffp-contract=off, and SSE4 has no FMA anyway), and the colour with
 // lerp8's integer formula. Pixels are written lane by lane (Highway 1.0.3 has no masked scatter).
 //
-// Not yet here (docs/BENCHMARKS.md, "SIMD targets"): the pipelined reconstruction (these targets run the reference
-// kernels for it) and vector paths for foldovers and for runs of short spans of mixed orientation.
+// The building blocks (row set-up, row warp, column step) are shared with the Highway pipelined kernel
+// (warp/simd/hwy_row-inl.h, warp/simd/hwy_pipelined.h). Not yet here (docs/BENCHMARKS.md, "SIMD targets"): vector
+// paths for foldovers and for runs of short spans of mixed orientation.
 #pragma once
 
 #include <cstddef>

@@ -19,6 +19,7 @@
 
 #include "warp/simd/avx512_pipelined.h"
 #include "warp/simd/avx512_two_pass.h"
+#include "warp/simd/hwy_pipelined.h"
 #include "warp/simd/hwy_two_pass.h"
 #include "warp/simd/kernel_policy.h"
 #include "warp/line_warp.h"
@@ -85,11 +86,15 @@ void ensure_size(Image2D<T>& img, int w, int h) {
 namespace fast {
 
 bool cpu_supported() {
+#if RTM_AVX512_KERNELS
     __builtin_cpu_init();
     return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
            __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vl") &&
            __builtin_cpu_supports("avx512vbmi") && __builtin_cpu_supports("avx512vnni") &&
            __builtin_cpu_supports("bmi2");
+#else
+    return false;  // not compiled (not x86-64: warp/CMakeLists.txt)
+#endif
 }
 
 FastTables make_fast_tables(const PrewarpTables& tab) {
@@ -151,7 +156,8 @@ bool fast_prewarp_covers(Isa isa, const ReliefTexture& relief, const PrewarpCoef
                          const PrewarpOptions& options, const PrewarpExtent& e, const Image2D<uint8_t>* displ_out) {
     if (options.exact || displ_out || options.filter != Filter::point) return false;
     if (isa == Isa::automatic || isa == Isa::generic) return false;
-    if (isa != Isa::avx512 && (options.method != Reconstruction::two_pass || !simd::hwy_two_pass_kernels(isa).vertical))
+    if (isa != Isa::avx512 && !(options.method == Reconstruction::two_pass ? !!simd::hwy_two_pass_kernels(isa).vertical
+                                                                           : !!simd::hwy_pipelined_kernels(isa).part))
         return false;
     if (!relief.breaks.empty() || relief.discontinuity_threshold > 0.0) return false;
     if (k.side == ViewSide::on_plane || relief.width <= 0 || relief.height <= 0) return false;
@@ -263,7 +269,8 @@ bool pipelined_row_chunks(KernelChoice choice, int threads, int np) {
 // Each part (bottom, top) that has rows split into column ranges, so that all threads have work even when the
 // epipole is outside the relief and one part holds every row. A range repeats the horizontal warp of every row of
 // its part but rasterizes only its columns.
-void pipelined_in_column_ranges(const fast::PipelinedJob& job, int threads_option, int threads) {
+void pipelined_in_column_ranges(const simd::PipelinedKernels& kernels, const fast::PipelinedJob& job,
+                                int threads_option, int threads) {
     const int h = job.relief->height, ow = job.out->width;
     const bool parts[2] = {job.split_v > 0, job.split_v < h};
     const int np = int(parts[0]) + int(parts[1]);
@@ -283,7 +290,7 @@ void pipelined_in_column_ranges(const fast::PipelinedJob& job, int threads_optio
         }
     }
     run_ranges(threads_option, nt, 1, [&](int t0, int t1) {
-        for (int t = t0; t < t1; ++t) fast::pipelined_part(job, tasks[t].part, tasks[t].x0, tasks[t].x1);
+        for (int t = t0; t < t1; ++t) kernels.part(job, tasks[t].part, tasks[t].x0, tasks[t].x1);
     });
 }
 
@@ -300,7 +307,8 @@ void pipelined_in_column_ranges(const fast::PipelinedJob& job, int threads_optio
 // --no-reference`, median ms of interleaved rounds, equal rows -> balanced; a busy host, 1024^2 7 rounds, 256^2 9):
 // 1024^2 bumps 1.89 -> 1.65, bricks 1.96 -> 1.95, ridges 4.40 -> 4.09; 256^2 bumps 0.078 either way, bricks 0.161
 // -> 0.149, ridges 0.263 -> 0.255.
-void pipelined_in_row_chunks(const fast::PipelinedJob& job, int threads_option, int threads, PrewarpWorkspace& ws) {
+void pipelined_in_row_chunks(const simd::PipelinedKernels& kernels, const fast::PipelinedJob& job, int threads_option,
+                             int threads, PrewarpWorkspace& ws) {
     const int h = job.relief->height, ow = job.out->width, oh = job.out->height;
     const int rows[2] = {job.split_v, h - job.split_v};
     int per_part[2], scratch = 0;
@@ -339,7 +347,7 @@ void pipelined_in_row_chunks(const fast::PipelinedJob& job, int threads_option, 
     run_ranges(threads_option, nc, 1, [&](int t0, int t1) {
         for (int t = t0; t < t1; ++t) {
             const auto start = std::chrono::steady_clock::now();
-            fast::pipelined_chunk(job, chunks[t]);
+            kernels.chunk(job, chunks[t]);
             chunk_ms[t] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         }
     });
@@ -350,12 +358,13 @@ void pipelined_in_row_chunks(const fast::PipelinedJob& job, int threads_option, 
         if (chunks[i].ylo < chunks[i].yhi) y0 = std::min(y0, chunks[i].ylo), y1 = std::max(y1, chunks[i].yhi);
     if (y0 < y1)
         run_ranges(threads_option, y1 - y0, 16,
-                   [&](int a, int b) { fast::pipelined_composite(job, chunks, nc, y0 + a, y0 + b); });
+                   [&](int a, int b) { kernels.composite(job, chunks, nc, y0 + a, y0 + b); });
     ws.chunk_scratch_dirty = false;
 }
 
-PrewarpStats fast_pipelined(const ReliefTexture& relief, const PrewarpCoefficients& k, const PrewarpOptions& options,
-                            const PrewarpExtent& e, const fast::FastTables& tables, PrewarpWorkspace& ws,
+PrewarpStats fast_pipelined(const simd::PipelinedKernels& kernels, const ReliefTexture& relief,
+                            const PrewarpCoefficients& k, const PrewarpOptions& options, const PrewarpExtent& e,
+                            const PrewarpTables& ref_tables, const fast::FastTables& tables, PrewarpWorkspace& ws,
                             ImageRGBA8& out) {
     const int w = relief.width, h = relief.height;
     const int ow = w + e.left + e.right, oh = h + e.bottom + e.top;
@@ -369,6 +378,7 @@ PrewarpStats fast_pipelined(const ReliefTexture& relief, const PrewarpCoefficien
     job.copy_still = options.copy_still_runs;
     job.reverse = simd::testing::kernel_policy().pipelined_reverse;
     job.tables = &tables;
+    job.ref_tables = &ref_tables;
     job.extent = e;
     job.split_u = split_index(k.epipole_u, w);
     job.split_v = split_index(k.epipole_v, h);
@@ -379,16 +389,20 @@ PrewarpStats fast_pipelined(const ReliefTexture& relief, const PrewarpCoefficien
         job.seam_c[p] = reinterpret_cast<uint32_t*>(ws.mid_color.row(p));
     }
     job.dropped = &dropped;
+    std::atomic<int> next_task{0};
+    if (ws.task_buffers.size() < 2 * 64) ws.task_buffers.resize(2 * 64);  // the most tasks (two parts of 64)
+    job.task_buffers = &ws.task_buffers;
+    job.next_task = &next_task;
     const bool parts[2] = {job.split_v > 0, job.split_v < h};
     for (int p = 0; p < 2; ++p)
         if (!parts[p]) std::fill(job.seam_c[p], job.seam_c[p] + ow, 0u);  // no rows: nothing received
     const int np = int(parts[0]) + int(parts[1]);
     const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
     if (pipelined_row_chunks(simd::testing::kernel_policy().pipelined_row_chunks, threads, np))
-        pipelined_in_row_chunks(job, options.threads, threads, ws);
+        pipelined_in_row_chunks(kernels, job, options.threads, threads, ws);
     else
-        pipelined_in_column_ranges(job, options.threads, threads);
-    fast::pipelined_seam(job);
+        pipelined_in_column_ranges(kernels, job, options.threads, threads);
+    kernels.seam(job);
     return {(long long)w * h, dropped.load(), e};
 }
 
@@ -400,12 +414,19 @@ PrewarpStats fast_prewarp(Isa isa, const ReliefTexture& relief, const PrewarpCoe
     const PrewarpTables ref_tables = PrewarpTables::build(k, relief.quant);
     PrewarpStats stats;
     if (isa == Isa::avx512) {
+#if RTM_AVX512_KERNELS
         const fast::FastTables tables = fast::make_fast_tables(ref_tables);
         if (options.method == Reconstruction::pipelined)
-            stats = fast_pipelined(relief, k, options, e, tables, ws, out);
+            stats = fast_pipelined({&fast::pipelined_part, &fast::pipelined_chunk, &fast::pipelined_composite,
+                                    &fast::pipelined_seam},
+                                   relief, k, options, e, ref_tables, tables, ws, out);
         else
             stats = fast_two_pass({&fast::horizontal_steps, &fast::vertical_steps}, relief, k, options, e, ref_tables,
                                   tables, ws, out);
+#endif
+    } else if (options.method == Reconstruction::pipelined) {
+        stats = fast_pipelined(simd::hwy_pipelined_kernels(isa), relief, k, options, e, ref_tables, fast::FastTables{},
+                               ws, out);
     } else {
         stats = fast_two_pass(simd::hwy_two_pass_kernels(isa), relief, k, options, e, ref_tables, fast::FastTables{},
                               ws, out);

@@ -4,9 +4,9 @@
 //
 // Covered: the lookup-table path (not --exact) with the point filter, without depth output (displ_out), without
 // surface-discontinuity marks or threshold, margins (keep_outliers) or not; on the avx512 target (a CPU with AVX-512
-// F, BW, DQ, VL, VBMI, VNNI and BMI2: the hand-written kernels warp/simd/avx512_*) both reconstructions, on the
-// Highway targets (avx2, sse4, neon, sve: warp/simd/hwy_two_pass.h) the two-pass one. Everything else stays with
-// the generic implementation, which remains the reference.
+// F, BW, DQ, VL, VBMI, VNNI and BMI2: the hand-written kernels warp/simd/avx512_*) and on the Highway targets (avx2,
+// sse4, neon, sve: warp/simd/hwy_two_pass.h, warp/simd/hwy_pipelined.h), both reconstructions. Everything else
+// stays with the generic implementation, which remains the reference.
 //
 // Still texels (PrewarpOptions::copy_still_runs): the row warps copy runs of 16 spans one pixel wide on pixel
 // centres (what zero displacement gives) instead of interpolating them; with the option off they interpolate them

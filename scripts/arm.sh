@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# The pre-warp kernels on 64-bit ARM, without an ARM machine: installs what is missing (run as root, or with sudo
+# available), cross-builds warp/ and its tests for aarch64 (cmake/aarch64-linux-gnu.cmake, RTM_WARP_ONLY: build-arm/)
+# and runs the tests of tests/warp that depend on the target under qemu-user, twice: on a CPU with NEON only
+# (QEMU_CPU=cortex-a72: the neon target) and on one with SVE and SVE2 (QEMU_CPU=max,sve=on: the sve and neon
+# targets, each in turn), every SIMD target's output (both reconstructions) against the reference kernels' bit for
+# bit. Bounded to a few
+# minutes: the tests run are RTM_ARM_TESTS (a GoogleTest filter; default the SIMD kernels' and the target choice's
+# tests, '*' for all of tests/warp, which takes far longer emulated), and the random sweeps of
+# tests/warp/fast_kernels_test.cpp are cut to their first RTM_SWEEP_CASES cases (default 200 here, of 2000 and 3000
+# natively; the 8 large reliefs to 1). Under qemu every instruction is emulated: the times it prints are not
+# measurements of ARM speed.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+# Packages: the cross compiler, the arm64 builds of Highway, oneTBB and GoogleTest (multiarch; glm is header-only
+# and architecture-independent), and qemu-user.
+packages=(g++-aarch64-linux-gnu libhwy-dev:arm64 libtbb-dev:arm64 libgtest-dev:arm64 libglm-dev qemu-user cmake
+          ninja-build)
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+if ! dpkg --print-foreign-architectures | grep -qx arm64; then
+  echo "arm: adding the arm64 architecture to dpkg"
+  $SUDO dpkg --add-architecture arm64
+  need_update=1
+fi
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "arm: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get -o DPkg::Lock::Timeout=600 update -qq
+  $SUDO apt-get -o DPkg::Lock::Timeout=600 install -y -qq --no-install-recommends "${missing[@]}"
+elif [ "${need_update:-0}" = 1 ]; then
+  $SUDO apt-get -o DPkg::Lock::Timeout=600 update -qq
+fi
+
+echo "== aarch64 cross build of warp/ and tests/warp (build-arm/)"
+launcher=()
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+cmake -S . -B build-arm -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_TOOLCHAIN_FILE=cmake/aarch64-linux-gnu.cmake \
+  -DRTM_WARP_ONLY=ON "${launcher[@]}" >/dev/null
+cmake --build build-arm -j"$(nproc)" --target warp_tests
+
+# The arm64 loader and C library of multiarch (libc6:arm64), not QEMU_LD_PREFIX=/usr/aarch64-linux-gnu: see
+# cmake/aarch64-linux-gnu.cmake.
+unset QEMU_LD_PREFIX
+export RTM_SWEEP_CASES=${RTM_SWEEP_CASES:-200}
+filter=${RTM_ARM_TESTS:-'*FastKernels*:IsaTest.*:FastPrewarpCovers.*'}
+# The CPU without SVE runs the target choice's tests and the main sweep (the neon target chosen by dispatch); the
+# one with SVE everything in the filter, for both targets.
+for cpu in cortex-a72 max,sve=on; do
+  f=$filter
+  [ "$cpu" = cortex-a72 ] && [ -z "${RTM_ARM_TESTS:-}" ] && f='IsaTest.*:*FastKernels.MatchTheReference*'
+  echo "== tests/warp ($f) under qemu-aarch64, QEMU_CPU=$cpu, RTM_SWEEP_CASES=$RTM_SWEEP_CASES"
+  start=$SECONDS
+  QEMU_CPU=$cpu qemu-aarch64 build-arm/bin/warp_tests --gtest_brief=1 --gtest_filter="$f"
+  echo "arm: QEMU_CPU=$cpu passed in $((SECONDS - start)) s (emulated: not a speed measurement)"
+done
