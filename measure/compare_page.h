@@ -15,8 +15,8 @@
 namespace rtm {
 
 struct ComparePageInput {
-    std::string out_dir;      // index.html is written here; image paths in `results` are relative to it
-    nlohmann::json results;   // the results.json object (fields in docs/COMPARE.md)
+    std::string out_dir;     // index.html is written here; image paths in `results` are relative to it
+    nlohmann::json results;  // the results.json object (fields in docs/COMPARE.md)
     // The relief and the camera of the step-by-step section (a relief quad of the run, an oblique view); when
     // absent the page has no such section.
     ReliefQuad* steps_relief = nullptr;
