@@ -1,7 +1,7 @@
 // The frame time of a scene along its camera path (the relief town of docs/SCENES.md), for the scene sections of
 // `rtm bench` (the frame with all skips against none, and where the frame's time goes) and `rtm bench-skips` (what
-// each skip is worth on the path). Each variant draws the path with a freshly loaded scene: one pass to warm up,
-// then one timed pass (the skips that keep state, such as reuse-prewarp, see the path in order).
+// each skip is worth on the path). Each variant draws the path with a freshly loaded scene: two frames to warm up,
+// then one timed pass over the path (the skips that keep state, such as reuse-prewarp, see the path in order).
 //
 // Benchmarks are programs, not tests: nothing here asserts a time.
 #pragma once
