@@ -32,8 +32,8 @@ struct RenderArgs {
 };
 
 void run_render(const RenderArgs& a) {
-    // --level: 0 unless given, for a scene auto (each quad at the level its screen area asks for).
-    const std::string level = !a.level.empty() ? a.level : !a.scene.empty() ? "auto" : "0";
+    // --level: 0 unless given (auto: in a scene each quad at the level its screen area asks for).
+    const std::string level = !a.level.empty() ? a.level : "0";
     if (!a.object.empty()) {
         if (!a.relief.empty() || !a.scene.empty())
             throw UsageError("render takes one of --relief, --object and --scene");
@@ -177,7 +177,7 @@ void add_render_command(CLI::App& app) {
     sub->add_flag("--exact", a->exact, "Pre-warp with unquantized displacement and double-precision coordinates");
     sub->add_option("--filter", a->filter, "Pre-warp resampling: point or coverage (Fant-style, two-pass only)")
         ->capture_default_str();
-    sub->add_option("--level", a->level, "Relief texture pyramid level N or auto (default 0; a scene: auto, per quad)");
+    sub->add_option("--level", a->level, "Pyramid level N or auto (default 0; auto: per quad in a scene)");
     sub->add_option("--out", a->out, "Output image");
     sub->add_option("--json", a->json, "Write stage times as JSON");
     sub->add_option("--repeat", a->repeat, "Render N frames after one warm-up, for timing")->capture_default_str();

@@ -14,9 +14,9 @@ cat >"$T/s.scene.json" <<JSON
                                           { "eye": [1.5, 0.3, 2], "look_at": [1, 0, 0], "fov": 50 } ] } }
 JSON
 S=$T/s.scene.json
-expect_ok render --scene "$S" --size 96x64 --out "$T/default.png" --json "$T/default.json" --level 0
-# The default level is auto, per quad: 256^2 reliefs in a 96x64 view are pre-warped at coarser levels.
-expect_ok render --scene "$S" --size 96x64 --json "$T/auto.json"
+expect_ok render --scene "$S" --size 96x64 --out "$T/default.png" --json "$T/default.json"
+# --level auto, per quad: 256^2 reliefs in a 96x64 view are pre-warped at coarser levels.
+expect_ok render --scene "$S" --size 96x64 --json "$T/auto.json" --level auto
 expect_ok render --scene "$S" --orbit 20,10,2 --size 96x64 --method flat --out "$T/flat.png"
 expect_ok render --scene "$S" --camera-path 1 --size 96x64 --method micromesh --out "$T/truth.png"
 expect_ok render --scene "$S" --size 96x64 --frames "$T/frames" --json "$T/frames.json"
