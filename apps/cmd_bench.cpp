@@ -1,12 +1,15 @@
 // rtm bench: pre-warp throughput against the memory bound, and the paper's Table 1 (measure/bench.h). Progress on
 // stderr, a Markdown report on stdout, JSON with --json FILE.
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
 
 #include "cli_common.h"
+#include "formats/image_io.h"
 #include "measure/bench.h"
+#include "measure/scene_bench.h"
 #include "objects/render_method.h"
 
 namespace rtm::cli {
@@ -16,6 +19,8 @@ namespace {
 struct BenchArgs {
     std::string json, sizes, reliefs, threads, methods, isa;
     bool full = false, no_exact = false, no_reference = false, no_table1 = false, no_objects = false;
+    std::string scene = "media/town.scene.json";
+    bool scene_given = false, no_scene = false, scene_only = false;
     double min_time = 0;
     bool min_time_given = false;
 };
@@ -67,9 +72,27 @@ void run_bench_command(const BenchArgs& a) {
     c.table1 = !a.no_table1;
     c.objects = !a.no_objects;
     c.progress = [](const std::string& line) { std::fprintf(stderr, "bench: %s\n", line.c_str()); };
-    const BenchResult r = run_bench(c);
-    if (!a.json.empty()) write_json(a.json, bench_json(r));
-    std::printf("%s", bench_markdown(r).c_str());
+    if (a.no_scene && (a.scene_only || a.scene_given))
+        throw UsageError("--no-scene contradicts --scene and --scene-only");
+    // The scene section runs with the other OpenGL frames (Table 1) when the default scene is at hand, or on request.
+    const bool with_scene = !a.no_scene &&
+                            (a.scene_given || a.scene_only || (!a.no_table1 && std::filesystem::exists(a.scene)));
+    if (a.scene_only && !with_scene) throw IoError(a.scene + ": no such scene (give --scene FILE)");
+    const BenchResult r = a.scene_only ? BenchResult{} : run_bench(c);
+    nlohmann::json j = a.scene_only ? nlohmann::json::object() : bench_json(r);
+    std::string md = a.scene_only ? std::string() : bench_markdown(r);
+    if (with_scene) {
+        md += "\n### A scene along its camera path\n\n";
+        const SceneBench sb = bench_scene(a.scene, 640, 480, scene_frame_variants(), c.progress);
+        md += scene_bench_markdown(sb);
+        j["command"] = "bench";
+        j["scene"] = scene_bench_json(sb);
+    } else if (!a.no_scene && !a.no_table1) {
+        md += "\n### A scene along its camera path\n\nSkipped: " + a.scene +
+              " not found (run from the source folder or give --scene FILE).\n";
+    }
+    if (!a.json.empty()) write_json(a.json, j);
+    std::printf("%s", md.c_str());
 }
 
 }  // namespace
@@ -92,6 +115,11 @@ void add_bench_command(CLI::App& app) {
     sub->add_flag("--no-reference", a->no_reference, "Skip the generic reference kernels");
     sub->add_flag("--no-table1", a->no_table1, "Skip the OpenGL frame (Table 1) and the objects beside it");
     sub->add_flag("--no-objects", a->no_objects, "Skip the six-face objects' frames beside Table 1");
+    sub->add_option("--scene", a->scene,
+                    "Scene whose camera path is timed at 640x480 (default media/town.scene.json, when present)")
+        ->each([a](const std::string&) { a->scene_given = true; });
+    sub->add_flag("--no-scene", a->no_scene, "Skip the scene's camera path");
+    sub->add_flag("--scene-only", a->scene_only, "Only the scene's camera path");
     sub->callback([a] { run_bench_command(*a); });
 }
 

@@ -24,7 +24,7 @@ namespace rtm::cli {
 namespace {
 
 struct RenderArgs {
-    std::string relief, object, scene, mesh, frames_dir, out, json, method = "two-pass", level = "0", filter = "point";
+    std::string relief, object, scene, mesh, frames_dir, out, json, method = "two-pass", level, filter = "point";
     CameraArgs camera;
     bool exact = false, progress = false, no_sidewalls = false, depth_correction = false, no_skips = false;
     bool method_given = false;
@@ -34,12 +34,14 @@ struct RenderArgs {
 
 void run_render(const RenderArgs& a) {
     if (a.output_scale != 1 && a.relief.empty()) throw UsageError("--output-scale applies to --relief only");
+    // --level: 0 unless given (auto: in a scene each quad at the level its screen area asks for).
+    const std::string level = !a.level.empty() ? a.level : "0";
     if (!a.object.empty()) {
         if (!a.relief.empty() || !a.scene.empty())
             throw UsageError("render takes one of --relief, --object and --scene");
         if (!(a.discontinuity >= 0 || a.discontinuity == -1) || !std::isfinite(a.discontinuity))
             throw UsageError("--discontinuity: expected a threshold >= 0, found " + std::to_string(a.discontinuity));
-        return run_render_object({a.object, a.out, a.json, a.method, a.level, a.filter, a.camera, a.exact,
+        return run_render_object({a.object, a.out, a.json, a.method, level, a.filter, a.camera, a.exact,
                                   a.depth_correction, a.no_skips, a.repeat, a.threads, a.discontinuity});
     }
     if (!a.scene.empty()) {
@@ -50,6 +52,7 @@ void run_render(const RenderArgs& a) {
         s.json = a.json;
         s.method = a.method;
         s.frames_dir = a.frames_dir;
+        s.level = level;
         s.camera = a.camera;
         s.path_frame = a.path_frame;
         s.no_skips = a.no_skips;
@@ -69,7 +72,7 @@ void run_render(const RenderArgs& a) {
     }
     const Filter filter = parse_filter(a.filter, method == RenderMethod::pipelined ? Reconstruction::pipelined
                                                                                    : Reconstruction::two_pass);
-    const int level = parse_level(a.level);
+    const int level_n = parse_level(level);
     if (!(a.discontinuity >= 0 || a.discontinuity == -1) || !std::isfinite(a.discontinuity))
         throw UsageError("--discontinuity: expected a threshold >= 0, found " + std::to_string(a.discontinuity));
     if (a.repeat < 1) throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
@@ -104,7 +107,7 @@ void run_render(const RenderArgs& a) {
     rs.prewarp = opt;
     rs.draw.depth_correction = a.depth_correction;
     rs.draw.skips = !a.no_skips;
-    rs.draw.level = level;
+    rs.draw.level = level_n;
     if (a.progress || isatty(2))
         rs.progress = [](double f) { std::fprintf(stderr, "\r%s %5.1f%%", "raycast", 100 * f); };
     std::unique_ptr<GlContext> ctx;
@@ -183,7 +186,7 @@ void add_render_command(CLI::App& app) {
     sub->add_flag("--exact", a->exact, "Pre-warp with unquantized displacement and double-precision coordinates");
     sub->add_option("--filter", a->filter, "Pre-warp resampling: point or coverage (Fant-style, two-pass only)")
         ->capture_default_str();
-    sub->add_option("--level", a->level, "Relief texture pyramid level N or auto")->capture_default_str();
+    sub->add_option("--level", a->level, "Pyramid level N or auto (default 0; auto: per quad in a scene)");
     sub->add_option("--output-scale", a->output_scale,
                     "Pre-warp into a texture N times the relief's size in each direction (1 to 8; --relief only)")
         ->capture_default_str();

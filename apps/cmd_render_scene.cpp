@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 
 #include <unistd.h>
@@ -16,12 +17,19 @@ namespace rtm::cli {
 namespace {
 
 nlohmann::json report_json(const SceneFrameReport& r) {
+    std::map<std::string, int> by_level;  // drawn quads per pyramid level
+    for (size_t q = 0; q < r.quad_levels.size(); ++q) {
+        bool hidden = false;
+        for (const std::string& s : r.quad_skips[q]) hidden |= s == kSkipBackFacing || s == kSkipOutsideFrustum;
+        if (!hidden) ++by_level[std::to_string(r.quad_levels[q])];
+    }
     return {{"quads", r.quads},
             {"quads_drawn", r.drawn},
             {"quads_prewarped", r.prewarped},
             {"quads_skipped", r.skips},
             {"texels_warped", r.texels_warped},
             {"object_faces_drawn", r.object_faces_drawn},
+            {"quads_by_level", by_level},
             {"prewarp_ms", r.times.prewarp_ms},
             {"upload_ms", r.times.upload_ms},
             {"texture_map_ms", r.times.texture_map_ms},
@@ -47,6 +55,7 @@ void run_render_scene(const SceneRenderArgs& a) {
         throw UsageError("render --scene needs --out or --json");
     if (a.camera.has_eye()) (void)a.camera.resolve(Bounds{glm::dvec3(-1), glm::dvec3(1)});  // syntax, before reading
     if (!a.json.empty()) check_output_file(a.json, "--json");
+    const int level = parse_level(a.level);
 
     Scene scene = Scene::load(a.scene);
     const SceneManifest& m = scene.manifest();
@@ -88,7 +97,8 @@ void run_render_scene(const SceneRenderArgs& a) {
     DrawOptions draw;
     draw.depth_correction = true;  // reliefs and polygons occlude each other where their perceived surfaces do
     draw.skips = !a.no_skips;
-    auto ctx = GlContext::create_offscreen(sized.width, sized.height);
+    draw.level = level;
+    auto ctx = GlContext::create_offscreen(sized.width, sized.height, {.pin_llvmpipe_threads = true});
     Renderer renderer;
     nlohmann::json frames = nlohmann::json::array();
     std::vector<double> t_pre, t_up, t_map, t_total;
@@ -121,8 +131,8 @@ void run_render_scene(const SceneRenderArgs& a) {
                             {"size", {sized.width, sized.height}},
                             {"frames", frames}};
         if (frames.size() == 1)  // a single frame's counts also at the top level
-            for (const char* k :
-                 {"quads", "quads_drawn", "quads_prewarped", "quads_skipped", "texels_warped", "object_faces_drawn"})
+            for (const char* k : {"quads", "quads_drawn", "quads_prewarped", "quads_skipped", "texels_warped",
+                                  "object_faces_drawn", "quads_by_level"})
                 j[k] = frames[0][k];
         // Stage times over the frames (min, median, ...), as rtm render writes them for a relief.
         j["prewarp_ms"] = timing_json(t_pre);

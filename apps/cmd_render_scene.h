@@ -10,6 +10,7 @@ namespace rtm::cli {
 
 struct SceneRenderArgs {
     std::string scene, out, json, method, frames_dir;
+    std::string level = "0";  // --level N or auto (per quad, by its screen area)
     CameraArgs camera;
     int path_frame = -1;  // --camera-path K
     bool no_skips = false, no_sidewalls = false;

@@ -77,7 +77,7 @@ FramePlan plan_frame(const Camera& cam, RenderMethod method, const PrewarpOption
         throw std::invalid_argument("plan_frame: method " + to_string(method) + " is not a texture method");
     FramePlan p;
     // Nothing of the relief can be on screen.
-    if (d.skips && outside_frustum(cam, relief_bounds(relief))) {
+    if (d.skips && d.cull && outside_frustum(cam, relief_bounds(relief))) {
         p.skips.push_back(kSkipOutsideFrustum);
         return p;
     }
@@ -89,7 +89,7 @@ FramePlan plan_frame(const Camera& cam, RenderMethod method, const PrewarpOption
         return p;
     }
     p.draw = compute_coefficients(relief.geometry, cam.eye).side == ViewSide::front;
-    if (!p.draw && d.skips) {  // the quad faces away: not pre-warped, not drawn (paper section 6)
+    if (!p.draw && d.skips && d.cull) {  // the quad faces away: not pre-warped, not drawn (paper section 6)
         p.skips.push_back(kSkipBackFacing);
         return p;
     }

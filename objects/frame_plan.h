@@ -25,6 +25,10 @@ struct DrawOptions {
     bool skips = true;                // enable the skips below (off: always pre-warp and upload everything)
     double subpixel_parallax = 0.25;  // pixels: below this largest parallax, draw as a plain texture (far away)
     double reuse_tolerance = 0.05;    // texels: below this largest motion since the last pre-warp, reuse it
+    // With skips, each of these may be switched off alone (to measure what it saves, rtm bench-skips): cull is
+    // outside-frustum and back-facing, partial_upload the partial-upload skip (plan_upload).
+    bool cull = true;
+    bool partial_upload = true;
 };
 
 // Skip names, reported in --json "skips".
@@ -103,7 +107,7 @@ int pyramid_levels(int width, int height);
 int auto_level(const Camera& cam, const ReliefTexture& relief);
 
 // The frame's plan. `relief` is level 0; `method` is flat, two_pass or pipelined (else std::invalid_argument).
-// The rules, in order (each only with d.skips, except the level choice):
+// The rules, in order (each only with d.skips, except the level choice; the first and third also with d.cull):
 //   outside-frustum: the relief's bounds lie outside the view frustum -> nothing.
 //   inside-slab-micromesh: a warping method and the eye inside the relief's slab -> micromesh.
 //   back-facing: the eye sees the back of the quad -> nothing (skips off: the work is done, draw = false).

@@ -99,24 +99,60 @@ double ReliefQuad::prewarp(const glm::dvec3& eye, const PrewarpOptions& options,
 void ReliefQuad::draw(Renderer& renderer, const Camera& cam, RenderMethod method, const PrewarpOptions& options,
                       StageTimes& times, const DrawOptions& d, DrawReport* report) {
     const auto t_start = Clock::now();
-    const FramePlan plan = plan_frame(
-        cam, method, options, d, relief_, [this](int i) -> const ReliefTexture& { return level_texture(i); },
-        last_prewarp_);
+    const FramePlan plan = plan_draw(cam, method, options, d);
     DrawReport rep;
     rep.level = plan.level;
     rep.skips = plan.skips;
-    auto done = [&] {
-        times.total_ms += ms_since(t_start);
-        if (report) *report = rep;
-    };
+    if (plan.action == FrameAction::prewarp) prewarp_planned(plan, d, times, rep);
+    present(renderer, cam, plan, d, times, rep, true);
+    times.total_ms += ms_since(t_start);
+    if (report) *report = rep;
+}
+
+FramePlan ReliefQuad::plan_draw(const Camera& cam, RenderMethod method, const PrewarpOptions& options,
+                                const DrawOptions& d) {
+    return plan_frame(
+        cam, method, options, d, relief_, [this](int i) -> const ReliefTexture& { return level_texture(i); },
+        last_prewarp_);
+}
+
+void ReliefQuad::prewarp_planned(const FramePlan& plan, const DrawOptions& d, StageTimes& times, DrawReport& rep) {
+    if (plan.action != FrameAction::prewarp)
+        throw std::logic_error("ReliefQuad::prewarp_planned: the plan is " + plan.to_string() + ", not a pre-warp");
+    const int lvl = plan.level;
+    const ReliefTexture& t = level_texture(lvl);
+    const PrewarpOptions& o = plan.prewarp;
+    const auto t0 = Clock::now();
+    stats_ = rtm::prewarp(t, plan.k, o, workspace_, prewarped_, d.depth_correction ? &displ_ : nullptr);
+    ++prewarp_version_;
+    // Coverage alpha: the texture-mapping stage expects premultiplied colour (it divides the filtered colour by the
+    // filtered alpha); point-sampled output has alpha 0 or 255 only.
+    if (o.filter == Filter::coverage) premultiply_alpha(prewarped_);
+    if (o.keep_outliers) {
+        const PrewarpExtent& e = stats_.extent;
+        wall_content_ = margin_content(prewarped_, e.left, e.right, e.bottom, e.top);
+    }
+    times.prewarp_ms += ms_since(t0);
+    last_prewarp_ = {true, plan.setup, plan.k};
+    // The still texels are a property of the level, counted once.
+    const long long still = o.copy_still_runs ? still_texels(lvl, o.exact) : 0;
+    if (zero_runs_fired(stats_, still)) {
+        rep.skips.push_back(kSkipZeroRuns);
+        rep.still_texels = still;
+        rep.still_copied = stats_.still_copied;
+    }
+}
+
+void ReliefQuad::present(Renderer& renderer, const Camera& cam, const FramePlan& plan, const DrawOptions& d,
+                         StageTimes& times, DrawReport& rep, bool finish_each) {
     if (!texture_) texture_ = std::make_unique<GlTexture>();
-    if (plan.action == FrameAction::nothing) return done();
+    if (plan.action == FrameAction::nothing) return;
     if (plan.action == FrameAction::micromesh) {
         const auto t0 = Clock::now();
         renderer.draw_mesh(cam, micromesh().vertices, micromesh().indices);
-        renderer.finish();
+        if (finish_each) renderer.finish();
         times.texture_map_ms += ms_since(t0);
-        return done();
+        return;
     }
 
     const int lvl = plan.level;
@@ -129,28 +165,6 @@ void ReliefQuad::draw(Renderer& renderer, const Camera& cam, RenderMethod method
     rs.height = t.height;
 
     const bool warped = plan.action == FrameAction::prewarp || plan.action == FrameAction::reuse;
-    if (plan.action == FrameAction::prewarp) {
-        const PrewarpOptions& o = plan.prewarp;
-        const auto t0 = Clock::now();
-        stats_ = rtm::prewarp(t, plan.k, o, workspace_, prewarped_, d.depth_correction ? &displ_ : nullptr);
-        ++prewarp_version_;
-        // Coverage alpha: the texture-mapping stage expects premultiplied colour (it divides the filtered colour by
-        // the filtered alpha); point-sampled output has alpha 0 or 255 only.
-        if (o.filter == Filter::coverage) premultiply_alpha(prewarped_);
-        if (o.keep_outliers) {
-            const PrewarpExtent& e = stats_.extent;
-            wall_content_ = margin_content(prewarped_, e.left, e.right, e.bottom, e.top);
-        }
-        times.prewarp_ms += ms_since(t0);
-        last_prewarp_ = {true, plan.setup, plan.k};
-        // The still texels are a property of the level, counted once.
-        const long long still = o.copy_still_runs ? still_texels(lvl, o.exact) : 0;
-        if (zero_runs_fired(stats_, still)) {
-            rep.skips.push_back(kSkipZeroRuns);
-            rep.still_texels = still;
-            rep.still_copied = stats_.still_copied;
-        }
-    }
     if (warped) {
         const PrewarpExtent& e = stats_.extent;
         rs.margin_left = e.left;
@@ -167,7 +181,7 @@ void ReliefQuad::draw(Renderer& renderer, const Camera& cam, RenderMethod method
         flat_level_ = lvl;
     }
     const ImageRGBA8& img = warped ? prewarped_ : flat_;
-    if (!plan.draw) return done();  // skips disabled: the work was done to be measured, nothing is drawn
+    if (!plan.draw) return;  // skips disabled: the work was done to be measured, nothing is drawn
 
     auto t0 = Clock::now();
     // Upload only the pixels that can differ from the texture already on the GPU (plan_upload): eight corner warps
@@ -189,7 +203,7 @@ void ReliefQuad::draw(Renderer& renderer, const Camera& cam, RenderMethod method
     now.setup = last_prewarp_.setup;
     now.extent = stats_.extent;
     if (warped) now.moving = moving_footprint(t, moving(lvl), last_prewarp_.k, stats_.extent);
-    const UploadPlan up = plan_upload(now, uploaded_, d.skips);
+    const UploadPlan up = plan_upload(now, uploaded_, d.skips && d.partial_upload);
     if (up.partial) {
         rep.skips.push_back(kSkipPartialUpload);
         if (!up.rect.empty()) texture_->upload_rect(img, up.rect.x, up.rect.row, up.rect.w, up.rect.h);
@@ -200,20 +214,21 @@ void ReliefQuad::draw(Renderer& renderer, const Camera& cam, RenderMethod method
     uploaded_ = up.next;
     if (warped && d.depth_correction) {
         if (!displ_texture_) displ_texture_ = std::make_unique<GlTexture>();
-        displ_texture_->upload_gray(displ_);
+        // A reused pre-warp's displacements are on the GPU already (skips off: uploaded every frame, to measure).
+        if (displ_version_ != prewarp_version_ || !d.skips) displ_texture_->upload_gray(displ_);
+        displ_version_ = prewarp_version_;
         rs.displ = displ_texture_.get();
         rs.k3 = plan.k.k3;
         rs.dmin = t.quant.min;
         rs.dmax = t.quant.max;
         rs.qs = t.quant.qs;
     }
-    renderer.finish();
+    if (finish_each) renderer.finish();
     times.upload_ms += ms_since(t0);
     t0 = Clock::now();
     renderer.draw_relief(cam, rs, *texture_);
-    renderer.finish();
+    if (finish_each) renderer.finish();
     times.texture_map_ms += ms_since(t0);
-    done();
 }
 
 }  // namespace rtm

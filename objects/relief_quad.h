@@ -72,6 +72,18 @@ public:
     void draw(Renderer& renderer, const Camera& cam, RenderMethod method, const PrewarpOptions& options,
               StageTimes& times, const DrawOptions& draw = {}, DrawReport* report = nullptr);
 
+    // draw() in its three steps, for a frame of many quads (objects/quad_frame.h): plan_draw decides (pure but for
+    // building the pyramid level it needs), prewarp_planned does the CPU work of a FrameAction::prewarp plan and
+    // touches nothing but this quad (so different quads may run it at the same time, on any thread), present
+    // uploads and texture-maps (OpenGL, the context's thread). `report` starts as the plan's level and skips and
+    // gains those that fire later (zero-displacement-runs, partial-upload), in draw()'s order. With `finish_each`
+    // present forces a finish after the upload and after the draw so each stage's time is its own (draw() does);
+    // without it the stage times are what issuing the calls took, and the caller's one finish holds the rest.
+    FramePlan plan_draw(const Camera& cam, RenderMethod method, const PrewarpOptions& options, const DrawOptions& d);
+    void prewarp_planned(const FramePlan& plan, const DrawOptions& d, StageTimes& times, DrawReport& report);
+    void present(Renderer& renderer, const Camera& cam, const FramePlan& plan, const DrawOptions& d, StageTimes& times,
+                 DrawReport& report, bool finish_each);
+
 private:
     ReliefTexture relief_;
     std::vector<ReliefTexture> pyramid_;  // levels 1.. (level 0 is relief_)
@@ -82,7 +94,8 @@ private:
     PrewarpStats stats_;
     std::vector<PlaneRect> wall_content_;  // margin_content of prewarped_ (side polygons on), made with it
     std::unique_ptr<GlTexture> texture_, displ_texture_;
-    ImageRGBA8 flat_;  // source colours of level flat_level_ as an ordinary texture (alpha 0 where empty)
+    long long displ_version_ = -1;  // the pre-warp whose displacements displ_texture_ holds
+    ImageRGBA8 flat_;               // source colours of level flat_level_ as an ordinary texture (alpha 0 where empty)
     int flat_level_ = -1;
     std::unique_ptr<MicroMesh> micromesh_;
     LastPrewarp last_prewarp_;                // what prewarped_ was made for (reuse when the eye barely moved)

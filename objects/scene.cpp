@@ -39,6 +39,14 @@ Camera key_camera(const SceneCameraKey& key, const Camera& base) {
     return c;
 }
 
+Camera scene_path_camera(const Scene& scene, int k, const Camera& base) {
+    const SceneManifest& m = scene.manifest();
+    Camera c = key_camera(camera_path_frame(m.path_keys, k, m.path_frames), base);
+    const Bounds b = scene.bounds();
+    c.fit_clip_planes(b.centre(), b.radius());
+    return c;
+}
+
 Scene Scene::load(const std::string& manifest_path) { return Scene(parse_scene_manifest(manifest_path)); }
 
 Scene::Scene(SceneManifest manifest) : manifest_(std::move(manifest)) {
@@ -123,12 +131,13 @@ Bounds Scene::bounds() const {
 }
 
 void Scene::draw(Renderer& renderer, const Camera& cam, RenderMethod method, const PrewarpOptions& options,
-                 const DrawOptions& draw, SceneFrameReport& report) {
+                 const DrawOptions& draw, SceneFrameReport& report, const QuadFrameOptions& frame) {
     if (method == RenderMethod::raycast)
         throw std::invalid_argument("method raycast traces one relief, not a scene: use micromesh as the truth");
     const auto t0 = Clock::now();
     report.quads = int(quads_.size());
     report.quad_skips.assign(quads_.size(), {});
+    report.quad_levels.assign(quads_.size(), 0);
     renderer.begin_frame(cam);
     if (!polygon_indices_.empty()) {
         const auto tp = Clock::now();
@@ -136,30 +145,39 @@ void Scene::draw(Renderer& renderer, const Camera& cam, RenderMethod method, con
         report.times.texture_map_ms += ms_since(tp);
     }
     draw_placed_items(renderer, cam, method, options, draw, report);
-    for (size_t qi = 0; qi < quads_.size(); ++qi) {
-        ReliefQuad& quad = quads_[qi];
-        if (method == RenderMethod::micromesh) {
-            const auto tm = Clock::now();
+    if (method == RenderMethod::micromesh) {
+        const auto tm = Clock::now();
+        for (ReliefQuad& quad : quads_) {
             const MicroMesh& mesh = quad.micromesh();
             renderer.draw_mesh(cam, mesh.vertices, mesh.indices);
-            report.times.texture_map_ms += ms_since(tm);
             ++report.drawn;
-            continue;
         }
-        if (const auto pp = perpixel_method(method)) {  // the comparison's per-pixel methods, at their defaults
-            const auto tm = Clock::now();
+        renderer.finish();
+        report.times.texture_map_ms += ms_since(tm);
+        report.times.total_ms += ms_since(t0);
+        return;
+    }
+    if (const auto pp = perpixel_method(method)) {  // the comparison's per-pixel methods, at their defaults
+        const auto tm = Clock::now();
+        for (ReliefQuad& quad : quads_) {
             quad.perpixel().draw(renderer, cam, quad.relief(), *pp, PerPixelSettings{});
-            report.times.texture_map_ms += ms_since(tm);
             ++report.drawn;
-            continue;
         }
-        StageTimes st;
-        DrawReport dr;
-        quad.draw(renderer, cam, method, options, st, draw, &dr);
-        report.times.prewarp_ms += st.prewarp_ms;
-        report.times.upload_ms += st.upload_ms;
-        report.times.texture_map_ms += st.texture_map_ms;
+        renderer.finish();
+        report.times.texture_map_ms += ms_since(tm);
+        report.times.total_ms += ms_since(t0);
+        return;
+    }
+    std::vector<DrawReport> reps;
+    StageTimes ft;
+    draw_quad_frame(quads_, renderer, cam, method, options, draw, frame, reps, report.quad_times, ft);
+    report.times.prewarp_ms += ft.prewarp_ms;
+    report.times.upload_ms += ft.upload_ms;
+    report.times.texture_map_ms += ft.texture_map_ms;
+    for (size_t qi = 0; qi < quads_.size(); ++qi) {
+        const DrawReport& dr = reps[qi];
         report.quad_skips[qi] = dr.skips;
+        report.quad_levels[qi] = dr.level;
         bool hidden = false, not_warped = method == RenderMethod::flat;
         for (const std::string& s : dr.skips) {
             ++report.skips[s];
@@ -170,11 +188,10 @@ void Scene::draw(Renderer& renderer, const Camera& cam, RenderMethod method, con
         ++report.drawn;
         if (!not_warped) {
             ++report.prewarped;
-            const ReliefTexture& lv = quad.level(dr.level);
+            const ReliefTexture& lv = quads_[qi].level(dr.level);
             report.texels_warped += (long long)lv.width * lv.height;
         }
     }
-    renderer.finish();
     report.times.total_ms += ms_since(t0);
 }
 

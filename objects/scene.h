@@ -11,6 +11,7 @@
 
 #include "formats/scene_manifest.h"
 #include "objects/bounds.h"
+#include "objects/quad_frame.h"
 #include "objects/relief_quad.h"
 #include "objects/scene_items.h"
 #include "texmap/renderer.h"
@@ -24,6 +25,11 @@ ReliefTexture transform_relief(ReliefTexture t, const glm::dmat4& m);
 // The camera of a scene's key (its default camera or a frame of its path) with the image size and clip planes of
 // `base`.
 Camera key_camera(const SceneCameraKey& key, const Camera& base);
+
+class Scene;
+// Frame k of the scene's camera path (0 <= k < path_frames) with the image size of `base` and clip planes fitted
+// to the scene's bounds, as rtm render --scene --camera-path K draws it.
+Camera scene_path_camera(const Scene& scene, int k, const Camera& base);
 
 struct ScenePolygon {
     std::vector<glm::dvec3> vertices;  // 3 or 4, convex, planar
@@ -39,7 +45,9 @@ struct SceneFrameReport {
     std::map<std::string, int> skips;                  // skip name -> quads it fired for
     std::vector<std::vector<std::string>> quad_skips;  // per relief quad, in manifest order: the skips that fired
     int object_faces_drawn = 0;                        // faces of six-face objects drawn (objects/scene_items.h)
-    StageTimes times;
+    std::vector<int> quad_levels;                      // per relief quad: the pyramid level drawn
+    std::vector<StageTimes> quad_times;                // per relief quad: its stage times (draw_quad_frame)
+    StageTimes times;                                  // the frame's (draw_quad_frame's frame times, polygons too)
 };
 
 class Scene {
@@ -59,8 +67,10 @@ public:
     // micromesh (every relief replaced by its micro-polygon mesh: the ground truth) or a per-pixel method (each
     // relief quad drawn by it at its default settings; six-face objects by two_pass). raycast is refused
     // (std::invalid_argument): the ray caster traces one height field, not a scene.
+    // The relief quads are drawn by draw_quad_frame (objects/quad_frame.h): plans first, the pre-warps concurrently,
+    // one finish per frame; `frame` chooses serial pre-warps or a finish per quad (to measure).
     void draw(Renderer& renderer, const Camera& cam, RenderMethod method, const PrewarpOptions& options,
-              const DrawOptions& draw, SceneFrameReport& report);
+              const DrawOptions& draw, SceneFrameReport& report, const QuadFrameOptions& frame = {});
 
 private:
     // Item i, an object or a mesh: each file read once (the maps hold what was read).

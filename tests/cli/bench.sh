@@ -5,9 +5,20 @@
 
 # Two sizes, three reliefs, both reconstructions; the fast kernels on 1 and 2 threads, the reference and the exact
 # path; Table 1 through OSMesa. --min-time 0: the fewest repeats (3 per measurement, 50 frames in Table 1).
-expect_ok bench --sizes 16,32 --reliefs bumps,bricks,ridges --threads 1,2 --min-time 0 --json "$T/b.json"
+# The scene section on a small scene of two reliefs with a 5-frame path (the default, media/town.scene.json, takes
+# minutes).
+cat >"$T/s.scene.json" <<JSON
+{ "items": [ { "type": "relief", "relief": "$SRC/media/bumps.relief.json" },
+             { "type": "relief", "relief": "$SRC/media/bricks.relief.json",
+               "transform": { "translate": [1.2, 0, 0], "rotate": [0, 1, 0, -30] } } ],
+  "camera_path": { "frames": 5, "keys": [ { "eye": [0, 0.3, 2], "look_at": [0, 0, 0] },
+                                          { "eye": [1.5, 0.3, 2], "look_at": [1, 0, 0] } ] } }
+JSON
+expect_ok bench --sizes 16,32 --reliefs bumps,bricks,ridges --threads 1,2 --min-time 0 --json "$T/b.json" \
+  --scene "$T/s.scene.json"
 cp "$T/stdout" "$T/b.md"
-for section in '### Pre-warp throughput' '### Pipelined against two-pass' '### Table 1: one relief quad'; do
+for section in '### Pre-warp throughput' '### Pipelined against two-pass' '### Table 1: one relief quad' \
+  '### A scene along its camera path'; do
   if grep -q -- "^$section" "$T/b.md"; then passes=$((passes + 1)); else
     echo "FAIL: the report lacks '$section'"; fails=$((fails + 1)); fi
 done
@@ -47,9 +58,27 @@ for t in t1:
     parts = t["prewarp_ms"] + t["upload_ms"] + t["texture_map_ms"] + t["other_ms"]
     check(t["total_ms"] > 0 and parts >= t["total_ms"] * (1 - 1e-9), name + ": the parts make the frame")
     check(abs(t["fps"] - 1000 / t["total_ms"]) <= 1e-9 * t["fps"], name + ": frames/s")
+sc = d["scene"]
+check(sc["quads"] == 2 and sc["path_frames"] == 5 and sc["size"] == [640, 480], "scene: quads, path, size")
+check([r["variant"] for r in sc["rows"]][0] == "skips" and len(sc["rows"]) == 8, "scene: variants")
+for r in sc["rows"]:
+    name = "scene " + r["variant"]
+    check(r["frames"] == len(range(0, 5, r["stride"])), name + ": frames")
+    check(r["total_ms"] > 0 and abs(r["fps"] - 1000 / r["total_ms"]) <= 1e-9 * r["fps"], name + ": frames/s")
+    check(abs(r["ratio_to_first"] - r["total_ms"] / sc["rows"][0]["total_ms"]) <= 1e-9, name + ": ratio")
+    check(0 <= r["quads_prewarped"] <= r["quads_drawn"] <= 2, name + ": counts")
 for b in bad: print("FAIL: bench JSON:", b)
 sys.exit(1 if bad else 0)
 PY
+# bench-skips --scene-only: all skips, without each in turn, none.
+expect_ok bench-skips --scene-only --scene "$T/s.scene.json" --json "$T/k.json"
+if python3 - "$T/k.json" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+v = [r["variant"] for r in d["scene"]["rows"]]
+sys.exit(not (d["rows"] == [] and len(v) == 7 and v[0] == "all skips" and v[-1] == "no skips"))
+PY
+then passes=$((passes + 1)); else echo "FAIL: bench-skips --scene-only JSON"; fails=$((fails + 1)); fi
 
 # Without the reference kernels the work columns stay empty (null in the JSON).
 expect_ok bench --sizes 16 --reliefs ridges --threads 1 --min-time 0 --no-reference --no-exact --no-table1 \
@@ -74,4 +103,6 @@ expect_fail 1 'nowhere/b\.json.*does not exist' -- bench --json "$T/nowhere/b.js
 expect_fail 1 'json.*folder' -- bench --json "$T"
 expect_fail 1 'nowhere/f\.json' -- bench-filter --json "$T/nowhere/f.json"
 expect_fail 1 'nowhere/s\.json' -- bench-skips --json "$T/nowhere/s.json"
+expect_fail 2 'no-scene' -- bench --no-scene --scene-only
+expect_fail 1 'missing\.scene\.json' -- bench-skips --scene-only --scene "$T/missing.scene.json"
 finish

@@ -16,6 +16,8 @@ cat >"$T/s.scene.json" <<JSON
 JSON
 S=$T/s.scene.json
 expect_ok render --scene "$S" --size 96x64 --out "$T/default.png" --json "$T/default.json"
+# --level auto, per quad: 256^2 reliefs in a 96x64 view are pre-warped at coarser levels.
+expect_ok render --scene "$S" --size 96x64 --json "$T/auto.json" --level auto
 expect_ok render --scene "$S" --orbit 20,10,2 --size 96x64 --method flat --out "$T/flat.png"
 expect_ok render --scene "$S" --camera-path 1 --size 96x64 --method micromesh --out "$T/truth.png"
 expect_ok render --scene "$S" --size 96x64 --frames "$T/frames" --json "$T/frames.json"
@@ -24,9 +26,12 @@ for k in 0 1 2; do
   else echo "FAIL: frame $k missing"; fails=$((fails + 1)); fi
 done
 # The JSON: counts per frame, stage times over the frames.
-if python3 - "$T/default.json" "$T/frames.json" <<'PY'
+if python3 - "$T/default.json" "$T/frames.json" "$T/auto.json" <<'PY'
 import json, sys
-d = json.load(open(sys.argv[1])); f = json.load(open(sys.argv[2]))
+d = json.load(open(sys.argv[1])); f = json.load(open(sys.argv[2])); a = json.load(open(sys.argv[3]))
+assert sum(a["quads_by_level"].values()) == a["quads_drawn"] and d["quads_by_level"] == {"0": d["quads_drawn"]}, a
+assert 0 < a["texels_warped"] < d["texels_warped"], (a, d)
+assert all(int(level) > 0 for level in a["quads_by_level"]), a
 assert d["quads"] == 2 and d["quads_drawn"] <= 2 and d["quads_prewarped"] <= d["quads_drawn"], d
 assert d["texels_warped"] in (0, 256 * 256, 2 * 256 * 256), d["texels_warped"]
 for k in ("prewarp_ms", "upload_ms", "texture_map_ms", "total_ms"):
@@ -74,6 +79,7 @@ printf '{"items": [{"type": "mesh", "mesh": "m.ply"}, {"type": "teapot"}]}' >"$T
 expect_fail 1 "kind.scene.json: item 1: .*type" -- render --scene "$T/kind.scene.json" --eye 0,0,3 --out "$T/x.png"
 
 expect_fail 2 "raycast" -- render --scene "$S" --method raycast --out "$T/x.png"
+expect_fail 2 "level" -- render --scene "$S" --level x --out "$T/x.png"
 expect_fail 2 "camera-path" -- render --scene "$S" --camera-path 3 --out "$T/x.png"
 expect_fail 2 "frames" -- render --scene "$S" --frames "$T/f2" --eye 0,0,3
 expect_fail 2 "scene" -- render --relief "$SRC/media/bumps.relief.json" --camera-path 0 --out "$T/x.png"

@@ -1,0 +1,230 @@
+#include "measure/scene_bench.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "objects/scene.h"
+#include "texmap/gl_context.h"
+#include "warp/timing.h"
+
+namespace rtm {
+
+namespace {
+
+std::string loadavg() {
+    std::ifstream f("/proc/loadavg");
+    std::string line;
+    std::getline(f, line);
+    return line;
+}
+
+SceneVariant variant(std::string name, std::string description) {
+    SceneVariant v;
+    v.name = std::move(name);
+    v.description = std::move(description);
+    v.draw.level = -1;
+    return v;
+}
+
+// The frame loop before draw_quad_frame: level 0, one quad after another, a finish after each upload and draw.
+SceneVariant old_loop(std::string name, std::string description, bool skips) {
+    SceneVariant v = variant(std::move(name), std::move(description));
+    v.draw.level = 0;
+    v.draw.skips = skips;
+    v.frame = {.concurrent = false, .finish_each = true};
+    v.stride = skips ? 1 : 4;
+    return v;
+}
+
+}  // namespace
+
+std::vector<SceneVariant> scene_frame_variants() {
+    std::vector<SceneVariant> v;
+    v.push_back(variant("skips", "all skips, level per quad, concurrent pre-warps, one finish a frame"));
+    v.push_back(variant("serial", "as skips, pre-warps one after another (each with all threads)"));
+    v.back().frame.concurrent = false;
+    v.push_back(variant("finish per quad", "as serial, and a finish after each quad's upload and draw"));
+    v.back().frame = {.concurrent = false, .finish_each = true};
+    v.push_back(variant("level 0", "as skips, every quad at pyramid level 0"));
+    v.back().draw.level = 0;
+    v.push_back(old_loop("skips, old loop", "level 0, serial pre-warps, a finish per quad (before this frame loop)",
+                         true));
+    v.push_back(variant("no skips", "every quad pre-warped and uploaded every frame, level per quad, concurrent"));
+    v.back().draw.skips = false;
+    v.back().stride = 4;
+    v.push_back(old_loop("no skips, old loop", "no skips, level 0, serial pre-warps, a finish per quad", false));
+    v.push_back(variant("floor", "each frame drawn again after its pre-warps: texture mapping and set-up only"));
+    v.back().repeat = true;
+    v.back().stride = 4;
+    return v;
+}
+
+std::vector<SceneVariant> scene_skip_variants() {
+    std::vector<SceneVariant> v;
+    v.push_back(variant("all skips", "every skip on, level per quad"));
+    v.push_back(variant("without outside-frustum, back-facing", "hidden quads pre-warped (and drawn if in view)"));
+    v.back().draw.cull = false;
+    v.push_back(variant("without subpixel-parallax", "far quads pre-warped instead of drawn as plain textures"));
+    v.back().draw.subpixel_parallax = 0.0;
+    v.push_back(variant("without reuse-prewarp", "every drawn quad pre-warped every frame"));
+    v.back().draw.reuse_tolerance = 0.0;
+    v.push_back(variant("without partial-upload", "whole textures uploaded"));
+    v.back().draw.partial_upload = false;
+    v.push_back(variant("without level per quad", "every quad at pyramid level 0"));
+    v.back().draw.level = 0;
+    v.push_back(variant("no skips", "every quad pre-warped and uploaded every frame, level 0"));
+    v.back().draw.skips = false;
+    v.back().draw.level = 0;
+    v.back().stride = 4;
+    return v;
+}
+
+SceneBench bench_scene(const std::string& scene_path, int width, int height, const std::vector<SceneVariant>& variants,
+                       const std::function<void(const std::string&)>& progress) {
+    SceneBench b;
+    b.scene = scene_path;
+    b.width = width;
+    b.height = height;
+    b.load_before = loadavg();
+    auto ctx = GlContext::create_offscreen(width, height, {.pin_llvmpipe_threads = true});
+    b.gl_renderer = ctx->describe();
+    Renderer renderer;
+    Camera base;
+    base.width = width;
+    base.height = height;
+    PrewarpOptions opt;
+    opt.keep_outliers = true;  // side polygons, as rtm render --scene draws
+    for (const SceneVariant& v : variants) {
+        Scene scene = Scene::load(scene_path);
+        const int n = scene.manifest().path_frames;
+        if (scene.manifest().path_keys.empty()) throw std::runtime_error(scene_path + ": the scene has no camera_path");
+        b.path_frames = n;
+        b.quads = int(scene.quads().size());
+        DrawOptions draw = v.draw;
+        draw.depth_correction = true;
+        std::vector<Camera> cams;
+        for (int k = 0; k < n; k += std::max(1, v.stride)) cams.push_back(scene_path_camera(scene, k, base));
+        SceneBenchRow row;
+        row.variant = v;
+        std::vector<double> pre, up, map, total;
+        auto frame = [&](const Camera& cam, bool timed) {
+            SceneFrameReport rep;
+            if (v.repeat) scene.draw(renderer, cam, RenderMethod::two_pass, opt, draw, rep, v.frame);
+            rep = {};
+            scene.draw(renderer, cam, RenderMethod::two_pass, opt, draw, rep, v.frame);
+            (void)renderer.read_pixels(1, 1);  // as a frame that is shown or saved: the rendering is complete
+            if (!timed) return;
+            pre.push_back(rep.times.prewarp_ms);
+            up.push_back(rep.times.upload_ms);
+            map.push_back(rep.times.texture_map_ms);
+            total.push_back(rep.times.total_ms);
+            row.drawn += rep.drawn;
+            row.prewarped += rep.prewarped;
+            row.texels += double(rep.texels_warped);
+            for (const auto& [name, count] : rep.skips) row.skips[name] += count;
+            for (size_t q = 0; q < rep.quad_levels.size(); ++q) {
+                bool hidden = false;
+                for (const std::string& s : rep.quad_skips[q])
+                    hidden |= s == kSkipBackFacing || s == kSkipOutsideFrustum;
+                if (!hidden) ++row.levels[rep.quad_levels[q]];
+            }
+        };
+        // Warm-up: two frames (textures allocated, pyramid levels built for the first views); the timed pass then
+        // starts over from the first frame.
+        const size_t warm = std::min<size_t>(2, cams.size());
+        for (size_t k = 0; k < warm; ++k) frame(cams[k], false);
+        for (const Camera& cam : cams) frame(cam, true);
+        row.frames = int(total.size());
+        row.prewarp_ms = median(pre);
+        row.upload_ms = median(up);
+        row.texture_map_ms = median(map);
+        row.total_ms = median(total);
+        row.fps = 1000.0 / row.total_ms;
+        row.drawn /= row.frames;
+        row.prewarped /= row.frames;
+        row.texels /= row.frames;
+        row.ratio = b.rows.empty() ? 1.0 : row.total_ms / b.rows.front().total_ms;
+        b.rows.push_back(row);
+        if (progress) {
+            char buf[256];
+            std::snprintf(buf, sizeof buf, "scene: %s: %d frames, median %.2f ms (%.0f fps), %.1f pre-warps a frame",
+                          v.name.c_str(), row.frames, row.total_ms, row.fps, row.prewarped);
+            progress(buf);
+        }
+    }
+    b.load_after = loadavg();
+    return b;
+}
+
+std::string scene_bench_markdown(const SceneBench& b) {
+    std::ostringstream s;
+    char buf[512];
+    std::snprintf(buf, sizeof buf,
+                  "Scene %s: %d relief quads, its %d-frame camera path at %dx%d (two-pass, side polygons, depth "
+                  "correction).  \nOpenGL: %s  \nLoad average before: %s; after: %s\n\n",
+                  b.scene.c_str(), b.quads, b.path_frames, b.width, b.height, b.gl_renderer.c_str(),
+                  b.load_before.c_str(), b.load_after.c_str());
+    s << buf;
+    s << "Median milliseconds a frame over the frames drawn (stride: every k-th frame of the path, for variants that "
+         "keep no state from frame to frame); x first: the median frame against the first row's, in this run. "
+         "Pre-warp: the wall time of the frame's pre-warp step; upload and texture mapping: issuing the calls, and "
+         "the frame's one finish (or each quad's) in texture mapping.\n\n";
+    s << "| variant | frames | pre-warp | upload | texture mapping | frame | frames/s | x first | drawn | pre-warped | "
+         "Mtexels warped | levels drawn |\n";
+    s << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
+    for (const SceneBenchRow& r : b.rows) {
+        std::string levels;
+        for (const auto& [level, count] : r.levels)
+            levels += (levels.empty() ? "" : ", ") + std::to_string(level) + ": " + std::to_string(count);
+        std::snprintf(buf, sizeof buf,
+                      "| %s | %d | %.2f | %.2f | %.2f | %.2f | %.1f | %.2f | %.1f | %.1f | %.3f | %s |\n",
+                      r.variant.name.c_str(), r.frames, r.prewarp_ms, r.upload_ms, r.texture_map_ms, r.total_ms, r.fps,
+                      r.ratio, r.drawn, r.prewarped, r.texels / 1e6, levels.c_str());
+        s << buf;
+    }
+    s << "\n";
+    for (const SceneBenchRow& r : b.rows) {
+        std::string skips;
+        for (const auto& [name, count] : r.skips)
+            skips += (skips.empty() ? "" : ", ") + name + " " + std::to_string(count);
+        s << "- " << r.variant.name << ": " << r.variant.description << (skips.empty() ? "" : "; fired: " + skips)
+          << "\n";
+    }
+    return s.str();
+}
+
+nlohmann::json scene_bench_json(const SceneBench& b) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (const SceneBenchRow& r : b.rows) {
+        nlohmann::json levels = nlohmann::json::object();
+        for (const auto& [level, count] : r.levels) levels[std::to_string(level)] = count;
+        rows.push_back({{"variant", r.variant.name},
+                        {"description", r.variant.description},
+                        {"frames", r.frames},
+                        {"stride", r.variant.stride},
+                        {"prewarp_ms", r.prewarp_ms},
+                        {"upload_ms", r.upload_ms},
+                        {"texture_map_ms", r.texture_map_ms},
+                        {"total_ms", r.total_ms},
+                        {"fps", r.fps},
+                        {"ratio_to_first", r.ratio},
+                        {"quads_drawn", r.drawn},
+                        {"quads_prewarped", r.prewarped},
+                        {"texels_warped", r.texels},
+                        {"quads_skipped", r.skips},
+                        {"quads_by_level", levels}});
+    }
+    return {{"scene", b.scene},
+            {"size", {b.width, b.height}},
+            {"path_frames", b.path_frames},
+            {"quads", b.quads},
+            {"gl_renderer", b.gl_renderer},
+            {"load_before", b.load_before},
+            {"load_after", b.load_after},
+            {"rows", rows}};
+}
+
+}  // namespace rtm

@@ -1,0 +1,63 @@
+// The frame time of a scene along its camera path (the relief town of docs/SCENES.md), for the scene sections of
+// `rtm bench` (the frame with all skips against none, and where the frame's time goes) and `rtm bench-skips` (what
+// each skip is worth on the path). Each variant draws the path with a freshly loaded scene: two frames to warm up,
+// then one timed pass over the path (the skips that keep state, such as reuse-prewarp, see the path in order).
+//
+// Benchmarks are programs, not tests: nothing here asserts a time.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "objects/frame_plan.h"
+#include "objects/quad_frame.h"
+
+namespace rtm {
+
+struct SceneVariant {
+    std::string name, description;
+    DrawOptions draw;        // depth_correction is set by the bench (as rtm render --scene draws)
+    QuadFrameOptions frame;  // concurrent pre-warps, finish per quad
+    int stride = 1;          // every stride-th frame of the path (only for variants that keep no state between frames)
+    bool repeat = false;     // each frame drawn twice, the second timed: the frame when nothing needs pre-warping
+};
+
+struct SceneBenchRow {
+    SceneVariant variant;
+    int frames = 0;
+    // Medians over the frames, milliseconds (stage times as SceneFrameReport measures them).
+    double prewarp_ms = 0, upload_ms = 0, texture_map_ms = 0, total_ms = 0;
+    double fps = 0;                               // 1000 / total_ms
+    double ratio = 0;                             // total_ms / the first row's total_ms
+    double drawn = 0, prewarped = 0, texels = 0;  // means per frame
+    std::map<std::string, long long> skips;       // skip name -> quads it fired for, over the frames
+    std::map<int, long long> levels;              // pyramid level -> quads drawn at it, over the frames
+};
+
+struct SceneBench {
+    std::string scene, gl_renderer;
+    int width = 0, height = 0, path_frames = 0, quads = 0;
+    std::string load_before, load_after;
+    std::vector<SceneBenchRow> rows;
+};
+
+// For rtm bench: all skips (concurrent pre-warps, one finish a frame) first, then the frame loop before this one
+// (serial pre-warps, a finish per quad), serial pre-warps with one finish, no pyramid level per quad, no skips at
+// all, and the floor: each frame again once its pre-warps are done (only texture mapping and the frame's set-up).
+std::vector<SceneVariant> scene_frame_variants();
+// For rtm bench-skips: all skips first, then without each skip in turn, then none.
+std::vector<SceneVariant> scene_skip_variants();
+
+// Draws `scene_path`'s camera path at width x height through an offscreen context (two-pass, side polygons, depth
+// correction, all threads). Throws IoError for an unreadable scene, std::runtime_error for one without a path.
+SceneBench bench_scene(const std::string& scene_path, int width, int height, const std::vector<SceneVariant>& variants,
+                       const std::function<void(const std::string&)>& progress);
+
+std::string scene_bench_markdown(const SceneBench& b);
+nlohmann::json scene_bench_json(const SceneBench& b);
+
+}  // namespace rtm
