@@ -117,6 +117,10 @@ struct PerPixelCommon {
     // Write the number of refinement iterations per pixel (grey level = count, 0..255) instead of the colour:
     // the images of interval mapping's Figure 5. Methods without refinement write their linear steps.
     bool iteration_counts = false;
+    // Colour and depth from float textures, filtered in float: the colour's 8-bit values in GL_RGBA32F, the depth
+    // from the exact displacement in GL_R32F. false: the papers' textures, colour in RGBA8 and depth in the relief
+    // map's 8-bit alpha (254 quantization levels), both filtered in 8 bits by llvmpipe (docs/PERPIXEL.md).
+    bool float_textures = true;
 };
 
 struct PerPixelSettings {

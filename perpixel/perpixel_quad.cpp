@@ -37,7 +37,7 @@ PerPixelQuad::~PerPixelQuad() {
 
 unsigned PerPixelQuad::program(PerPixelMethod m, const PerPixelCommon& c) {
     const auto key = std::make_tuple(int(m), c.depth_correction, c.shading, c.shading && c.self_shadowing,
-                                     c.iteration_counts);
+                                     c.iteration_counts, c.float_textures);
     auto it = programs_.find(key);
     if (it != programs_.end()) return it->second;
     const char* vs = m == PerPixelMethod::quadric_silhouettes ? kQuadricVertexShader : kPerPixelVertexShader;
@@ -54,10 +54,16 @@ void PerPixelQuad::draw(Renderer& renderer, const Camera& cam, const ReliefTextu
     renderer.clear_if_pending();
     if (t.width <= 0 || t.height <= 0) return;
     if (!color_) {
+        // Both colour textures and both depths (PerPixelCommon::float_textures picks per draw).
+        const ImageRGBA8 color = perpixel_color_texture(t);
         color_ = std::make_unique<GlTexture>();
-        color_->upload(perpixel_color_texture(t));
+        color_->upload(color);
+        color_float_ = std::make_unique<GlTexture>();
+        color_float_->upload_as_float(color);
         relief_map_ = std::make_unique<GlTexture>();
         relief_map_->upload(perpixel_relief_map(t));
+        depth_map_ = std::make_unique<GlTexture>();
+        depth_map_->upload_float(perpixel_depth_map(t));
     }
     if (!vao_) {
         glGenVertexArrays(1, &vao_);
@@ -118,6 +124,7 @@ void PerPixelQuad::draw(Renderer& renderer, const Camera& cam, const ReliefTextu
     glUniformMatrix4fv(loc("u_mvp_rel"), 1, GL_FALSE, glm::value_ptr(mvpf));
     glUniform1i(loc("u_color"), 0);
     glUniform1i(loc("u_relief"), 1);
+    glUniform1i(loc("u_depth"), 2);
     vec3u("u_da", da);
     vec3u("u_db", db);
     vec3u("u_f", f);
@@ -164,10 +171,12 @@ void PerPixelQuad::draw(Renderer& renderer, const Camera& cam, const ReliefTextu
         case PerPixelMethod::quadric_silhouettes:  // returned above: draw_quadric sets its own parameters
             break;
     }
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_2D, depth_map_->id());
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_2D, relief_map_->id());
     glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, color_->id());
+    glBindTexture(GL_TEXTURE_2D, (s.common.float_textures ? color_float_ : color_)->id());
     glBindVertexArray(vao_);
     glBindBuffer(GL_ARRAY_BUFFER, vbo_);
     glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(data.size() * sizeof(float)), data.data());
@@ -215,16 +224,19 @@ void PerPixelQuad::draw_quadric(const Camera& cam, const ReliefTexture& t, const
     glUniformMatrix4fv(loc("u_mvp_rel"), 1, GL_FALSE, glm::value_ptr(mvpf));
     glUniform1i(loc("u_color"), 0);
     glUniform1i(loc("u_relief"), 1);
+    glUniform1i(loc("u_depth"), 2);
     glUniform3f(loc("u_size"), float(patch.width), float(patch.height), float(depth));
     glUniform2f(loc("u_half_texel"), float(0.5 / t.width), float(0.5 / t.height));
     glUniform3f(loc("u_forward"), float(forward.x), float(forward.y), float(forward.z));
     glUniform2f(loc("u_ndc"), float(-proj[2][2]), float(proj[3][2]));
     glUniform1i(loc("u_linear_search_steps"), q.linear_search_steps);
     glUniform1i(loc("u_binary_search_steps"), q.binary_search_steps);
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_2D, depth_map_->id());
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_2D, relief_map_->id());
     glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, color_->id());
+    glBindTexture(GL_TEXTURE_2D, (s.common.float_textures ? color_float_ : color_)->id());
     glBindVertexArray(quadric_vao_);
     glBindBuffer(GL_ARRAY_BUFFER, quadric_vbo_);
     glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(QuadricVertex)), vertices.data(), GL_STREAM_DRAW);

@@ -31,11 +31,11 @@ public:
     void prepare(PerPixelMethod m, const PerPixelCommon& common);
 
 private:
-    std::unique_ptr<GlTexture> color_, relief_map_;
+    std::unique_ptr<GlTexture> color_, color_float_, relief_map_, depth_map_;
     unsigned vao_ = 0, vbo_ = 0;
     unsigned quadric_vao_ = 0, quadric_vbo_ = 0, quadric_ebo_ = 0;
-    // Programs by (method, depth correction, shading, shadows, iteration counts).
-    std::map<std::tuple<int, bool, bool, bool, bool>, unsigned> programs_;
+    // Programs by (method, depth correction, shading, shadows, iteration counts, float textures).
+    std::map<std::tuple<int, bool, bool, bool, bool, bool>, unsigned> programs_;
     unsigned program(PerPixelMethod m, const PerPixelCommon& c);
     void draw_quadric(const Camera& cam, const ReliefTexture& t, const PerPixelSettings& s, unsigned prog);
 };

@@ -36,6 +36,7 @@ in vec3 v_rel, v_normal, v_tangent, v_binormal;
 in vec2 v_st, v_quadric;
 uniform sampler2D u_color;
 uniform sampler2D u_relief;
+uniform sampler2D u_depth;
 uniform vec3 u_size;  // (s_x, s_y, s_z): the texture tile's width and height on the surface, the relief's depth
 uniform vec2 u_half_texel;
 uniform vec3 u_forward;
@@ -46,7 +47,11 @@ layout(location = 0) out vec4 o_color;
 const int kMaxLoop = 1024;
 
 float depth_at(vec2 st) {
+#if RTM_FLOAT_DEPTH
+    return textureLod(u_depth, vec2(st.x, 1.0 - st.y), 0.0).r;
+#else
     return textureLod(u_relief, vec2(st.x, 1.0 - st.y), 0.0).a * (255.0 / 254.0);
+#endif
 }
 
 void main() {

@@ -2,6 +2,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace rtm {
@@ -43,6 +44,17 @@ ImageRGBA8 perpixel_relief_map(const ReliefTexture& t) {
             const glm::dvec3 n = glm::normalize(glm::dvec3(-gu, -gv, 1.0));
             auto enc = [](double c) { return uint8_t(std::lround((c * 0.5 + 0.5) * 255.0)); };
             out = {enc(n.x), enc(n.y), enc(n.z), uint8_t(254 - tx.q)};
+        }
+    return img;
+}
+
+ImageF perpixel_depth_map(const ReliefTexture& t) {
+    ImageF img(t.width, t.height);
+    const double range = t.quant.max - t.quant.min;
+    for (int row = 0; row < t.height; ++row)
+        for (int x = 0; x < t.width; ++x) {
+            const double d = t.empty_at(x, row) || !(range > 0.0) ? 1.0 : (t.quant.max - t.displ(x, row)) / range;
+            img.at(x, row) = float(std::clamp(d, 0.0, 1.0));
         }
     return img;
 }

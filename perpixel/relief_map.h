@@ -15,5 +15,8 @@ namespace rtm {
 ImageRGBA8 perpixel_color_texture(const ReliefTexture& t);
 // Normals from the exact displacement by central differences (one-sided at borders and beside empty texels).
 ImageRGBA8 perpixel_relief_map(const ReliefTexture& t);
+// The exact depth map (PerPixelCommon::float_textures): depth = (max - displacement) / (max - min) of the
+// quantizer's range from the exact displacement, in float, not quantized; empty texels (and a zero range) 1.
+ImageF perpixel_depth_map(const ReliefTexture& t);
 
 }  // namespace rtm

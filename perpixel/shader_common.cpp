@@ -24,6 +24,7 @@ in vec3 v_rel;
 in vec2 v_st;
 uniform sampler2D u_color;   // colour, premultiplied by coverage alpha; image row 0 (top) at t = 0
 uniform sampler2D u_relief;  // rgb: unit normal * 0.5 + 0.5 in (a, b, f); a: depth (254 - q) / 255
+uniform sampler2D u_depth;   // r: exact depth (0 top .. 1 bottom) in float, read when RTM_FLOAT_DEPTH
 uniform vec3 u_da, u_db, u_f;  // st = (dot(p - origin, u_da), dot(p - origin, u_db)); f the relief's normal
 uniform float u_depth_range;   // max - min of the displacement, world units
 uniform vec2 u_half_texel;     // (0.5 / width, 0.5 / height): the surface spans the texel centres
@@ -48,7 +49,11 @@ float depth_at(vec2 st) {
     // No surface outside the footprint (the texel centres): rays pass by there.
     if (any(lessThan(st, u_half_texel)) || any(greaterThan(st, 1.0 - u_half_texel))) return 2.0;
 #endif
+#if RTM_FLOAT_DEPTH
+    return textureLod(u_depth, vec2(st.x, 1.0 - st.y), 0.0).r;
+#else
     return textureLod(u_relief, vec2(st.x, 1.0 - st.y), 0.0).a * (255.0 / 254.0);
+#endif
 }
 
 // The number of linear steps for a view: mix(max, min, N.V), at least 1.
@@ -126,6 +131,7 @@ extern const char* const kQuadricFragmentShader;
 
 std::string perpixel_fragment_shader(PerPixelMethod m, const PerPixelCommon& c) {
     std::string s = "#version 330 core\n";
+    s += "#define RTM_FLOAT_DEPTH " + std::to_string(c.float_textures ? 1 : 0) + "\n";
     if (m == PerPixelMethod::quadric_silhouettes) {
         s += "#define RTM_DEPTH " + std::to_string(c.depth_correction ? 1 : 0) + "\n";
         s += "#define RTM_ITERATIONS " + std::to_string(c.iteration_counts ? 1 : 0) + "\n";

@@ -202,6 +202,51 @@ void GlTexture::upload_gray(const Image2D<uint8_t>& img) {
     check_gl("GlTexture::upload_gray");
 }
 
+namespace {
+
+// (Re)allocates the bound texture with one level, bilinear, clamped to the edge.
+void allocate_linear(GLint internal, int w, int h, GLenum format, const void* data) {
+    glTexImage2D(GL_TEXTURE_2D, 0, internal, w, h, 0, format, GL_FLOAT, data);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+}
+
+}  // namespace
+
+void GlTexture::upload_float(const ImageF& img) {
+    if (img.width <= 0 || img.height <= 0 || img.pixels.size() != size_t(img.width) * size_t(img.height))
+        throw std::invalid_argument("GlTexture::upload_float: image is " + std::to_string(img.width) + "x" +
+                                    std::to_string(img.height));
+    glBindTexture(GL_TEXTURE_2D, id_);
+    reset_unpack_state();
+    allocate_linear(GL_R32F, img.width, img.height, GL_RED, img.pixels.data());
+    width_ = img.width;
+    height_ = img.height;
+    check_gl("GlTexture::upload_float");
+}
+
+void GlTexture::upload_as_float(const ImageRGBA8& img) {
+    check_image(img, "GlTexture::upload_as_float");
+    std::vector<float> v(img.pixels.size() * 4);
+    for (size_t i = 0; i < img.pixels.size(); ++i) {
+        const Rgba8& p = img.pixels[i];
+        v[4 * i] = float(p.r) / 255.0f;
+        v[4 * i + 1] = float(p.g) / 255.0f;
+        v[4 * i + 2] = float(p.b) / 255.0f;
+        v[4 * i + 3] = float(p.a) / 255.0f;
+    }
+    glBindTexture(GL_TEXTURE_2D, id_);
+    reset_unpack_state();
+    allocate_linear(GL_RGBA32F, img.width, img.height, GL_RGBA, v.data());
+    width_ = img.width;
+    height_ = img.height;
+    check_gl("GlTexture::upload_as_float");
+}
+
 GlTexture::GlTexture() {
     require_context("GlTexture");
     GLuint id = 0;

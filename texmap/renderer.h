@@ -29,6 +29,10 @@ public:
     void upload_rect(const ImageRGBA8& img, int x, int row, int w, int h);
     // One 8-bit channel (GL_R8), nearest filtering: quantized displacement indices for depth correction.
     void upload_gray(const Image2D<uint8_t>& img);
+    // One 32-bit float channel (GL_R32F), bilinear filtering: the per-pixel methods' exact depth map.
+    void upload_float(const ImageF& img);
+    // The 8-bit values of `img` (v / 255) in a GL_RGBA32F texture, bilinear: filtered in float, not in 8 bits.
+    void upload_as_float(const ImageRGBA8& img);
     unsigned id() const { return id_; }
     int width() const { return width_; }
     int height() const { return height_; }
