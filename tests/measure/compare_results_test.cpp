@@ -20,7 +20,7 @@ public:
     }
     Bounds bounds() const override { return {}; }
     bool renders(const CompareEntry&) const override { return true; }
-    ImageRGBA8 render(Renderer&, const Camera&, const RenderSettings&, StageTimes&) override { return {}; }
+    ImageRGBA8 render(Renderer&, const Camera&, const RenderSettings&, int, StageTimes&) override { return {}; }
 };
 
 CompareRow row(const std::string& source, const std::string& view, const CompareEntry& e, double ms, double rmse) {
