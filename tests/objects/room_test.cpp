@@ -99,13 +99,14 @@ TEST(ShippedRoom, NoBackgroundShowsAlongTheSeamsBetweenReliefWalls) {
     Renderer renderer;
     Scene scene = Scene::load(kRoom);
     long long checked = 0, background = 0;
-    std::vector<int> seam_seen(room_seams().size(), 0);
+    const std::vector<std::array<glm::dvec3, 2>> seams = room_seams();
+    std::vector<int> seam_seen(seams.size(), 0);
     for (const Camera& cam : room_views(scene)) {
         for (RenderMethod method : {RenderMethod::two_pass, RenderMethod::pipelined}) {
             const ImageRGBA8 img = frame(scene, renderer, cam, method);
             const glm::dmat4 clip = cam.projection() * cam.view();
-            for (size_t s = 0; s < room_seams().size(); ++s) {
-                const auto& seam = room_seams()[s];
+            for (size_t s = 0; s < seams.size(); ++s) {
+                const auto& seam = seams[s];
                 long long view_background = 0, view_checked = 0;
                 int last_x = -1, last_row = -1;
                 for (int i = 0; i <= 4000; ++i) {
