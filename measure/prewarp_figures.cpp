@@ -22,16 +22,6 @@ std::string rgba(const Rgba& c) {
            fixed(c[3] / 255.0, 3) + ")";
 }
 
-ImageRGBA8 source_colour(const ReliefTexture& t) {
-    ImageRGBA8 img(t.width, t.height);
-    for (int r = 0; r < t.height; ++r)
-        for (int x = 0; x < t.width; ++x) {
-            const ReliefTexel& tx = t.texel(x, r);
-            img.at(x, r) = {tx.r, tx.g, tx.b, uint8_t(tx.q == kEmptyIndex ? 0 : 255)};
-        }
-    return img;
-}
-
 // The quantized displacement as grey: the range's minimum black, its maximum white; empty texels transparent.
 ImageRGBA8 displacement_grey(const ReliefTexture& t) {
     ImageRGBA8 img(t.width, t.height);
@@ -74,7 +64,7 @@ std::string prewarp_figures(const PrewarpFiguresInput& in) {
     std::filesystem::create_directories(dir, ec);
     const PrewarpCoefficients k = compute_coefficients(t.geometry, in.camera.eye);
     const PrewarpSteps steps = prewarp_steps(t, k, {});
-    write_rgba8(dir + "/source.png", source_colour(t));
+    write_rgba8(dir + "/source.png", color_image(t));
     write_rgba8(dir + "/displacement.png", displacement_grey(t));
     write_rgba8(dir + "/horizontal.png", steps.horizontal);
     write_rgba8(dir + "/prewarped.png", steps.prewarped);

@@ -53,16 +53,6 @@ int pyramid_levels(int width, int height) {
     return n;
 }
 
-namespace {
-
-std::array<glm::dvec3, 4> quad_corners(const ReliefTexture& t) {
-    const ReliefGeometry& g = t.geometry;
-    const glm::dvec3 aw = g.a * double(t.width), bh = g.b * double(t.height);
-    return {g.origin, g.origin + aw, g.origin + aw + bh, g.origin + bh};
-}
-
-}  // namespace
-
 int auto_level(const Camera& cam, const ReliefTexture& relief) {
     const double area = projected_area_pixels(cam, quad_corners(relief));
     if (area < 0) return 0;  // the quad reaches behind the eye: large on screen

@@ -22,16 +22,6 @@ double box_parallax_texels(const ReliefTexture& t, const PrewarpCoefficients& k,
     return m;
 }
 
-namespace {
-
-std::array<glm::dvec3, 4> face_corners(const ReliefTexture& t) {
-    const ReliefGeometry& g = t.geometry;
-    const glm::dvec3 aw = g.a * double(t.width), bh = g.b * double(t.height);
-    return {g.origin, g.origin + aw, g.origin + aw + bh, g.origin + bh};
-}
-
-}  // namespace
-
 ObjectFacePlan plan_object_face(const Camera& cam, RenderMethod method, const PrewarpOptions& options,
                                 const DrawOptions& d, const ObjectRegion& region, int face, const ReliefTexture& relief,
                                 const LevelSource& level, double depth, const LastFacePrewarp& last) {
@@ -39,7 +29,7 @@ ObjectFacePlan plan_object_face(const Camera& cam, RenderMethod method, const Pr
     if (!warp_method && method != RenderMethod::flat)
         throw std::invalid_argument("plan_object_face: method " + to_string(method) + " is not a texture method");
     ObjectFacePlan p;
-    const std::array<glm::dvec3, 4> corners = face_corners(relief);
+    const std::array<glm::dvec3, 4> corners = quad_corners(relief);
     if (d.skips) {
         Bounds quad_bounds;
         for (const glm::dvec3& c : corners) quad_bounds.extend(c);

@@ -37,11 +37,7 @@ ReliefQuad::ReliefQuad(ReliefTexture relief) : relief_(std::move(relief)) {}
 ReliefQuad::~ReliefQuad() = default;
 ReliefQuad::ReliefQuad(ReliefQuad&&) noexcept = default;
 
-std::array<glm::dvec3, 4> ReliefQuad::corners() const {
-    const ReliefGeometry& g = relief_.geometry;
-    const glm::dvec3 aw = g.a * double(relief_.width), bh = g.b * double(relief_.height);
-    return {g.origin, g.origin + aw, g.origin + aw + bh, g.origin + bh};
-}
+std::array<glm::dvec3, 4> ReliefQuad::corners() const { return quad_corners(relief_); }
 
 const MicroMesh& ReliefQuad::micromesh() {
     if (!micromesh_) micromesh_ = std::make_unique<MicroMesh>(build_micromesh(relief_));

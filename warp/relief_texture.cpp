@@ -112,6 +112,22 @@ ReliefTexture make_relief(const ImageRGBA8& color, const ImageF& displacement, d
 
 namespace rtm {
 
+std::array<glm::dvec3, 4> quad_corners(const ReliefTexture& t) {
+    const ReliefGeometry& g = t.geometry;
+    const glm::dvec3 aw = g.a * double(t.width), bh = g.b * double(t.height);
+    return {g.origin, g.origin + aw, g.origin + aw + bh, g.origin + bh};
+}
+
+ImageRGBA8 color_image(const ReliefTexture& t) {
+    ImageRGBA8 img(t.width, t.height);
+    for (int r = 0; r < t.height; ++r)
+        for (int x = 0; x < t.width; ++x) {
+            const ReliefTexel& tx = t.texel(x, r);
+            img.at(x, r) = {tx.r, tx.g, tx.b, uint8_t(tx.q == kEmptyIndex ? 0 : 255)};
+        }
+    return img;
+}
+
 void mark_discontinuities(ReliefTexture& t, double threshold) {
     t.breaks.clear();
     t.discontinuity_threshold = 0.0;

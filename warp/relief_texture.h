@@ -12,6 +12,7 @@
 
 #include <glm/vec3.hpp>
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -76,6 +77,12 @@ struct ReliefTexture {
     glm::dvec3 point(int x, int row) const;
     std::string to_string() const;
 };
+
+// The relief quad's corners in world space: origin, origin + a*w, origin + a*w + b*h, origin + b*h.
+std::array<glm::dvec3, 4> quad_corners(const ReliefTexture& t);
+
+// The texels' colours as an image (same layout), alpha 255 where non-empty and 0 where empty.
+ImageRGBA8 color_image(const ReliefTexture& t);
 
 // Builds a relief texture from colour (alpha 0 = empty texel) and exact displacement in world units. The
 // quantizer's range is `range` (the manifest's displacement_range); values outside it are clamped when

@@ -10,16 +10,6 @@
 namespace rtm {
 namespace {
 
-ImageRGBA8 source_colors(const ReliefTexture& t) {
-    ImageRGBA8 img(t.width, t.height);
-    for (int r = 0; r < t.height; ++r)
-        for (int x = 0; x < t.width; ++x) {
-            const ReliefTexel& tx = t.texel(x, r);
-            img.at(x, r) = {tx.r, tx.g, tx.b, uint8_t(tx.q == kEmptyIndex ? 0 : 255)};
-        }
-    return img;
-}
-
 TEST(TwoPass, ZeroDisplacementIsTheIdentity) {
     const uint64_t seed = test::test_seed(40001);
     SCOPED_TRACE("seed " + std::to_string(seed));
@@ -34,7 +24,7 @@ TEST(TwoPass, ZeroDisplacementIsTheIdentity) {
                                g.f() * (0.01 + std::abs(U(rng)));
         for (bool exact : {false, true}) {
             const ImageRGBA8 out = prewarp(t, eye, {.exact = exact});
-            ASSERT_EQ(out, source_colors(t)) << w << "x" << h << " exact=" << exact;
+            ASSERT_EQ(out, color_image(t)) << w << "x" << h << " exact=" << exact;
         }
     }
 }
