@@ -46,7 +46,7 @@ BenchConfig default_bench_config(bool full);
 
 // The coordinate path of a pre-warp: the lookup tables, or --exact (double precision).
 enum class CoordinatePath { lut, exact };
-// The kernels that ran: the fast ones (warp/fast_prewarp.h) or the generic reference kernels.
+// The kernels that ran: the fast ones (warp/simd/schedule.h) or the generic reference kernels.
 enum class BenchKernel { fast, reference };
 std::string to_string(CoordinatePath p);  // "lut", "exact"
 std::string to_string(BenchKernel k);     // "fast", "reference"

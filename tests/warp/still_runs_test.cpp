@@ -135,7 +135,7 @@ Case random_case(std::mt19937_64& rng) {
     c.options.keep_outliers = pick(2);
     if (pick(4) == 0) c.options.max_margin = pick(10);
     c.options.threads = 1 + pick(2);
-    c.options.isa = Isa::generic;  // the reference kernels are what this tests (warp/fast_* always copy such spans)
+    c.options.isa = Isa::generic;  // the reference kernels are what this tests (warp/simd/ always copy such spans)
     c.with_displ = pick(3) == 0;
     std::ostringstream s;
     s << w << "x" << h << " kind " << kind << " brick " << bw << "x" << bh << " empties " << empties << " marks "
