@@ -58,7 +58,8 @@ void run(const Args& a) {
                          {"psnr_with", std::isfinite(m.psnr_with) ? nlohmann::json(m.psnr_with) : nullptr}});
         write_json(a.json, {{"command", "bench-skips"}, {"rows", j}, {"scene", scene_json}});
     }
-    // The copy of zero-displacement runs adds no error by construction (warp/reference/reference_prewarp.cpp): check it here too.
+    // The copy of zero-displacement runs adds no error by construction (warp/reference/reference_prewarp.cpp):
+    // check it here too.
     for (const SkipMeasurement& m : rows)
         if (m.skip == "zero-displacement-runs" && !m.same_picture)
             throw std::runtime_error("bench-skips: zero-displacement-runs changed the picture (" + m.scenario +

@@ -59,8 +59,9 @@ PixelRect united(const PixelRect& a, const PixelRect& b);
 // The pixels of the pre-warp for view k (margins e around the quad) that moving texels can write: their own
 // samples, and the spans that join them to their neighbours in either pass (which end on the neighbours' centres
 // when those are still). A conservative box: every pixel outside it is written by still texels only, each on the
-// centre of its own pixel, whatever the view, method, path or order (warp/reference/reference_prewarp.cpp, warp_line_still_to), so it
-// is the same in every pre-warp of this relief with the same margins. Empty when nothing moves.
+// centre of its own pixel, whatever the view, method, path or order (warp/reference/reference_prewarp.cpp,
+// warp_line_still_to), so it is the same in every pre-warp of this relief with the same margins. Empty when nothing
+// moves.
 PixelRect moving_footprint(const ReliefTexture& t, const MovingTexels& m, const PrewarpCoefficients& k,
                            const PrewarpExtent& e);
 
