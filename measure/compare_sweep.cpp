@@ -139,6 +139,31 @@ std::vector<CompareEntry> compare_sweep(bool quick) {
 
     out.push_back(entry(RenderMethod::micromesh, "", "truth", nlohmann::json::object()));
     out.push_back(entry(RenderMethod::raycast, "", "truth", nlohmann::json::object()));
+
+    // The curved base (Oliveira and Policarpo 2005): the quadric search at relief mapping's steps, each beside the
+    // same shader with zero quadric coefficients ("no-quadric-", the paper's Figure 9, left), so that the pair at
+    // one setting differs by the quadrics alone. The patch is the default one (angle 1.2, 32 x 4 quads).
+    const QuadricSilhouettesSettings q;
+    const nlohmann::json patch = {{"angle", q.angle}, {"segments", q.segments}, {"rows", q.rows}};
+    for (bool quadric : {true, false})
+        for (const LinBin& s : pick(search, quick)) {
+            nlohmann::json params = {{"linear_search_steps", s.first},
+                                     {"binary_search_steps", s.second},
+                                     {"quadric", quadric},
+                                     {"patch", patch}};
+            CompareEntry e = entry(RenderMethod::quadric_silhouettes,
+                                   (quadric ? "" : "no-quadric-") + steps("l", s.first, "b", s.second), "per-pixel",
+                                   std::move(params));
+            e.base = "curved";
+            e.render.perpixel.quadric_silhouettes.linear_search_steps = s.first;
+            e.render.perpixel.quadric_silhouettes.binary_search_steps = s.second;
+            e.render.perpixel.quadric_silhouettes.quadric = quadric;
+            out.push_back(e);
+        }
+    CompareEntry truth = entry(RenderMethod::micromesh, "", "truth", {{"patch", patch}});
+    truth.id = truth.method = "curved-micromesh";
+    truth.base = "curved";
+    out.push_back(truth);
     return out;
 }
 
