@@ -59,8 +59,9 @@ Timed render_timed(CompareSource& src, Renderer& renderer, const Camera& cam, co
     Timed t;
     for (int i = 0; i < frames; ++i) {
         StageTimes st;
-        t.image = e.curved() && e.render.method == RenderMethod::micromesh
-                      ? src.render_curved_truth(renderer, cam, e.render.perpixel.quadric_silhouettes.angle, st)
+        t.image = e.curved() && e.family == "truth"
+                      ? src.render_curved_truth(renderer, cam, e.render.method,
+                                                e.render.perpixel.quadric_silhouettes.angle, o.threads, st)
                       : src.render(renderer, cam, s, e.output_scale, st);
         if (frames > 1 && i == 0) continue;  // the first frame warms up (uploads, shader compiles, caches)
         total.push_back(st.total_ms);

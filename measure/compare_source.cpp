@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "measure/curved_raycast.h"
 #include "perpixel/cylinder_patch.h"
 
 namespace rtm {
@@ -38,7 +39,15 @@ public:
             it = scaled_.emplace(output_scale, ReliefQuad(upsample(quad_.relief(), output_scale))).first;
         return render_relief_frame(it->second, &renderer, cam, s, times);
     }
-    ImageRGBA8 render_curved_truth(Renderer& renderer, const Camera& cam, double angle, StageTimes& times) override {
+    ImageRGBA8 render_curved_truth(Renderer& renderer, const Camera& cam, RenderMethod method, double angle,
+                                   int threads, StageTimes& times) override {
+        if (method == RenderMethod::raycast) {
+            const auto t0 = Clock::now();
+            ImageRGBA8 img = raycast_curved_relief(quad_.relief(), cylinder_patch_for(quad_.relief(), angle), cam,
+                                                   threads);
+            times.total_ms += ms_since(t0);
+            return img;
+        }
         CurvedMesh& m = curved_[angle];
         if (m.vertices.empty())
             curved_micromesh(quad_.relief(), cylinder_patch_for(quad_.relief(), angle), m.vertices, m.indices);
@@ -99,7 +108,7 @@ private:
 
 }  // namespace
 
-ImageRGBA8 CompareSource::render_curved_truth(Renderer&, const Camera&, double, StageTimes&) {
+ImageRGBA8 CompareSource::render_curved_truth(Renderer&, const Camera&, RenderMethod, double, int, StageTimes&) {
     throw std::logic_error(name + ": only a relief renders the curved base");
 }
 

@@ -32,10 +32,12 @@ public:
     // only: renders() is false for it elsewhere) draws the relief resampled onto a finer grid (warp/upsample.h).
     virtual ImageRGBA8 render(Renderer& renderer, const Camera& cam, const RenderSettings& s, int output_scale,
                               StageTimes& times) = 0;
-    // The truth of the curved base: the relief displaced over the cylinder patch bent through `angle` radians as
-    // micro-polygons (perpixel/cylinder_patch.h, curved_micromesh), one frame read back; `times` accumulates its
-    // time. Reliefs only (renders() is false for the curved entries elsewhere): throws std::logic_error otherwise.
-    virtual ImageRGBA8 render_curved_truth(Renderer& renderer, const Camera& cam, double angle, StageTimes& times);
+    // A truth of the curved base, the relief displaced over the cylinder patch bent through `angle` radians:
+    // `method` micromesh draws it as micro-polygons (perpixel/cylinder_patch.h, curved_micromesh), raycast casts it
+    // on the CPU with `threads` (measure/curved_raycast.h); one frame, `times` accumulates its time. Reliefs only
+    // (renders() is false for the curved entries elsewhere): throws std::logic_error otherwise.
+    virtual ImageRGBA8 render_curved_truth(Renderer& renderer, const Camera& cam, RenderMethod method, double angle,
+                                           int threads, StageTimes& times);
     // The relief quad (for the page's step-by-step section); null for objects and scenes.
     virtual ReliefQuad* relief() { return nullptr; }
 };

@@ -160,10 +160,14 @@ std::vector<CompareEntry> compare_sweep(bool quick) {
             e.render.perpixel.quadric_silhouettes.quadric = quadric;
             out.push_back(e);
         }
-    CompareEntry truth = entry(RenderMethod::micromesh, "", "truth", {{"patch", patch}});
-    truth.id = truth.method = "curved-micromesh";
-    truth.base = "curved";
-    out.push_back(truth);
+    // Its truths: the curved micro-polygon mesh (the reference of the curved rows) and a CPU ray caster of the same
+    // bent relief (measure/curved_raycast.h), a row measured against the mesh: how far the two truths agree.
+    for (RenderMethod m : {RenderMethod::micromesh, RenderMethod::raycast}) {
+        CompareEntry truth = entry(m, "", "truth", {{"patch", patch}});
+        truth.id = truth.method = "curved-" + to_string(m);
+        truth.base = "curved";
+        out.push_back(truth);
+    }
     return out;
 }
 

@@ -29,7 +29,7 @@ have = {m["method"] for m in j["methods"]}
 if kind == "relief":
     want = {"flat", "two-pass", "pipelined", "parallax", "parallax-offset-limiting", "steep-parallax",
             "parallax-occlusion", "relief-mapping", "interval-mapping", "protruded-displacement", "micromesh",
-            "raycast", "quadric-silhouettes", "curved-micromesh"}
+            "raycast", "quadric-silhouettes", "curved-micromesh", "curved-raycast"}
 else:
     want = {"flat", "two-pass", "pipelined", "micromesh"}
 if have != want:
@@ -39,7 +39,7 @@ def variant(m):  # quadric silhouettes with and without the quadrics sweep the s
 for m in j["methods"]:  # --quick: at most 2 settings per method
     if sum(1 for x in j["methods"] if variant(x) == variant(m)) > 2:
         errors.append("more than 2 settings of %s" % (variant(m),))
-    want_base = "curved" if m["method"] in ("quadric-silhouettes", "curved-micromesh") else "flat"
+    want_base = "curved" if m["method"] in ("quadric-silhouettes", "curved-micromesh", "curved-raycast") else "flat"
     if m["base"] != want_base:
         errors.append("%s has base %s, not %s" % (m["id"], m["base"], want_base))
 if kind == "relief":  # the curved base: each quadric setting beside the same steps without the quadrics

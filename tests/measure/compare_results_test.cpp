@@ -100,7 +100,7 @@ TEST(CompareResults, SummaryParetoAndCsv) {
 }
 
 // The curved base in the sweep: quadric silhouettes at relief mapping's steps, each beside the same steps without
-// the quadrics, and the curved mesh as its truth; --quick keeps 2 steps of each.
+// the quadrics, and its truths, the curved mesh and the curved ray caster; --quick keeps 2 steps of each.
 TEST(CompareSweep, TheCurvedBasePairsEachQuadricSettingWithTheSameStepsWithout) {
     for (bool quick : {false, true}) {
         std::vector<std::string> with, without, truths, relief_mapping;
@@ -109,7 +109,7 @@ TEST(CompareSweep, TheCurvedBasePairsEachQuadricSettingWithTheSameStepsWithout) 
             if (!e.curved()) continue;
             if (e.family == "truth") {
                 truths.push_back(e.id);
-                EXPECT_EQ(e.render.method, RenderMethod::micromesh);
+                EXPECT_EQ(e.id, "curved-" + to_string(e.render.method));
             } else {
                 EXPECT_EQ(e.render.method, RenderMethod::quadric_silhouettes) << e.id;
                 EXPECT_EQ(e.family, "per-pixel") << e.id;  // iteration counts, as the other searches
@@ -120,7 +120,7 @@ TEST(CompareSweep, TheCurvedBasePairsEachQuadricSettingWithTheSameStepsWithout) 
                 (q.quadric ? with : without).push_back(e.setting);
             }
         }
-        EXPECT_EQ(truths, std::vector<std::string>{"curved-micromesh"});
+        EXPECT_EQ(truths, (std::vector<std::string>{"curved-micromesh", "curved-raycast"}));
         EXPECT_EQ(with, relief_mapping);
         ASSERT_EQ(without.size(), with.size());
         for (size_t i = 0; i < with.size(); ++i) EXPECT_EQ(without[i], "no-quadric-" + with[i]);
