@@ -288,7 +288,9 @@ std::string curved_section(const CompareResults& r) {
         "silhouettes (Oliveira and Policarpo 2005) draws the relief bent over a cylinder patch "
         "(perpixel/cylinder_patch.h), so every row here is measured against the truth of that same curved surface, "
         "the curved micro-polygon mesh (curved-micromesh), never against the flat truths above; its points are kept "
-        "out of the flat plot. Beside each setting, the same shader without the quadrics "
+        "out of the flat plot. A second truth, curved-raycast (the same bent relief cast on the CPU), is a row "
+        "measured against the mesh: how far the two truths agree. Beside each setting, the same shader without the "
+        "quadrics "
         "(quadric-silhouettes:no-quadric-...): the original relief mapping on the curved mesh, whose silhouette is "
         "the mesh's. Same views, timing and error measures as above.</p>\n";
     const std::vector<std::string> ids = ids_of(r, true);

@@ -80,6 +80,12 @@ for r in rows:
             errors.append("no curved-micromesh picture for %s %s" % (r["source"], r["view"]))
         if r["method_id"] == "curved-micromesh" and (r["rmse"] != 0 or r["iou"] != 1 or r["heatmap"] is not None):
             errors.append("curved-micromesh against itself: rmse %s iou %s" % (r["rmse"], r["iou"]))
+        # The two truths of the curved base, drawn in two ways, agree but for edge pixels and the interpolation
+        # inside a texel cell (bilinear against two triangles): at 48x48 on bumps and ridges IoU 0.9961 to 1 and
+        # PSNR 43.7 to 71.0 dB (2026-12-02).
+        if r["method_id"] == "curved-raycast" and (r["iou"] < 0.99 or r["psnr"] is not None and r["psnr"] < 40):
+            errors.append("curved-raycast against curved-micromesh %s: iou %s psnr %s" % (r["view"], r["iou"],
+                                                                                          r["psnr"]))
 with open(os.path.join(d, "results.csv")) as f:
     c = list(csv.DictReader(f))
 if len(c) != len(rows):

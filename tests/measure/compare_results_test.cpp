@@ -109,7 +109,7 @@ TEST(CompareSweep, TheCurvedBasePairsEachQuadricSettingWithTheSameStepsWithout) 
             if (!e.curved()) continue;
             if (e.family == "truth") {
                 truths.push_back(e.id);
-                EXPECT_EQ(e.id, "curved-" + to_string(e.render.method));
+                EXPECT_EQ(e.id, std::string("curved-").append(to_string(e.render.method)));
             } else {
                 EXPECT_EQ(e.render.method, RenderMethod::quadric_silhouettes) << e.id;
                 EXPECT_EQ(e.family, "per-pixel") << e.id;  // iteration counts, as the other searches
