@@ -59,7 +59,10 @@ Timed render_timed(CompareSource& src, Renderer& renderer, const Camera& cam, co
     Timed t;
     for (int i = 0; i < frames; ++i) {
         StageTimes st;
-        t.image = src.render(renderer, cam, s, e.output_scale, st);
+        t.image = e.curved() && e.family == "truth"
+                      ? src.render_curved_truth(renderer, cam, e.render.method,
+                                                e.render.perpixel.quadric_silhouettes.angle, o.threads, st)
+                      : src.render(renderer, cam, s, e.output_scale, st);
         if (frames > 1 && i == 0) continue;  // the first frame warms up (uploads, shader compiles, caches)
         total.push_back(st.total_ms);
         pre.push_back(st.prewarp_ms);
@@ -90,9 +93,9 @@ std::string file_stem(const std::string& id) {
     return s;
 }
 
-const CompareEntry* find_entry(const std::vector<CompareEntry>& m, RenderMethod method) {
+const CompareEntry* find_entry(const std::vector<CompareEntry>& m, RenderMethod method, bool curved = false) {
     for (const CompareEntry& e : m)
-        if (e.render.method == method && e.family == "truth") return &e;
+        if (e.render.method == method && e.family == "truth" && e.curved() == curved) return &e;
     return nullptr;
 }
 
@@ -119,6 +122,8 @@ CompareRun run_comparison(const std::vector<CompareSource*>& sources, const Comp
     const CompareEntry* rc_entry = find_entry(o.methods, RenderMethod::raycast);
     const CompareEntry& mm = mm_entry ? *mm_entry : *find_entry(defaults, RenderMethod::micromesh);
     const CompareEntry& rc = rc_entry ? *rc_entry : *find_entry(defaults, RenderMethod::raycast);
+    const CompareEntry* cm_entry = find_entry(o.methods, RenderMethod::micromesh, true);
+    const CompareEntry& cm = cm_entry ? *cm_entry : *find_entry(defaults, RenderMethod::micromesh, true);
 
     const auto save = [&](const std::string& rel, const ImageRGBA8& img) {
         if (o.out_dir.empty()) return std::string();
@@ -142,11 +147,26 @@ CompareRun run_comparison(const std::vector<CompareSource*>& sources, const Comp
             auto& truth = run.truths[src->name][v.name];
             truth["micromesh"] = save(dir + "micromesh.png", mesh.image);
             truth["raycast"] = has_rc ? save(dir + "raycast.png", ray.image) : std::string();
+            // The curved base's truth, when the source renders any curved entry of the run.
+            const bool has_curved = std::any_of(run.methods.begin(), run.methods.end(),
+                                                [&](const CompareEntry* e) { return e->curved() && src->renders(*e); });
+            Timed curved;
+            if (has_curved) {
+                curved = render_timed(*src, renderer, cam, cm, o);
+                truth[cm.id] = save(dir + file_stem(cm.id) + ".png", curved.image);
+            }
 
             for (const CompareEntry* e : run.methods) {
                 if (!src->renders(*e)) continue;
-                const bool is_mesh = e == &mm, is_ray = e == &rc;
-                const Timed t = is_mesh ? mesh : is_ray ? ray : render_timed(*src, renderer, cam, *e, o);
+                const bool is_mesh = e == &mm, is_ray = e == &rc, is_curved_truth = e == &cm;
+                const bool is_truth = is_mesh || is_ray || is_curved_truth;
+                const Timed t = is_mesh           ? mesh
+                                : is_ray          ? ray
+                                : is_curved_truth ? curved
+                                                  : render_timed(*src, renderer, cam, *e, o);
+                // The curved base is measured against the curved mesh alone: the flat truths render another surface.
+                const ImageRGBA8& truth_image = e->curved() ? curved.image : ref;
+                const ImageRGBA8& mesh_image = e->curved() ? curved.image : mesh.image;
                 CompareRow r;
                 r.source = src->name;
                 r.view = v.name;
@@ -154,21 +174,24 @@ CompareRun run_comparison(const std::vector<CompareSource*>& sources, const Comp
                 r.method = e->method;
                 r.setting = e->setting;
                 r.family = e->family;
+                r.base = e->base;
+                r.truth = e->curved() ? cm.id : has_rc ? rc.method : mm.method;
                 r.ms = t.ms;
                 if (e->family == "pre-warp") {
                     r.has_stages = true;
                     r.stages = t.stages;
                 }
                 ImageRGBA8 heat;
-                r.error = diff_images(ref, t.image, &heat);
-                r.vs_micromesh = diff_images(mesh.image, t.image);
-                r.silhouette_px = silhouette_error(ref, t.image);
-                if (is_mesh || is_ray) {
-                    r.image = truth[e->method];
+                r.error = diff_images(truth_image, t.image, &heat);
+                r.vs_micromesh = diff_images(mesh_image, t.image);
+                r.silhouette_px = silhouette_error(truth_image, t.image);
+                if (is_truth) {
+                    r.image = truth[is_curved_truth ? cm.id : e->method];
                 } else {
                     r.image = save(dir + file_stem(e->id) + ".png", t.image);
                 }
-                if (!(has_rc ? is_ray : is_mesh)) r.heatmap = save(dir + file_stem(e->id) + ".heat.png", heat);
+                const bool is_reference = is_curved_truth || (!e->curved() && (has_rc ? is_ray : is_mesh));
+                if (!is_reference) r.heatmap = save(dir + file_stem(e->id) + ".heat.png", heat);
                 if (e->counts_iterations()) {
                     RenderSettings s = e->render;
                     s.perpixel.common.iteration_counts = true;
@@ -205,6 +228,8 @@ nlohmann::json row_json(const CompareRow& r) {
             {"method", r.method},
             {"setting", r.setting},
             {"family", r.family},
+            {"base", r.base},
+            {"truth", r.truth},
             {"ms", num(r.ms)},
             {"stages", stages},
             {"psnr", num(r.error.psnr)},
@@ -230,19 +255,24 @@ double mean_finite(const std::vector<double>& v) {
     return n ? s / n : kNoValue;
 }
 
-// Summary rows of `rows` (one per method id, in `ids` order) under the name `source`, Pareto-marked among themselves.
-std::vector<nlohmann::json> summarize(const std::string& source, const std::vector<const CompareEntry*>& ids,
+// Summary rows of `rows` (one per method id of base `base`, in `ids` order) under the name `source`, Pareto-marked
+// among themselves: the flat and the curved base have different truths, so each has a front of its own.
+std::vector<nlohmann::json> summarize(const std::string& source, const std::string& base,
+                                      const std::vector<const CompareEntry*>& ids,
                                       const std::vector<const CompareRow*>& rows) {
     std::vector<nlohmann::json> out;
     std::vector<ParetoPoint> points;
     for (const CompareEntry* e : ids) {
+        if (e->base != base) continue;
         std::vector<double> ms, psnr, rmse, iou;
+        std::string truth;
         for (const CompareRow* r : rows)
             if (r->method_id == e->id) {
                 ms.push_back(r->ms);
                 psnr.push_back(r->error.psnr);
                 rmse.push_back(r->error.rmse);
                 iou.push_back(r->error.iou);
+                truth = truth.empty() || truth == r->truth ? r->truth : "mixed";
             }
         if (ms.empty()) continue;
         const double m = median(ms), e_rmse = mean_finite(rmse);
@@ -251,6 +281,8 @@ std::vector<nlohmann::json> summarize(const std::string& source, const std::vect
                        {"method", e->method},
                        {"setting", e->setting},
                        {"family", e->family},
+                       {"base", e->base},
+                       {"truth", truth},
                        {"ms", num(m)},
                        {"psnr", num(mean_finite(psnr))},
                        {"rmse", num(e_rmse)},
@@ -288,6 +320,7 @@ nlohmann::json comparison_json(const std::vector<CompareSource*>& sources, const
                            {"method", e->method},
                            {"family", e->family},
                            {"setting", e->setting},
+                           {"base", e->base},
                            {"params", e->params}});
     j["methods"] = methods;
     nlohmann::json truths = nlohmann::json::object();
@@ -305,9 +338,11 @@ nlohmann::json comparison_json(const std::vector<CompareSource*>& sources, const
         std::vector<const CompareRow*> mine;
         for (const CompareRow* r : all)
             if (r->source == s->name) mine.push_back(r);
-        for (nlohmann::json& x : summarize(s->name, run.methods, mine)) summary.push_back(std::move(x));
+        for (const char* base : {"flat", "curved"})
+            for (nlohmann::json& x : summarize(s->name, base, run.methods, mine)) summary.push_back(std::move(x));
     }
-    for (nlohmann::json& x : summarize("all", run.methods, all)) summary.push_back(std::move(x));
+    for (const char* base : {"flat", "curved"})
+        for (nlohmann::json& x : summarize("all", base, run.methods, all)) summary.push_back(std::move(x));
     j["summary"] = summary;
     return j;
 }
@@ -352,7 +387,9 @@ std::string comparison_csv(const nlohmann::json& results) {
                              "iterations_mean",
                              "image",
                              "heatmap",
-                             "iterations_image"};
+                             "iterations_image",
+                             "base",
+                             "truth"};
     std::string s;
     for (const char* c : columns) {
         if (!s.empty()) s += ',';
@@ -367,7 +404,7 @@ std::string comparison_csv(const nlohmann::json& results) {
             if (c.rfind("stage_", 0) == 0) {
                 const std::string k = c.substr(6);
                 if (r.at("stages").contains(k)) v = r.at("stages").at(k);
-            } else {
+            } else if (r.contains(c)) {
                 v = r.at(c);
             }
             if (!first) line += ',';
@@ -381,12 +418,13 @@ std::string comparison_csv(const nlohmann::json& results) {
 
 std::string comparison_markdown(const nlohmann::json& results) {
     std::string s = "### " + results.value("title", std::string("rtm compare")) +
-                    "\n\nMeans over the views of the error against the reference truth (raycast for a relief, "
-                    "micromesh for an object or a scene): PSNR and RMSE over the pixels covered in both, coverage "
-                    "IoU; frame time: the median over the views of each view's median frame. Pareto: on the "
-                    "run-time-against-RMSE front of its source. Every row per view: results.csv.\n\n"
-                    "| source | method | setting | family | frame ms | PSNR dB | RMSE | IoU | Pareto |\n"
-                    "|---|---|---|---|---:|---:|---:|---:|:---:|\n";
+                    "\n\nMeans over the views of the error against the row's truth (raycast for a relief, "
+                    "micromesh for an object or a scene, curved-micromesh for the curved base: the relief bent over "
+                    "the cylinder patch of quadric silhouettes): PSNR and RMSE over the pixels covered in both, "
+                    "coverage IoU; frame time: the median over the views of each view's median frame. Pareto: on the "
+                    "run-time-against-RMSE front of its source and base. Every row per view: results.csv.\n\n"
+                    "| source | method | setting | family | truth | frame ms | PSNR dB | RMSE | IoU | Pareto |\n"
+                    "|---|---|---|---|---|---:|---:|---:|---:|:---:|\n";
     const auto f = [](const nlohmann::json& v, const char* fmt) {
         if (v.is_null()) return std::string("-");
         char buf[64];
@@ -396,8 +434,9 @@ std::string comparison_markdown(const nlohmann::json& results) {
     for (const nlohmann::json& r : results.at("summary"))
         s += "| " + r.at("source").get<std::string>() + " | " + r.at("method").get<std::string>() + " | " +
              r.at("setting").get<std::string>() + " | " + r.at("family").get<std::string>() + " | " +
-             f(r.at("ms"), "%.2f") + " | " + f(r.at("psnr"), "%.2f") + " | " + f(r.at("rmse"), "%.2f") + " | " +
-             f(r.at("iou"), "%.4f") + " | " + (r.at("pareto").get<bool>() ? "yes" : "") + " |\n";
+             r.value("truth", std::string()) + " | " + f(r.at("ms"), "%.2f") + " | " + f(r.at("psnr"), "%.2f") + " | " +
+             f(r.at("rmse"), "%.2f") + " | " + f(r.at("iou"), "%.4f") + " | " +
+             (r.at("pareto").get<bool>() ? "yes" : "") + " |\n";
     return s;
 }
 

@@ -54,11 +54,13 @@ constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
 
 struct CompareRow {
     std::string source, view, method_id, method, setting, family;
-    double ms = 0;      // median frame time
-    StageTimes stages;  // medians per stage (pre-warp family only; `other` = total - the three)
+    std::string base = "flat";  // the entry's base: "flat" or "curved" (CompareEntry::base)
+    std::string truth;          // what `error` is measured against: "raycast", "micromesh" or "curved-micromesh"
+    double ms = 0;              // median frame time
+    StageTimes stages;          // medians per stage (pre-warp family only; `other` = total - the three)
     bool has_stages = false;
-    DiffResult error;                   // against the reference truth (raycast for a relief, micromesh otherwise)
-    DiffResult vs_micromesh;            // against the micro-polygon mesh
+    DiffResult error;                   // against `truth`
+    DiffResult vs_micromesh;            // against the micro-polygon mesh (the curved one for the curved base)
     double silhouette_px = kNoValue;    // silhouette error against the reference truth
     double iterations_mean = kNoValue;  // per-pixel search iterations over the covered pixels
     std::string image, heatmap, iterations_image;  // relative to out_dir; empty = none
@@ -68,7 +70,8 @@ struct CompareRun {
     std::vector<CompareView> views;
     std::vector<const CompareEntry*> methods;  // the entries that rendered at least one source
     std::vector<CompareRow> rows;              // per source, view, method in that order
-    // truths[source][view]["raycast" | "micromesh"] = image path ("" when not rendered or not written)
+    // truths[source][view]["raycast" | "micromesh" | "curved-micromesh"] = image path ("" when not rendered or not
+    // written; curved-micromesh only where the curved base was rendered)
     std::map<std::string, std::map<std::string, std::map<std::string, std::string>>> truths;
 };
 
@@ -82,7 +85,7 @@ nlohmann::json comparison_json(const std::vector<CompareSource*>& sources, const
 // results.csv from the results.json object: a header row, then one row per element of "rows", the columns being
 // the rows' fields (stages as stage_prewarp, stage_upload, stage_texmap, stage_other); null is an empty cell.
 std::string comparison_csv(const nlohmann::json& results);
-// A Markdown table of the summary rows (per source and method id).
+// A Markdown table of the summary rows (per source, base and method id).
 std::string comparison_markdown(const nlohmann::json& results);
 
 }  // namespace rtm

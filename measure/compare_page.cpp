@@ -35,6 +35,8 @@ th.sorted-down::after { content: " \25BC"; } tr.front td { background: #fff7e0; 
 .cell { width: 140px; margin: 0; font-size: 12px; }
 .cell img { width: 140px; display: block; background: #000; image-rendering: pixelated; margin-bottom: 2px; }
 .cell.truth figcaption { font-weight: bold; }
+details.view { margin: 0.4em 0; } details.view > summary { cursor: pointer; font-weight: 600; padding: 2px 0; }
+details.view > summary .note { font-weight: normal; }
 .steps { display: flex; flex-wrap: wrap; gap: 14px; } .step { margin: 0; width: 260px; font-size: 12px; }
 .stack { position: relative; } .stack img { display: block; image-rendering: pixelated; background: #000; }
 .stack svg.overlay { position: absolute; left: 0; top: 0; width: 100%; height: 100%; overflow: visible; }
@@ -134,7 +136,8 @@ std::string header(const CompareResults& r) {
     if (r.quick) facts.push_back("quick run (--quick)");
     for (size_t i = 0; i < facts.size(); ++i) s += (i ? " &#183; " : "") + esc(facts[i]);
     s += "</p>\n<nav><a href=\"#reading\">Reading</a> &#183; <a href=\"#plots\">Time against error</a> &#183; "
-         "<a href=\"#summary\">Summary</a> &#183; <a href=\"#views\">Views</a> &#183; <a href=\"#steps\">The "
+         "<a href=\"#summary\">Summary</a> &#183; <a href=\"#views\">Views</a> &#183; <a href=\"#curved\">The "
+         "curved base</a> &#183; <a href=\"#steps\">The "
          "pre-warp step by step</a> &#183; <a href=\"results.csv\">results.csv</a> &#183; <a "
          "href=\"results.json\">results.json</a></nav></header>\n";
     return s;
@@ -148,21 +151,23 @@ std::string reading(const CompareResults& r) {
     return s;
 }
 
-std::string plots(const CompareResults& r) {
-    std::string s =
-        "<section id=\"plots\"><h2>Run time against error</h2>\n<p>One point per method and setting: "
-        "the median frame time over the views (log scale) against the mean RMSE over the views. Colour "
-        "by family; the Pareto front (no method both faster and more accurate) is the dashed step line, "
-        "its points ringed. Hover a point for its figures.</p>\n<div class=\"plots\">\n";
+// The plot blocks of one base: over all sources (when the file has "all" rows of it) and per source. The curved
+// base's blocks carry data-base="curved" and their points are coloured by whether the quadrics are on.
+std::string plot_blocks(const CompareResults& r, bool curved) {
+    std::string s;
     std::vector<std::pair<std::string, std::string>> blocks;  // source key, heading
-    if (!r.summary_of("all").empty()) blocks.push_back({"all", "All sources"});
+    if (!r.summary_of("all", curved).empty()) blocks.push_back({"all", "All sources"});
     for (const ResultSource& src : r.sources) blocks.push_back({src.name, src.name});
     int n = 0;
     for (const auto& [key, heading] : blocks) {
-        const std::vector<SummaryRow> rows = r.summary_of(key);
+        std::vector<SummaryRow> rows = r.summary_of(key, curved);
         if (rows.empty()) continue;
-        const TimeErrorPlot plot = time_error_plot(rows, "plot-" + std::to_string(n++));
-        s += "<div class=\"plot-block\" data-source=\"" + esc(key) + "\"><h3>" + esc(heading) + "</h3>\n" + plot.svg;
+        if (curved)
+            for (SummaryRow& x : rows)
+                if (x.family != "truth") x.family = x.setting.rfind("no-quadric-", 0) == 0 ? "no quadrics" : "quadrics";
+        const TimeErrorPlot plot = time_error_plot(rows, (curved ? "curved-plot-" : "plot-") + std::to_string(n++));
+        s += "<div class=\"plot-block\" data-source=\"" + esc(key) + "\"" + (curved ? " data-base=\"curved\"" : "") +
+             "><h3>" + esc(heading) + "</h3>\n" + plot.svg;
         if (!plot.left_out.empty()) {
             s += "<p class=\"note\">Not plotted (no time or no RMSE): ";
             for (size_t i = 0; i < plot.left_out.size(); ++i) s += (i ? ", " : "") + esc(plot.left_out[i]);
@@ -170,34 +175,45 @@ std::string plots(const CompareResults& r) {
         }
         s += "</div>\n";
     }
-    return s + "</div>\n</section>\n";
+    return s;
+}
+
+std::string plots(const CompareResults& r) {
+    return "<section id=\"plots\"><h2>Run time against error</h2>\n<p>One point per method and setting: "
+           "the median frame time over the views (log scale) against the mean RMSE over the views. Colour "
+           "by family; the Pareto front (no method both faster and more accurate) is the dashed step line, "
+           "its points ringed. Hover a point for its figures. The curved base (quadric silhouettes) has a truth of "
+           "its own and a plot of its own: <a href=\"#curved\">below</a>.</p>\n<div class=\"plots\">\n" +
+           plot_blocks(r, false) + "</div>\n</section>\n";
 }
 
 std::string summary_table(const CompareResults& r) {
     std::string s =
         "<section id=\"summary\"><h2>Summary</h2>\n<p>Per source and method: median frame time over "
-        "the views, mean PSNR, RMSE and IoU against the ray caster over the views; source \"all\" over "
+        "the views, mean PSNR, RMSE and IoU against the row's truth over the views; source \"all\" over "
         "every source. Click a heading to sort.</p>\n<table id=\"summary-table\" class=\"sortable\">"
-        "<thead><tr><th>source</th><th>method</th><th>family</th><th data-type=\"number\">ms</th>"
+        "<thead><tr><th>source</th><th>method</th><th>family</th><th>truth</th><th data-type=\"number\">ms</th>"
         "<th data-type=\"number\">PSNR dB</th><th data-type=\"number\">RMSE</th>"
         "<th data-type=\"number\">IoU</th><th>front</th></tr></thead>\n<tbody>\n";
     for (const SummaryRow& x : r.summary) {
         s += std::string("<tr") + (x.pareto ? " class=\"front\"" : "") + "><td>" + esc(x.source) + "</td><td>" +
-             esc(x.method_id) + "</td><td>" + esc(x.family) + "</td>" + number_cell(x.ms, significant(x.ms)) +
-             number_cell(x.psnr, fixed(x.psnr, 2)) + number_cell(x.rmse, fixed(x.rmse, 2)) +
-             number_cell(x.iou, fixed(x.iou, 4)) + "<td>" + (x.pareto ? "yes" : "") + "</td></tr>\n";
+             esc(x.method_id) + "</td><td>" + esc(x.family) + "</td><td>" + esc(x.truth) + "</td>" +
+             number_cell(x.ms, significant(x.ms)) + number_cell(x.psnr, fixed(x.psnr, 2)) +
+             number_cell(x.rmse, fixed(x.rmse, 2)) + number_cell(x.iou, fixed(x.iou, 4)) + "<td>" +
+             (x.pareto ? "yes" : "") + "</td></tr>\n";
     }
     return s + "</tbody></table>\n</section>\n";
 }
 
 // A picture with, below it, its error heat map and its iteration-count map where given (hover names each).
-std::string cell(const std::string& caption, const std::vector<std::string>& images, bool truth = false) {
-    static const char* kinds[] = {"the frame", "error heat map against the ray caster", "search iterations per pixel"};
+std::string cell(const std::string& caption, const std::vector<std::string>& images, bool truth = false,
+                 const std::string& against = "the ray caster") {
+    const std::string kinds[] = {"the frame", "error heat map against " + against, "search iterations per pixel"};
     std::string s = std::string("<figure class=\"cell") + (truth ? " truth" : "") + "\">";
     for (size_t i = 0; i < images.size(); ++i)
         if (!images[i].empty())
             s += "<img src=\"" + esc(images[i]) + "\" alt=\"" + esc(images[i]) + "\" title=\"" +
-                 kinds[std::min<size_t>(i, 2)] + "\"/>";
+                 esc(kinds[std::min<size_t>(i, 2)]) + "\"/>";
     return s + "<figcaption>" + caption + "</figcaption></figure>\n";
 }
 
@@ -211,33 +227,80 @@ std::string row_caption(const ResultRow& row) {
     return s;
 }
 
-std::string views(const CompareResults& r) {
-    std::string s =
-        "<section id=\"views\"><h2>Views</h2>\n<p>Per source and view: the truths first (the exact ray "
-        "caster, the micro-polygon mesh), then every method; under each picture its error heat map "
-        "against the ray caster and, for the searching methods, the per-pixel iteration count.</p>\n";
+// The method ids of the rows of one base, in the methods' order (then any only the rows name).
+std::vector<std::string> ids_of(const CompareResults& r, bool curved) {
     std::vector<std::string> ids;
-    for (const ResultMethod& m : r.methods) ids.push_back(m.id);
+    for (const ResultMethod& m : r.methods)
+        if (is_curved_base(m.base) == curved) ids.push_back(m.id);
     for (const ResultRow& row : r.rows)
-        if (std::find(ids.begin(), ids.end(), row.method_id) == ids.end()) ids.push_back(row.method_id);
+        if (row.curved() == curved && std::find(ids.begin(), ids.end(), row.method_id) == ids.end())
+            ids.push_back(row.method_id);
+    return ids;
+}
+
+// Per source and view, a collapsible grid (<details>, the first view of each source open, so that the long page
+// opens on one grid per source): the named truths first, then every method id's picture that has a row.
+std::string view_grids(const CompareResults& r, const std::vector<std::string>& ids,
+                       const std::vector<const char*>& truth_names, const std::string& against) {
+    std::string s;
     for (const ResultSource& src : r.sources) {
-        s += "<h3>" + esc(src.name) + "</h3>\n";
+        std::string grids;
+        bool first = true;
         for (const ResultView& v : r.views) {
-            s += "<h4>" + esc(v.name) + " <span class=\"note\">(azimuth " + fixed(v.azimuth, 0) + ", elevation " +
-                 fixed(v.elevation, 0) + ": " + fixed(v.angle_from_normal(), 0) +
-                 " degrees from the normal)</span></h4>\n<div class=\"views\">\n";
+            std::string cells;
             const auto ts = r.truths.find(src.name);
             if (ts != r.truths.end())
                 if (const auto tv = ts->second.find(v.name); tv != ts->second.end())
-                    for (const char* name : {"raycast", "micromesh"})
+                    for (const char* name : truth_names)
                         if (const auto img = tv->second.find(name); img != tv->second.end())
-                            s += cell(std::string("<b>") + name + "</b> (truth)", {img->second}, true);
+                            cells += cell(std::string("<b>") + name + "</b> (truth)", {img->second}, true);
+            int n = 0;
             for (const std::string& id : ids)
-                if (const ResultRow* row = r.row(src.name, v.name, id))
-                    s += cell(row_caption(*row), {row->image, row->heatmap, row->iterations_image});
-            s += "</div>\n";
+                if (const ResultRow* row = r.row(src.name, v.name, id)) {
+                    cells += cell(row_caption(*row), {row->image, row->heatmap, row->iterations_image}, false, against);
+                    ++n;
+                }
+            if (n == 0) continue;
+            grids += std::string("<details class=\"view\"") + (first ? " open=\"open\"" : "") + "><summary>" +
+                     esc(v.name) + " <span class=\"note\">(azimuth " + fixed(v.azimuth, 0) + ", elevation " +
+                     fixed(v.elevation, 0) + ": " + fixed(v.angle_from_normal(), 0) + " degrees from the normal; " +
+                     std::to_string(n) + " methods)</span></summary>\n<div class=\"views\">\n" + cells +
+                     "</div>\n</details>\n";
+            first = false;
         }
+        if (!grids.empty()) s += "<h3>" + esc(src.name) + "</h3>\n" + grids;
     }
+    return s;
+}
+
+std::string views(const CompareResults& r) {
+    return "<section id=\"views\"><h2>Views</h2>\n<p>Per source and view (click a view to open or close it): the "
+           "truths first (the exact ray caster, the micro-polygon mesh), then every method; under each picture its "
+           "error heat map against the ray caster and, for the searching methods, the per-pixel iteration "
+           "count.</p>\n" +
+           view_grids(r, ids_of(r, false), {"raycast", "micromesh"}, "the ray caster") + "</section>\n";
+}
+
+// Relief mapping with quadric silhouettes on the curved base: its own plot and front, and its pictures.
+std::string curved_section(const CompareResults& r) {
+    std::string s =
+        "<section id=\"curved\"><h2>The curved base: quadric silhouettes</h2>\n<p>Relief mapping with quadric "
+        "silhouettes (Oliveira and Policarpo 2005) draws the relief bent over a cylinder patch "
+        "(perpixel/cylinder_patch.h), so every row here is measured against the truth of that same curved surface, "
+        "the curved micro-polygon mesh (curved-micromesh), never against the flat truths above; its points are kept "
+        "out of the flat plot. A second truth, curved-raycast (the same bent relief cast on the CPU), is a row "
+        "measured against the mesh: how far the two truths agree. Beside each setting, the same shader without the "
+        "quadrics "
+        "(quadric-silhouettes:no-quadric-...): the original relief mapping on the curved mesh, whose silhouette is "
+        "the mesh's. Same views, timing and error measures as above.</p>\n";
+    const std::vector<std::string> ids = ids_of(r, true);
+    bool any = false;
+    for (const ResultRow& row : r.rows) any |= row.curved();
+    if (!any)
+        return s +
+               "<p class=\"note\">Not part of this run (an object or a scene has no curved base).</p>\n</section>\n";
+    s += "<div class=\"plots\">\n" + plot_blocks(r, true) + "</div>\n";
+    s += view_grids(r, ids, {"curved-micromesh"}, "the curved micro-polygon mesh");
     return s + "</section>\n";
 }
 
@@ -248,7 +311,7 @@ std::string compare_page_html(const nlohmann::json& results, const std::string& 
     std::string s = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"/><title>" +
                     esc(r.title.empty() ? "rtm compare" : r.title) + "</title>\n<style>" + kStyle +
                     "</style>\n<script>" + kHeadScript + "</script></head>\n<body data-status=\"loading\">\n";
-    s += header(r) + reading(r) + plots(r) + summary_table(r) + views(r);
+    s += header(r) + reading(r) + plots(r) + summary_table(r) + views(r) + curved_section(r);
     s += steps_section.empty()
              ? "<section id=\"steps\"><h2>The pre-warp step by step</h2><p class=\"note\">Not part of this run.</p>"
                "</section>\n"

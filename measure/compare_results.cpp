@@ -57,10 +57,10 @@ const ResultRow* CompareResults::row(const std::string& source, const std::strin
     return nullptr;
 }
 
-std::vector<SummaryRow> CompareResults::summary_of(const std::string& source) const {
+std::vector<SummaryRow> CompareResults::summary_of(const std::string& source, bool curved) const {
     std::vector<SummaryRow> out;
     for (const SummaryRow& s : summary)
-        if (s.source == source) out.push_back(s);
+        if (s.source == source && s.curved() == curved) out.push_back(s);
     return out;
 }
 
@@ -94,7 +94,8 @@ CompareResults parse_compare_results(const json& j) {
     for (size_t i = 0; i < methods.size(); ++i) {
         const std::string w = "methods[" + std::to_string(i) + "]";
         const json& m = methods[i];
-        r.methods.push_back({text(m, "id", w), text(m, "method", w), text(m, "family", w), text(m, "setting", w)});
+        r.methods.push_back({text(m, "id", w), text(m, "method", w), text(m, "family", w), text(m, "setting", w),
+                             text(m, "base", w)});
     }
     if (const auto it = j.find("truths"); it != j.end() && it->is_object())
         for (const auto& [source, per_view] : it->items()) {
@@ -126,7 +127,9 @@ CompareResults parse_compare_results(const json& j) {
                       {},
                       text(o, "image", w),
                       text(o, "heatmap", w),
-                      text(o, "iterations_image", w)};
+                      text(o, "iterations_image", w),
+                      text(o, "base", w),
+                      text(o, "truth", w)};
         if (const auto st = o.find("stages"); st != o.end() && st->is_object())
             for (const auto& [name, v] : st->items())
                 if (v.is_number()) row.stages[name] = v.get<double>();
@@ -140,6 +143,8 @@ CompareResults parse_compare_results(const json& j) {
                      text(o, "setting", w), text(o, "family", w),    number(o, "ms", w),
                      number(o, "psnr", w),  number(o, "rmse", w),    number(o, "iou", w)};
         if (const auto p = o.find("pareto"); p != o.end() && p->is_boolean()) s.pareto = p->get<bool>();
+        s.base = text(o, "base", w);
+        s.truth = text(o, "truth", w);
         r.summary.push_back(std::move(s));
     }
     return r;

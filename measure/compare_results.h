@@ -24,8 +24,12 @@ struct ResultView {
     double angle_from_normal() const;
 };
 
+// "curved": the curved base of quadric silhouettes (measured against curved-micromesh); anything else is flat.
+inline bool is_curved_base(const std::string& base) { return base == "curved"; }
+
 struct ResultMethod {
     std::string id, method, family, setting;
+    std::string base;  // "flat" or "curved"; empty (older files): flat
 };
 
 struct ResultRow {
@@ -33,12 +37,16 @@ struct ResultRow {
     double ms, psnr, rmse, iou, silhouette_px, psnr_vs_micromesh, iou_vs_micromesh, iterations_mean;
     std::map<std::string, double> stages;          // prewarp, upload, texmap, other (ms); empty for other families
     std::string image, heatmap, iterations_image;  // paths relative to the page, empty when absent
+    std::string base, truth;                       // "flat"/"curved" (empty: flat); what the errors are against
+    bool curved() const { return is_curved_base(base); }
 };
 
 struct SummaryRow {
     std::string source, method_id, method, setting, family;  // source "all": over every source
     double ms, psnr, rmse, iou;
     bool pareto = false;
+    std::string base, truth;  // as the rows'
+    bool curved() const { return is_curved_base(base); }
 };
 
 struct CompareResults {
@@ -53,7 +61,8 @@ struct CompareResults {
     std::vector<SummaryRow> summary;
 
     const ResultRow* row(const std::string& source, const std::string& view, const std::string& method_id) const;
-    std::vector<SummaryRow> summary_of(const std::string& source) const;  // in the file's order
+    // The summary rows of `source` of the flat base, or of the curved base, in the file's order.
+    std::vector<SummaryRow> summary_of(const std::string& source, bool curved = false) const;
 };
 
 // Throws std::invalid_argument naming the field when `j` is not an object or a field has the wrong type.

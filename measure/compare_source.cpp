@@ -9,14 +9,21 @@
 #include "warp/upsample.h"
 
 #include <map>
+#include <stdexcept>
+#include <vector>
+
+#include "measure/curved_raycast.h"
+#include "perpixel/cylinder_patch.h"
 
 namespace rtm {
 
 namespace {
 
-bool is_textured(RenderMethod m) {
-    return m == RenderMethod::flat || m == RenderMethod::two_pass || m == RenderMethod::pipelined ||
-           m == RenderMethod::micromesh;
+bool is_textured(const CompareEntry& e) {
+    const RenderMethod m = e.render.method;
+    return !e.curved() && e.output_scale == 1 &&
+           (m == RenderMethod::flat || m == RenderMethod::two_pass || m == RenderMethod::pipelined ||
+            m == RenderMethod::micromesh);
 }
 
 class ReliefSource final : public CompareSource {
@@ -32,18 +39,43 @@ public:
             it = scaled_.emplace(output_scale, ReliefQuad(upsample(quad_.relief(), output_scale))).first;
         return render_relief_frame(it->second, &renderer, cam, s, times);
     }
+    ImageRGBA8 render_curved_truth(Renderer& renderer, const Camera& cam, RenderMethod method, double angle,
+                                   int threads, StageTimes& times) override {
+        if (method == RenderMethod::raycast) {
+            const auto t0 = Clock::now();
+            ImageRGBA8 img = raycast_curved_relief(quad_.relief(), cylinder_patch_for(quad_.relief(), angle), cam,
+                                                   threads);
+            times.total_ms += ms_since(t0);
+            return img;
+        }
+        CurvedMesh& m = curved_[angle];
+        if (m.vertices.empty())
+            curved_micromesh(quad_.relief(), cylinder_patch_for(quad_.relief(), angle), m.vertices, m.indices);
+        const auto t0 = Clock::now();
+        renderer.begin_frame(cam);
+        renderer.draw_mesh(cam, m.vertices, m.indices);
+        renderer.finish();
+        times.texture_map_ms += ms_since(t0);
+        times.total_ms += ms_since(t0);
+        return renderer.read_pixels(cam.width, cam.height);
+    }
     ReliefQuad* relief() override { return &quad_; }
 
 private:
+    struct CurvedMesh {
+        std::vector<MeshVertex> vertices;
+        std::vector<uint32_t> indices;
+    };
     ReliefQuad quad_;
-    std::map<int, ReliefQuad> scaled_;  // the relief at each output scale asked for, built once
+    std::map<int, ReliefQuad> scaled_;     // the relief at each output scale asked for, built once
+    std::map<double, CurvedMesh> curved_;  // the curved micro-polygon mesh at each bend asked for, built once
 };
 
 class ObjectSource final : public CompareSource {
 public:
     explicit ObjectSource(SixFaceObject o) : object_(std::move(o)) {}
     Bounds bounds() const override { return object_.bounds(); }
-    bool renders(const CompareEntry& e) const override { return is_textured(e.render.method) && e.output_scale == 1; }
+    bool renders(const CompareEntry& e) const override { return is_textured(e); }
     ImageRGBA8 render(Renderer& renderer, const Camera& cam, const RenderSettings& s, int, StageTimes& times) override {
         return render_object_frame(object_, renderer, cam, s.method, s.prewarp, s.draw, times);
     }
@@ -57,7 +89,7 @@ class SceneSource final : public CompareSource {
 public:
     explicit SceneSource(Scene s) : scene_(std::move(s)) {}
     Bounds bounds() const override { return scene_.bounds(); }
-    bool renders(const CompareEntry& e) const override { return is_textured(e.render.method) && e.output_scale == 1; }
+    bool renders(const CompareEntry& e) const override { return is_textured(e); }
     ImageRGBA8 render(Renderer& renderer, const Camera& cam, const RenderSettings& s, int, StageTimes& times) override {
         DrawOptions draw = s.draw;
         draw.depth_correction = true;  // as rtm render --scene: reliefs and polygons occlude each other
@@ -75,6 +107,10 @@ private:
 };
 
 }  // namespace
+
+ImageRGBA8 CompareSource::render_curved_truth(Renderer&, const Camera&, RenderMethod, double, int, StageTimes&) {
+    throw std::logic_error(name + ": only a relief renders the curved base");
+}
 
 std::unique_ptr<CompareSource> load_relief_source(const std::string& path) {
     ReliefManifest m;

@@ -13,20 +13,27 @@
 namespace rtm {
 
 struct CompareEntry {
-    std::string id;         // "two-pass:tables", "relief-mapping:l32-b8", "flat", "raycast", ...
-    std::string method;     // the technique as results.csv names it (to_string(RenderMethod))
-    std::string setting;    // "" when the method has one setting
-    std::string family;     // "pre-warp", "per-pixel", "conventional" (flat) or "truth" (micromesh, raycast)
+    std::string id;       // "two-pass:tables", "relief-mapping:l32-b8", "flat", "raycast", ...
+    std::string method;   // the technique as results.csv names it (to_string(RenderMethod))
+    std::string setting;  // "" when the method has one setting
+    std::string family;   // "pre-warp", "per-pixel", "conventional" (flat) or "truth" (micromesh, raycast)
+    // "flat": the relief on its quad, measured against raycast (micromesh for an object or a scene); "curved": the
+    // relief bent over the cylinder patch of quadric silhouettes (perpixel/cylinder_patch.h), measured against the
+    // curved micro-polygon mesh of the same bent relief (reliefs only).
+    std::string base = "flat";
     nlohmann::json params;  // the setting's values by name (the papers' names for the per-pixel methods)
     RenderSettings render;  // method, pre-warp options, draw options, per-pixel settings
     int output_scale = 1;   // the pre-warp's output scale (warp/upsample.h); reliefs only
     bool counts_iterations() const { return family == "per-pixel"; }
+    bool curved() const { return base == "curved"; }
 };
 
 // flat, the pre-warp settings, the per-pixel methods at 3-4 settings each (the papers' defaults included; one for
 // the parallax pair, which has no steps), then the truths micromesh and raycast. `quick`: 2 settings per method
-// (the cheapest and the default). The relief mapping with quadric silhouettes is left out: it renders the relief
-// bent over a cylinder, not the surface the truths render.
+// (the cheapest and the default). Then the curved base: relief mapping with quadric silhouettes at relief mapping's
+// steps, the same shader without the quadrics (the original relief mapping on the curved mesh) at the same steps,
+// and its truths curved-micromesh and curved-raycast; the curved entries render the relief bent over a cylinder patch,
+// so their errors are measured against the curved mesh, never against the flat truths.
 std::vector<CompareEntry> compare_sweep(bool quick);
 
 }  // namespace rtm

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The comparison page in headless Chromium: the synthetic comparison's page (compare_page_fixture, built beside rtm)
-# opens with no console error, every picture and every plot loads and draws, and a screenshot is written. The page
+# opens with no console error, every picture (those in the closed per-view grids too) and every plot (the flat
+# base's 3 and the curved base's 3) loads and draws, and a screenshot is written. The page
 # records script errors and pictures that fail to load on <body>'s attributes (measure/compare_page.cpp), read back
 # here from the DOM Chromium dumps. Skipped (exit 77) when /usr/bin/chromium is absent: scripts/setup.sh installs it.
 . "$(dirname "$0")/lib.bash"
@@ -37,10 +38,10 @@ check "the page's load handler ran (body: $body)" [ "$(attr data-status)" = read
 check "no script error or failed picture: $(sed -n '/<pre id="page-errors">/,/<\/pre>/p' "$T/dom.html" | head -5)" \
   [ "$(attr data-errors)" = 0 ]
 check "every picture loaded ($(attr data-images-loaded) of $(attr data-images))" \
-  [ "$(attr data-images)" = 89 -a "$(attr data-images-loaded)" = 89 ]
+  [ "$(attr data-images)" = 131 -a "$(attr data-images-loaded)" = 131 ]
 check "every plot drawn ($(attr data-plots-drawn) of $(attr data-plots))" \
-  [ "$(attr data-plots)" = 3 -a "$(attr data-plots-drawn)" = 3 ]
-check "one point per method id in each of the 3 plots ($(attr data-plot-points))" [ "$(attr data-plot-points)" = 15 ]
+  [ "$(attr data-plots)" = 6 -a "$(attr data-plots-drawn)" = 6 ]
+check "one point per method id in each of the 6 plots ($(attr data-plot-points))" [ "$(attr data-plot-points)" = 21 ]
 console=$(grep -E 'CONSOLE|Uncaught' "$T/chromium.log" | head -5)
 check "no console message: $console" [ -z "$console" ]
 

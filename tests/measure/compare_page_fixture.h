@@ -1,7 +1,8 @@
 // A small synthetic comparison for the page's tests (tests/measure/compare_page_test.cpp) and for the headless
 // browser test (tests/cli/compare_page.sh, through the compare_page_fixture program): 2 sources, 3 views from
-// frontal to grazing, 5 methods of four families, with the pictures (small PNGs) the rows name, a missing PSNR, a
-// missing IoU, and the Pareto flags computed by a naive O(n^2) dominance test.
+// frontal to grazing, 5 methods of four families on the flat base and 2 on the curved base (quadric silhouettes with
+// and without the quadrics, measured against curved-micromesh), with the pictures (small PNGs) the rows name, a
+// missing PSNR, a missing IoU, and the Pareto flags computed by a naive O(n^2) dominance test per source and base.
 #pragma once
 
 #include <string>

@@ -44,14 +44,19 @@ json write_compare_fixture(const std::string& dir) {
         const char* setting;
         double ms, rmse;  // at the frontal view of "bumps"
         bool iterations;
+        bool curved = false;  // the curved base: measured against curved-micromesh
     };
     const M methods[] = {{"flat", "flat", "conventional", "", 0.8, 30.0, false},
                          {"two-pass", "two-pass", "pre-warp", "", 7.0, 6.0, false},
                          {"parallax", "parallax", "per-pixel", "", 1.0, 20.0, false},
                          {"relief-mapping:16-6", "relief-mapping", "per-pixel", "16-6", 6.0, 4.0, true},
-                         {"interval-mapping:8-2", "interval-mapping", "per-pixel", "8-2", 7.0, 4.2, true}};
+                         {"interval-mapping:8-2", "interval-mapping", "per-pixel", "8-2", 7.0, 4.2, true},
+                         {"quadric-silhouettes:l8-b2", "quadric-silhouettes", "per-pixel", "l8-b2", 5.0, 5.0, true,
+                          true},
+                         {"quadric-silhouettes:no-quadric-l8-b2", "quadric-silhouettes", "per-pixel",
+                          "no-quadric-l8-b2", 4.0, 8.0, true, true}};
     json j;
-    j["title"] = "fixture (2 sources, 3 views, 5 methods)";
+    j["title"] = "fixture (2 sources, 3 views, 5 flat methods, 2 curved)";
     j["image_size"] = {32, 32};
     j["machine"] = "test machine";
     j["threads"] = 2;
@@ -69,18 +74,19 @@ json write_compare_fixture(const std::string& dir) {
                                 {"method", m.method},
                                 {"family", m.family},
                                 {"setting", m.setting},
+                                {"base", m.curved ? "curved" : "flat"},
                                 {"params", json::object()}});
     int seed = 0;
     struct Acc {
         std::vector<double> ms, psnr, rmse, iou;
     };
-    std::map<std::string, std::map<std::string, Acc>> acc;  // source ("all" too), method id
+    std::map<std::string, std::map<std::string, Acc>> acc;  // source ("all" too), method id (ids are unique)
     for (int si = 0; si < 2; ++si) {
         const std::string src = sources[si];
         for (int vi = 0; vi < 3; ++vi) {
             const std::string view = views[vi].name, folder = "img/" + src + "/" + view;
             std::filesystem::create_directories(dir + "/" + folder);
-            for (const char* truth : {"raycast", "micromesh"}) {
+            for (const char* truth : {"raycast", "micromesh", "curved-micromesh"}) {
                 picture(dir + "/" + folder + "/" + truth + ".png", ++seed);
                 j["truths"][src][view][truth] = folder + "/" + truth + ".png";
             }
@@ -99,11 +105,14 @@ json write_compare_fixture(const std::string& dir) {
                             {"method", m.method},
                             {"setting", m.setting},
                             {"family", m.family},
+                            {"base", m.curved ? "curved" : "flat"},
+                            {"truth", m.curved ? "curved-micromesh" : "raycast"},
                             {"ms", ms},
                             {"stages", json::object()},
                             {"psnr", 20 * std::log10(255.0 / rmse)},
                             {"rmse", rmse},
-                            {"iou", 1.0 - 0.02 * vi * (m.family == std::string("per-pixel") ? 2 : 1)},
+                            {"iou", 1.0 - 0.02 * vi * (m.family == std::string("per-pixel") ? 2 : 1) -
+                                        (m.curved && m.setting[0] == 'n' ? 0.05 : 0.0)},
                             {"silhouette_px", 0.5 + vi * (m.family == std::string("per-pixel") ? 2.0 : 0.7)},
                             {"psnr_vs_micromesh", 20 * std::log10(255.0 / rmse) - 1},
                             {"iou_vs_micromesh", 0.99},
@@ -140,29 +149,33 @@ json write_compare_fixture(const std::string& dir) {
         std::sort(v.begin(), v.end());
         return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
     };
-    for (const std::string key : {"bumps", "steps", "all"}) {
-        std::vector<json> rows;
-        for (const M& m : methods) {
-            const Acc& a = acc[key][m.id];
-            rows.push_back({{"source", key},
-                            {"method_id", m.id},
-                            {"method", m.method},
-                            {"setting", m.setting},
-                            {"family", m.family},
-                            {"ms", median(a.ms)},
-                            {"psnr", mean(a.psnr)},
-                            {"rmse", mean(a.rmse)},
-                            {"iou", mean(a.iou)}});
+    for (const std::string key : {"bumps", "steps", "all"})
+        for (bool curved : {false, true}) {  // each base has a Pareto front of its own
+            std::vector<json> rows;
+            for (const M& m : methods) {
+                if (m.curved != curved) continue;
+                const Acc& a = acc[key][m.id];
+                rows.push_back({{"source", key},
+                                {"method_id", m.id},
+                                {"method", m.method},
+                                {"setting", m.setting},
+                                {"family", m.family},
+                                {"base", m.curved ? "curved" : "flat"},
+                                {"truth", m.curved ? "curved-micromesh" : "raycast"},
+                                {"ms", median(a.ms)},
+                                {"psnr", mean(a.psnr)},
+                                {"rmse", mean(a.rmse)},
+                                {"iou", mean(a.iou)}});
+            }
+            for (json& r : rows) {
+                bool dominated = false;
+                for (const json& o : rows)
+                    dominated |= &o != &r && o["ms"] <= r["ms"] && o["rmse"] <= r["rmse"] &&
+                                 (o["ms"] < r["ms"] || o["rmse"] < r["rmse"]);
+                r["pareto"] = !dominated;
+                j["summary"].push_back(r);
+            }
         }
-        for (json& r : rows) {
-            bool dominated = false;
-            for (const json& o : rows)
-                dominated |= &o != &r && o["ms"] <= r["ms"] && o["rmse"] <= r["rmse"] &&
-                             (o["ms"] < r["ms"] || o["rmse"] < r["rmse"]);
-            r["pareto"] = !dominated;
-            j["summary"].push_back(r);
-        }
-    }
     return j;
 }
 

@@ -2,6 +2,7 @@
 // marks, null for undefined figures, and the CSV's columns and quoting.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -42,8 +43,10 @@ CompareRow row(const std::string& source, const std::string& view, const Compare
 TEST(CompareResults, SummaryParetoAndCsv) {
     const std::vector<CompareEntry> sweep = compare_sweep(true);
     const CompareEntry* flat = &sweep.front();  // "flat"
-    const CompareEntry* ray = &sweep.back();    // "raycast"
-    const CompareEntry* tp = &sweep[1];         // "two-pass:tables"
+    const CompareEntry* ray = &*std::find_if(sweep.begin(), sweep.end(), [](const CompareEntry& e) {
+        return e.id == "raycast";  // the last flat entry; the curved base follows
+    });
+    const CompareEntry* tp = &sweep[1];  // "two-pass:tables"
     ASSERT_EQ(flat->id, "flat");
     ASSERT_EQ(ray->id, "raycast");
     ASSERT_EQ(tp->id, "two-pass:tables");
@@ -94,6 +97,96 @@ TEST(CompareResults, SummaryParetoAndCsv) {
     size_t lines = 0;
     for (char c : csv) lines += c == '\n';
     EXPECT_EQ(lines, 10u);  // header + 9 rows
+}
+
+// The curved base in the sweep: quadric silhouettes at relief mapping's steps, each beside the same steps without
+// the quadrics, and its truths, the curved mesh and the curved ray caster; --quick keeps 2 steps of each.
+TEST(CompareSweep, TheCurvedBasePairsEachQuadricSettingWithTheSameStepsWithout) {
+    for (bool quick : {false, true}) {
+        std::vector<std::string> with, without, truths, relief_mapping;
+        for (const CompareEntry& e : compare_sweep(quick)) {
+            if (e.method == "relief-mapping") relief_mapping.push_back(e.setting);
+            if (!e.curved()) continue;
+            if (e.family == "truth") {
+                truths.push_back(e.id);
+                EXPECT_EQ(e.id, std::string("curved-").append(to_string(e.render.method)));
+            } else {
+                EXPECT_EQ(e.render.method, RenderMethod::quadric_silhouettes) << e.id;
+                EXPECT_EQ(e.family, "per-pixel") << e.id;  // iteration counts, as the other searches
+                const auto& q = e.render.perpixel.quadric_silhouettes;
+                EXPECT_EQ(q.quadric, e.params.at("quadric").get<bool>()) << e.id;
+                EXPECT_EQ(q.linear_search_steps, e.params.at("linear_search_steps").get<int>()) << e.id;
+                EXPECT_EQ(q.binary_search_steps, e.params.at("binary_search_steps").get<int>()) << e.id;
+                (q.quadric ? with : without).push_back(e.setting);
+            }
+        }
+        EXPECT_EQ(truths, (std::vector<std::string>{"curved-micromesh", "curved-raycast"}));
+        EXPECT_EQ(with, relief_mapping);
+        ASSERT_EQ(without.size(), with.size());
+        for (size_t i = 0; i < with.size(); ++i) EXPECT_EQ(without[i], "no-quadric-" + with[i]);
+        EXPECT_EQ(with.size(), quick ? 2u : 4u);
+    }
+}
+
+// The curved base is summarized apart: its Pareto front is its own (a different truth), and each row says what it
+// is measured against, in results.json and in results.csv's last columns.
+TEST(CompareResults, TheCurvedBaseHasAFrontOfItsOwnAndEachRowNamesItsTruth) {
+    const std::vector<CompareEntry> sweep = compare_sweep(true);
+    auto find = [&](const std::string& id) {
+        for (const CompareEntry& e : sweep)
+            if (e.id == id) return &e;
+        ADD_FAILURE() << "no " << id;
+        return &sweep.front();
+    };
+    const CompareEntry *flat = find("flat"), *ray = find("raycast"), *q = find("quadric-silhouettes:l8-b2"),
+                       *nq = find("quadric-silhouettes:no-quadric-l8-b2"), *cm = find("curved-micromesh");
+    FakeSource a("a");
+    CompareOptions o;
+    CompareRun run;
+    run.views = {orbit_view(0, 0)};
+    run.methods = {flat, ray, q, nq, cm};
+    auto add = [&](const CompareEntry* e, double ms, double rmse) {
+        run.rows.push_back(row("a", "az00_el00", *e, ms, rmse));
+        run.rows.back().base = e->base;
+        run.rows.back().truth = e->curved() ? "curved-micromesh" : "raycast";
+    };
+    // Flat: flat (1 ms, 20) and raycast (30 ms, 0). Curved: quadric (10 ms, 25), without (20 ms, 30), the curved mesh
+    // (40 ms, 0). Over one front flat would dominate both quadric rows; on its own the curved base's front is the
+    // quadric row and its mesh.
+    add(flat, 1, 20);
+    add(ray, 30, 0);
+    add(q, 10, 25);
+    add(nq, 20, 30);
+    add(cm, 40, 0);
+    const nlohmann::json j = comparison_json({&a}, o, run, {{"title", "t"}});
+    ASSERT_EQ(j["summary"].size(), 10u);  // (a, all) x (2 flat + 3 curved)
+    const auto& s = j["summary"];
+    const char* order[] = {"flat", "raycast", "quadric-silhouettes:l8-b2", "quadric-silhouettes:no-quadric-l8-b2",
+                           "curved-micromesh"};
+    for (size_t i = 0; i < 5; ++i) {
+        EXPECT_EQ(s[i]["source"], "a");
+        EXPECT_EQ(s[i]["method_id"], order[i]);
+        EXPECT_EQ(s[i]["base"], i < 2 ? "flat" : "curved");
+        EXPECT_EQ(s[i]["truth"], i < 2 ? "raycast" : "curved-micromesh");
+    }
+    EXPECT_TRUE(s[0]["pareto"] && s[1]["pareto"]);  // the flat front: flat, raycast
+    EXPECT_TRUE(s[2]["pareto"]);                    // the curved front: quadric (10 ms) and the mesh (40 ms, exact)
+    EXPECT_FALSE(s[3]["pareto"]);                   // without the quadrics: slower and worse here
+    EXPECT_TRUE(s[4]["pareto"]);
+    EXPECT_EQ(j["methods"][2]["base"], "curved");
+    EXPECT_EQ(j["rows"][2]["truth"], "curved-micromesh");
+    EXPECT_EQ(j["rows"][0]["truth"], "raycast");
+
+    const std::string csv = comparison_csv(j);
+    std::istringstream in(csv);
+    std::string header, line;
+    std::getline(in, header);
+    EXPECT_NE(header.find(",iterations_image,base,truth"), std::string::npos) << header;
+    std::vector<std::string> lines;
+    while (std::getline(in, line)) lines.push_back(line);
+    ASSERT_EQ(lines.size(), 5u);
+    EXPECT_TRUE(lines[0].ends_with(",flat,raycast")) << lines[0];
+    EXPECT_TRUE(lines[3].ends_with(",curved,curved-micromesh")) << lines[3];
 }
 
 }  // namespace
