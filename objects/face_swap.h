@@ -64,6 +64,9 @@ struct AdjacentWorkspace {
     ImageRGBA8 mid_color;  // the reference's row-pass output
     Image2D<double> mid_v, mid_d, mid_g;
     Image2D<AdjacentSample> mid;  // the fast path's
+    // Per row of `mid`: the extent the last row pass wrote (mid_hi < mid_lo: none). Everything outside it is the
+    // empty sample, so a row pass clears only the previous extent and the column pass reads only inside it.
+    std::vector<int> mid_lo, mid_hi;
 };
 
 // Pre-warps relief `g` (an adjacent face) onto the plane of `f_geom` (width x height texels) for the eye in `kf`
