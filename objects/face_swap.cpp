@@ -250,12 +250,14 @@ struct AdjacentJob {
 
 // The two passes are compiled for several instruction sets and the best one the CPU has is chosen when the program
 // loads (GCC's function multiversioning): the line warp's floor and ceil are one instruction from SSE4.1 on (a
-// dozen without), and the coordinate loop's divisions run 2, 4 or 8 to a vector. Every clone computes the same
-// values: the same IEEE operations in the same order, never contracted into an FMA (face_swap.cpp is compiled with
-// -ffp-contract=off, and no clone enables FMA). Measured in docs/BENCHMARKS.md ("six-face objects").
+// dozen without), and the coordinate loop's divisions run 2 or 4 to a vector. `flatten` inlines the line warp
+// (warp/line_warp.h) into each clone: left as a call it is one instance compiled for the baseline, and the clones
+// gained 10% instead of 30% (docs/perf-history.md). Every clone computes the same values: the same IEEE operations
+// in the same order, never contracted into an FMA (face_swap.cpp is compiled with -ffp-contract=off, and no clone
+// enables FMA). Measured in docs/BENCHMARKS.md ("six-face objects").
 #if defined(__x86_64__) && defined(__ELF__) && defined(__has_attribute)
 #if __has_attribute(target_clones)
-#define RTM_ADJACENT_CLONES __attribute__((target_clones("avx512f", "avx2", "sse4.2", "default")))
+#define RTM_ADJACENT_CLONES __attribute__((flatten, target_clones("avx512f", "avx2", "sse4.2", "default")))
 #endif
 #endif
 #ifndef RTM_ADJACENT_CLONES
