@@ -248,26 +248,10 @@ struct AdjacentJob {
     long long* dropped_rows = nullptr;
 };
 
-// The two passes are compiled for several instruction sets and the best one the CPU has is chosen when the program
-// loads (GCC's function multiversioning): the line warp's floor and ceil are one instruction from SSE4.1 on (a
-// dozen without), and the coordinate loop's divisions run 2 or 4 to a vector. `flatten` inlines the line warp
-// (warp/line_warp.h) into each clone: left as a call it is one instance compiled for the baseline, and the clones
-// gained 10% instead of 30% (docs/perf-history.md). Every clone computes the same values: the same IEEE operations
-// in the same order, never contracted into an FMA (face_swap.cpp is compiled with -ffp-contract=off, and no clone
-// enables FMA). Measured in docs/BENCHMARKS.md ("six-face objects").
-#if defined(__x86_64__) && defined(__ELF__) && defined(__has_attribute)
-#if __has_attribute(target_clones)
-#define RTM_ADJACENT_CLONES __attribute__((flatten, target_clones("avx512f", "avx2", "sse4.2", "default")))
-#endif
-#endif
-#ifndef RTM_ADJACENT_CLONES
-#define RTM_ADJACENT_CLONES
-#endif
-
 // Pass 1 over rows r0 .. r1 - 1 of G: as the reference's, into one array of intermediate samples. The coordinates
 // of a row are computed first, all of them and without branches (the loop vectorizes), then the row is warped; a
 // texel that is empty or cannot be pre-warped is invalid, so what its lanes computed is never read.
-RTM_ADJACENT_CLONES void adjacent_row_pass(const AdjacentJob& j, int r0, int r1) {
+inline void adjacent_row_pass(const AdjacentJob& j, int r0, int r1) {
     const ReliefTexture& g = *j.g;
     const int gw = g.width, gh = g.height;
     AdjacentWorkspace& ws = *j.ws;
@@ -355,7 +339,7 @@ RTM_ADJACENT_CLONES void adjacent_row_pass(const AdjacentJob& j, int r0, int r1)
 
 // Pass 2 over intermediate columns c_lo + i0 .. c_lo + i1 - 1: as the reference's, gathering each column from the
 // one array, only from the rows whose extent holds it (the others hold the empty sample there), z-tested into out.
-RTM_ADJACENT_CLONES void adjacent_column_pass(const AdjacentJob& j, int i0, int i1) {
+inline void adjacent_column_pass(const AdjacentJob& j, int i0, int i1) {
     const int gh = j.g->height;
     const AdjacentWorkspace& ws = *j.ws;
     AdjacentBuffer& out = *j.out;
@@ -398,11 +382,59 @@ RTM_ADJACENT_CLONES void adjacent_column_pass(const AdjacentJob& j, int i0, int 
     }
 }
 
+// The two passes compiled for several instruction sets, chosen by the pre-warp's target (PrewarpOptions::isa,
+// warp/isa.h): from SSE4.1 on the line warp's floor and ceil are one instruction (a dozen without), and with AVX2
+// the coordinate loop's divisions run 4 to a vector. `flatten` inlines the passes and the line warp
+// (warp/line_warp.h) into each variant: left as a call, the line warp is one instance compiled for the baseline, and
+// the variants gained 10% instead of 30% (docs/perf-history.md). Every variant computes the same values: the same
+// IEEE operations in the same order, never contracted into an FMA (face_swap.cpp is compiled with -ffp-contract=off
+// and no variant enables FMA); tests/objects/face_swap_test.cpp runs each against the reference.
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define RTM_ADJACENT_VARIANTS 1
+__attribute__((target("avx2"), flatten)) void row_pass_avx2(const AdjacentJob& j, int r0, int r1) {
+    adjacent_row_pass(j, r0, r1);
+}
+__attribute__((target("avx2"), flatten)) void column_pass_avx2(const AdjacentJob& j, int i0, int i1) {
+    adjacent_column_pass(j, i0, i1);
+}
+__attribute__((target("sse4.2"), flatten)) void row_pass_sse4(const AdjacentJob& j, int r0, int r1) {
+    adjacent_row_pass(j, r0, r1);
+}
+__attribute__((target("sse4.2"), flatten)) void column_pass_sse4(const AdjacentJob& j, int i0, int i1) {
+    adjacent_column_pass(j, i0, i1);
+}
+#endif
+#if defined(__GNUC__) || defined(__clang__)
+#define RTM_FLATTEN __attribute__((flatten))
+#else
+#define RTM_FLATTEN
+#endif
+RTM_FLATTEN void row_pass_baseline(const AdjacentJob& j, int r0, int r1) { adjacent_row_pass(j, r0, r1); }
+RTM_FLATTEN void column_pass_baseline(const AdjacentJob& j, int i0, int i1) { adjacent_column_pass(j, i0, i1); }
+
+using PassFn = void (*)(const AdjacentJob&, int, int);
+void choose_passes(Isa isa, PassFn& rows, PassFn& columns) {
+    rows = row_pass_baseline;
+    columns = column_pass_baseline;
+#ifdef RTM_ADJACENT_VARIANTS
+    const Isa target = resolve_isa(isa);
+    if (target == Isa::avx512 || target == Isa::avx2) {
+        rows = row_pass_avx2;
+        columns = column_pass_avx2;
+    } else if (target == Isa::sse4) {
+        rows = row_pass_sse4;
+        columns = column_pass_sse4;
+    }
+#else
+    (void)isa;
+#endif
+}
+
 }  // namespace
 
 long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geom, int width, int height,
                              const PrewarpCoefficients& kf, bool exact, AdjacentWorkspace& ws, AdjacentBuffer& out,
-                             int threads) {
+                             int threads, Isa isa) {
     const FaceSwap swap = make_face_swap(g.geometry, f_geom);
     std::array<int, 3> src{};
     if (!single_source_terms(swap, src))
@@ -453,7 +485,9 @@ long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geo
     std::vector<long long> dropped_rows(size_t(gh), 0);
     j.dropped_rows = dropped_rows.data();
 
-    run_parallel(gh, threads, [&](int r0, int r1) { adjacent_row_pass(j, r0, r1); });
+    PassFn row_pass = nullptr, column_pass = nullptr;
+    choose_passes(isa, row_pass, column_pass);
+    run_parallel(gh, threads, [&](int r0, int r1) { row_pass(j, r0, r1); });
 
     // The columns any row wrote to; the others hold nothing.
     int c_lo = j.n1, c_hi = -1;
@@ -464,7 +498,7 @@ long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geo
         }
     j.c_lo = c_lo;
     j.threshold = g.breaks.empty() ? 0.0 : g.discontinuity_threshold;
-    if (c_hi >= c_lo) run_parallel(c_hi - c_lo + 1, threads, [&](int i0, int i1) { adjacent_column_pass(j, i0, i1); });
+    if (c_hi >= c_lo) run_parallel(c_hi - c_lo + 1, threads, [&](int i0, int i1) { column_pass(j, i0, i1); });
     long long dropped = 0;
     for (long long n : dropped_rows) dropped += n;
     return dropped;

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "warp/image.h"
+#include "warp/isa.h"
 #include "warp/prewarp_coefficients.h"
 #include "warp/relief_texture.h"
 
@@ -77,10 +78,12 @@ struct AdjacentWorkspace {
 // For two faces of one box (every component of the swap has one source, FaceSwap::source_of) it runs a faster
 // schedule of the same computation: the swap's terms per column of G, per row and per quantization level computed
 // once, the row pass's output kept together (AdjacentSample), rows and columns where nothing landed skipped. Its
-// output is the reference's, value for value (tests/objects/face_swap_test.cpp compares them over a random sweep).
+// output is the reference's, value for value (tests/objects/face_swap_test.cpp compares them over a random sweep),
+// on every instruction set `isa` names (warp/isa.h; automatic: RTM_ISA or the fastest; throws std::invalid_argument
+// for one this CPU lacks).
 long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geom, int width, int height,
                              const PrewarpCoefficients& kf, bool exact, AdjacentWorkspace& ws, AdjacentBuffer& out,
-                             int threads = 0);
+                             int threads = 0, Isa isa = Isa::automatic);
 
 // The reference: the swap applied to every texel as a matrix, the generic schedule; any two frames.
 long long warp_adjacent_face_reference(const ReliefTexture& g, const ReliefGeometry& f_geom, int width, int height,

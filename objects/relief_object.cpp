@@ -91,7 +91,8 @@ void ReliefObject::prewarp_face(int face, const glm::dvec3& eye, int level, cons
     adjacent_.reset(w, h);
     for (int g : out.adjacent) {
         const ReliefTexture& gt = quads_[size_t(g)].level(level);
-        warp_adjacent_face(gt, ft.geometry, w, h, k, options.exact, adjacent_ws_, adjacent_, options.threads);
+        warp_adjacent_face(gt, ft.geometry, w, h, k, options.exact, adjacent_ws_, adjacent_, options.threads,
+                           options.isa);
         out.texels += (long long)gt.width * gt.height;
     }
     out.adjacent_ms = ms_since(t0);

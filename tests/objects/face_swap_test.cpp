@@ -8,11 +8,14 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <map>
+#include <vector>
 #include <random>
 
 #include "objects/object_region.h"
 #include "common/seed.h"
 #include "procedural/synthetic_object.h"
+#include "warp/isa.h"
 
 namespace rtm {
 namespace {
@@ -147,6 +150,8 @@ TEST(FaceSwap, FastScheduleMatchesTheReference) {
     std::mt19937 rng{static_cast<unsigned>(seed)};
     std::uniform_int_distribution<int> size(6, 40);
     long long landed = 0;
+    const std::vector<Isa> isas = supported_isas();
+    std::map<Isa, int> runs;
     AdjacentWorkspace ws_fast;
     for (int trial = 0; trial < 8; ++trial) {
         const SyntheticShape shape = trial % 2 ? SyntheticShape::cross_box : SyntheticShape::sphere;
@@ -157,8 +162,11 @@ TEST(FaceSwap, FastScheduleMatchesTheReference) {
             const PrewarpCoefficients k = compute_coefficients(ft.geometry, eye);
             for (bool exact : {false, true})
                 for (int threads : {1, 2}) {
+                    // Each instruction-set variant of the fast schedule in turn (warp/isa.h), the threads alternating.
+                    const Isa isa = isas[size_t(trial * 4 + f * 2 + threads) % isas.size()];
                     SCOPED_TRACE("trial " + std::to_string(trial) + " face " + kFaceKeys[size_t(f)] +
-                                 (exact ? " exact" : "") + " threads " + std::to_string(threads));
+                                 (exact ? " exact" : "") + " threads " + std::to_string(threads) + " isa " +
+                                 isa_name(isa));
                     AdjacentWorkspace ws_ref;
                     AdjacentBuffer fast, ref;
                     fast.reset(ft.width, ft.height);
@@ -167,7 +175,7 @@ TEST(FaceSwap, FastScheduleMatchesTheReference) {
                         if (face_axis(g) == face_axis(f)) continue;
                         const ReliefTexture& gt = obj.faces[size_t(g)];
                         const long long a = warp_adjacent_face(gt, ft.geometry, ft.width, ft.height, k, exact, ws_fast,
-                                                               fast, threads);
+                                                               fast, threads, isa);
                         const long long b = warp_adjacent_face_reference(gt, ft.geometry, ft.width, ft.height, k, exact,
                                                                          ws_ref, ref, threads);
                         ASSERT_EQ(a, b) << kFaceKeys[size_t(g)];
@@ -175,10 +183,12 @@ TEST(FaceSwap, FastScheduleMatchesTheReference) {
                         ASSERT_TRUE(fast.depth == ref.depth) << "depth differs after " << kFaceKeys[size_t(g)];
                     }
                     for (const Rgba8& c : fast.color.pixels) landed += c.a != 0;
+                    ++runs[isa];
                 }
         }
     }
-    EXPECT_GT(landed, 1000);  // the comparison saw real samples
+    EXPECT_GT(landed, 1000);                                         // the comparison saw real samples
+    for (Isa isa : isas) EXPECT_GT(runs[isa], 10) << isa_name(isa);  // and every variant this CPU runs
 }
 
 }  // namespace
