@@ -487,18 +487,33 @@ long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geo
 
     PassFn row_pass = nullptr, column_pass = nullptr;
     choose_passes(isa, row_pass, column_pass);
-    run_parallel(gh, threads, [&](int r0, int r1) { row_pass(j, r0, r1); });
-
-    // The columns any row wrote to; the others hold nothing.
-    int c_lo = j.n1, c_hi = -1;
-    for (int r = 0; r < gh; ++r)
-        if (ws.mid_hi[size_t(r)] >= ws.mid_lo[size_t(r)]) {
-            c_lo = std::min(c_lo, ws.mid_lo[size_t(r)]);
-            c_hi = std::max(c_hi, ws.mid_hi[size_t(r)]);
-        }
-    j.c_lo = c_lo;
     j.threshold = g.breaks.empty() ? 0.0 : g.discontinuity_threshold;
-    if (c_hi >= c_lo) run_parallel(c_hi - c_lo + 1, threads, [&](int i0, int i1) { column_pass(j, i0, i1); });
+    // Both passes in one task arena (one thread: none): an object pre-warps four to six adjacent faces a frame, and
+    // each arena wakes its threads afresh.
+    auto passes = [&] {
+        auto over = [&](int n, PassFn pass) {
+            if (threads == 1)
+                pass(j, 0, n);
+            else
+                tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const auto& r) { pass(j, r.begin(), r.end()); });
+        };
+        over(gh, row_pass);
+        // The columns any row wrote to; the others hold nothing.
+        int c_lo = j.n1, c_hi = -1;
+        for (int r = 0; r < gh; ++r)
+            if (ws.mid_hi[size_t(r)] >= ws.mid_lo[size_t(r)]) {
+                c_lo = std::min(c_lo, ws.mid_lo[size_t(r)]);
+                c_hi = std::max(c_hi, ws.mid_hi[size_t(r)]);
+            }
+        j.c_lo = c_lo;
+        if (c_hi >= c_lo) over(c_hi - c_lo + 1, column_pass);
+    };
+    if (threads > 1) {
+        tbb::task_arena arena(threads);
+        arena.execute(passes);
+    } else {
+        passes();
+    }
     long long dropped = 0;
     for (long long n : dropped_rows) dropped += n;
     return dropped;
