@@ -77,7 +77,9 @@ struct AdjacentWorkspace {
 //
 // For two faces of one box (every component of the swap has one source, FaceSwap::source_of) it runs a faster
 // schedule of the same computation: the swap's terms per column of G, per row and per quantization level computed
-// once, the row pass's output kept together (AdjacentSample), rows and columns where nothing landed skipped. Its
+// once, a row's coordinates computed branch-free before its line warp, the row pass's output kept together
+// (AdjacentSample) and cleared and read only over each row's written extent, rows and columns where nothing landed
+// skipped, both passes compiled for SSE4.2 and AVX2 besides the baseline and chosen by `isa`. Its
 // output is the reference's, value for value (tests/objects/face_swap_test.cpp compares them over a random sweep),
 // on every instruction set `isa` names (warp/isa.h; automatic: RTM_ISA or the fastest; throws std::invalid_argument
 // for one this CPU lacks).
