@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "warp/image.h"
+#include "warp/isa.h"
 #include "warp/prewarp_coefficients.h"
 #include "warp/relief_texture.h"
 
@@ -64,6 +65,9 @@ struct AdjacentWorkspace {
     ImageRGBA8 mid_color;  // the reference's row-pass output
     Image2D<double> mid_v, mid_d, mid_g;
     Image2D<AdjacentSample> mid;  // the fast path's
+    // Per row of `mid`: the extent the last row pass wrote (mid_hi < mid_lo: none). Everything outside it is the
+    // empty sample, so a row pass clears only the previous extent and the column pass reads only inside it.
+    std::vector<int> mid_lo, mid_hi;
 };
 
 // Pre-warps relief `g` (an adjacent face) onto the plane of `f_geom` (width x height texels) for the eye in `kf`
@@ -73,11 +77,15 @@ struct AdjacentWorkspace {
 //
 // For two faces of one box (every component of the swap has one source, FaceSwap::source_of) it runs a faster
 // schedule of the same computation: the swap's terms per column of G, per row and per quantization level computed
-// once, the row pass's output kept together (AdjacentSample), rows and columns where nothing landed skipped. Its
-// output is the reference's, value for value (tests/objects/face_swap_test.cpp compares them over a random sweep).
+// once, a row's coordinates computed branch-free before its line warp, the row pass's output kept together
+// (AdjacentSample) and cleared and read only over each row's written extent, rows and columns where nothing landed
+// skipped, both passes compiled for SSE4.2 and AVX2 besides the baseline and chosen by `isa`. Its
+// output is the reference's, value for value (tests/objects/face_swap_test.cpp compares them over a random sweep),
+// on every instruction set `isa` names (warp/isa.h; automatic: RTM_ISA or the fastest; throws std::invalid_argument
+// for one this CPU lacks).
 long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geom, int width, int height,
                              const PrewarpCoefficients& kf, bool exact, AdjacentWorkspace& ws, AdjacentBuffer& out,
-                             int threads = 0);
+                             int threads = 0, Isa isa = Isa::automatic);
 
 // The reference: the swap applied to every texel as a matrix, the generic schedule; any two frames.
 long long warp_adjacent_face_reference(const ReliefTexture& g, const ReliefGeometry& f_geom, int width, int height,

@@ -21,8 +21,8 @@
 // each other and other geometry.
 //
 // Limitations: the adjacent faces are reconstructed two-pass with point sampling whatever the face's own method and
-// filter, in double precision on the CPU's scalar units (objects/face_swap.h), so they, not the face itself, are
-// most of an object's pre-warp time (docs/BENCHMARKS.md).
+// filter, in double precision (objects/face_swap.h); they and the face's own pre-warp, which runs on the generic
+// kernels when the face carries discontinuity marks, are most of an object's pre-warp time (docs/BENCHMARKS.md).
 #pragma once
 
 #include <array>

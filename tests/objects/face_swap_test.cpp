@@ -8,11 +8,14 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <map>
+#include <vector>
 #include <random>
 
 #include "objects/object_region.h"
 #include "common/seed.h"
 #include "procedural/synthetic_object.h"
+#include "warp/isa.h"
 
 namespace rtm {
 namespace {
@@ -137,7 +140,9 @@ TEST(FaceSwap, WarpAdjacentFacePutsEachTexelAtItsProjection) {
 // The fast schedule (per-column, per-row and per-level terms, one intermediate array, empty lines skipped) gives the
 // reference's buffer value for value: every pair of perpendicular faces, random eyes in front of the visible face,
 // both objects (the cross box carries discontinuity marks), quantized and exact displacement, one and two threads,
-// accumulating two adjacent faces into one buffer as the object does.
+// accumulating two adjacent faces into one buffer as the object does. The fast schedule's workspace is reused over
+// the whole sweep (other sizes, faces and eyes), as an object's is: each intermediate row clears only the extent the
+// previous call wrote, and the column pass reads only inside the new one, so stale samples would show here.
 TEST(FaceSwap, FastScheduleMatchesTheReference) {
     const uint64_t seed = test::test_seed(20261202u);
     SCOPED_TRACE("RTM_SEED=" + std::to_string(seed));
@@ -145,6 +150,9 @@ TEST(FaceSwap, FastScheduleMatchesTheReference) {
     std::mt19937 rng{static_cast<unsigned>(seed)};
     std::uniform_int_distribution<int> size(6, 40);
     long long landed = 0;
+    const std::vector<Isa> isas = supported_isas();
+    std::map<Isa, int> runs;
+    AdjacentWorkspace ws_fast;
     for (int trial = 0; trial < 8; ++trial) {
         const SyntheticShape shape = trial % 2 ? SyntheticShape::cross_box : SyntheticShape::sphere;
         const SixFaceObject obj = make_synthetic_object(shape, size(rng));
@@ -154,9 +162,12 @@ TEST(FaceSwap, FastScheduleMatchesTheReference) {
             const PrewarpCoefficients k = compute_coefficients(ft.geometry, eye);
             for (bool exact : {false, true})
                 for (int threads : {1, 2}) {
+                    // Each instruction-set variant of the fast schedule in turn (warp/isa.h), the threads alternating.
+                    const Isa isa = isas[size_t(trial * 4 + f * 2 + threads) % isas.size()];
                     SCOPED_TRACE("trial " + std::to_string(trial) + " face " + kFaceKeys[size_t(f)] +
-                                 (exact ? " exact" : "") + " threads " + std::to_string(threads));
-                    AdjacentWorkspace ws_fast, ws_ref;
+                                 (exact ? " exact" : "") + " threads " + std::to_string(threads) + " isa " +
+                                 isa_name(isa));
+                    AdjacentWorkspace ws_ref;
                     AdjacentBuffer fast, ref;
                     fast.reset(ft.width, ft.height);
                     ref.reset(ft.width, ft.height);
@@ -164,7 +175,7 @@ TEST(FaceSwap, FastScheduleMatchesTheReference) {
                         if (face_axis(g) == face_axis(f)) continue;
                         const ReliefTexture& gt = obj.faces[size_t(g)];
                         const long long a = warp_adjacent_face(gt, ft.geometry, ft.width, ft.height, k, exact, ws_fast,
-                                                               fast, threads);
+                                                               fast, threads, isa);
                         const long long b = warp_adjacent_face_reference(gt, ft.geometry, ft.width, ft.height, k, exact,
                                                                          ws_ref, ref, threads);
                         ASSERT_EQ(a, b) << kFaceKeys[size_t(g)];
@@ -172,10 +183,12 @@ TEST(FaceSwap, FastScheduleMatchesTheReference) {
                         ASSERT_TRUE(fast.depth == ref.depth) << "depth differs after " << kFaceKeys[size_t(g)];
                     }
                     for (const Rgba8& c : fast.color.pixels) landed += c.a != 0;
+                    ++runs[isa];
                 }
         }
     }
-    EXPECT_GT(landed, 1000);  // the comparison saw real samples
+    EXPECT_GT(landed, 1000);                                         // the comparison saw real samples
+    for (Isa isa : isas) EXPECT_GT(runs[isa], 10) << isa_name(isa);  // and every variant this CPU runs
 }
 
 }  // namespace
