@@ -24,6 +24,7 @@
 #include "viewer/open_file.h"
 #include "viewer/overlays.h"
 #include "viewer/panel.h"
+#include "viewer/panel_cache.h"
 #include "viewer/screenshot.h"
 #include "warp/timing.h"
 
@@ -38,10 +39,17 @@ struct Input {
     double drag_x = 0, drag_y = 0, wheel = 0;  // accumulated since the last frame
     std::vector<int> presses;
     std::optional<std::string> dropped;
+    std::optional<float> content_scale;  // the window's new content scale (moved to another monitor)
     bool changed = true;  // any event since the last frame drawn (an unchanged still view is not drawn again)
 };
 
 Input& input_of(GLFWwindow* w) { return *static_cast<Input*>(glfwGetWindowUserPointer(w)); }
+
+// The window moved to a monitor of another content scale (DPI): the panel's font and sizes follow at the next frame.
+void on_content_scale(GLFWwindow* w, float x, float) {
+    input_of(w).changed = true;
+    input_of(w).content_scale = x;
+}
 
 void install_callbacks(GLFWwindow* win) {
     // Installed before ImGui's GLFW back end, which calls them after its own (unless the panel takes the input).
@@ -79,6 +87,7 @@ void install_callbacks(GLFWwindow* win) {
     glfwSetCharCallback(win, [](GLFWwindow* w, unsigned) { input_of(w).changed = true; });
     glfwSetWindowFocusCallback(win, [](GLFWwindow* w, int) { input_of(w).changed = true; });
     glfwSetCursorEnterCallback(win, [](GLFWwindow* w, int) { input_of(w).changed = true; });
+    glfwSetWindowContentScaleCallback(win, on_content_scale);
 }
 
 ImTextureID imgui_texture(const GlTexture& t) { return reinterpret_cast<ImTextureID>(static_cast<intptr_t>(t.id())); }
@@ -99,30 +108,47 @@ void clear_framebuffer(int w, int h) {
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 }
 
+// The panel's scale in ImGui units for a screen content scale: the content scale divided by the framebuffer scale
+// (which ImGui applies already where the framebuffer is larger than the window), within [1, 4].
+float ui_scale_of(GLFWwindow* win, float content_scale) {
+    int ww = 0, wh = 0, fw = 0, fh = 0;
+    glfwGetWindowSize(win, &ww, &wh);
+    glfwGetFramebufferSize(win, &fw, &fh);
+    const float fb_scale = ww > 0 && fw > 0 ? float(fw) / float(ww) : 1.f;
+    return std::clamp(content_scale / fb_scale, 1.f, 4.f);
+}
+
+// The panel's style at `ui_scale`: Dear ImGui's dark style, its sizes and font scaled. Lines are not anti-aliased:
+// on llvmpipe each anti-aliased line is a textured, blended quad wider than the line.
+void apply_style(float ui_scale) {
+    ImGuiStyle style;
+    ImGui::StyleColorsDark(&style);
+    style.AntiAliasedLines = false;
+    if (ui_scale != 1.f) style.ScaleAllSizes(ui_scale);
+    ImGui::GetStyle() = style;
+    ImGui::GetIO().FontGlobalScale = ui_scale;
+}
+
 struct ImGuiSession {
+    float ui_scale = 1.f;
     explicit ImGuiSession(GLFWwindow* win) {
         IMGUI_CHECKVERSION();
         ImGui::CreateContext();
         ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the working folder
-        ImGui::StyleColorsDark();
         // High-DPI: the panel's font and sizes follow the screen's content scale, in ImGui's units (window
         // coordinates; where the framebuffer is larger than the window, ImGui maps them onto it already).
         float sx = 1.f, sy = 1.f;
         glfwGetWindowContentScale(win, &sx, &sy);
-        int ww = 0, wh = 0, fw = 0, fh = 0;
-        glfwGetWindowSize(win, &ww, &wh);
-        glfwGetFramebufferSize(win, &fw, &fh);
-        const float fb_scale = ww > 0 && fw > 0 ? float(fw) / float(ww) : 1.f;
-        const float ui_scale = std::clamp(sx / fb_scale, 1.f, 4.f);
-        if (ui_scale > 1.f) {
-            ImGui::GetStyle().ScaleAllSizes(ui_scale);
-            ImGui::GetIO().FontGlobalScale = ui_scale;
-        }
+        rescale(win, sx);
         if (!ImGui_ImplGlfw_InitForOpenGL(win, true)) throw GlError("Dear ImGui: the GLFW back end failed to start");
         if (!ImGui_ImplOpenGL3_Init("#version 330 core")) {
             ImGui_ImplGlfw_Shutdown();
             throw GlError("Dear ImGui: the OpenGL 3 back end failed to start");
         }
+    }
+    void rescale(GLFWwindow* win, float content_scale) {
+        ui_scale = ui_scale_of(win, content_scale);
+        apply_style(ui_scale);
     }
     ~ImGuiSession() {
         ImGui_ImplOpenGL3_Shutdown();
@@ -169,6 +195,8 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
     install_callbacks(win);
     Renderer renderer;
     ImGuiSession imgui(win);
+    PanelCache panel_cache(o.panel_refresh_ms);
+    if (o.content_scale > 0) on_content_scale(win, o.content_scale, o.content_scale);  // as if the window moved
     std::string status;
     // One-time work in the window's context (a mesh's bake), with progress on stderr, in the title and the panel.
     auto prepare = [&](Loaded& l) {
@@ -214,6 +242,10 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
         if (frame == warm) t_warm = t_frame;
         ctx->poll_events();
         if (ctx->should_close()) break;
+        if (input.content_scale) {
+            imgui.rescale(win, *input.content_scale);
+            input.content_scale.reset();
+        }
 
         // Keys: the scripted ones first, then the window's.
         KeyRequests req;
@@ -323,6 +355,7 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
         // Interactive and nothing changed (no event, the same camera and settings, no path playing): the window
         // keeps the last frame, so none is drawn (a still view costs nothing). A few frames are drawn after each
         // event, for the panel to settle (hover, layout).
+        const bool event = input.changed;
         if (input.changed) settle = 3;
         input.changed = false;
         const bool moving = path && path_active && playing && path_time < path->duration();
@@ -331,6 +364,8 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
             glfwWaitEventsTimeout(0.25);
             continue;
         }
+        // The panel is rendered again (not shown from its cache) after an event, a changed setting, or a new file.
+        const bool panel_refresh = event || settle > 0 || !(s == drawn_settings) || frame == 0 || req.screenshot;
         if (settle > 0) --settle;
         drawn_cam = cam;
         drawn_settings = s;  // the panel may change s after the draw: the next frame then draws again
@@ -423,6 +458,7 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
             pc.path_time = &path_time;
             pc.path_duration = path ? path->duration() : 0;
             pc.playing = &playing;
+            pc.ui_scale = imgui.ui_scale;
             const double before = path_time;
             KeyRequests buttons;  // the panel's buttons, apart from this frame's keys (already applied)
             panel_box = draw_panel(s, pc, buttons);
@@ -437,15 +473,15 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
             }
             req.screenshot = req.screenshot || buttons.screenshot;
         }
+        const bool last = scripted && frame == o.frames - 1;
         const auto t_overlay = Clock::now();
         ImGui::Render();
-        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        panel_cache.render(ImGui::GetDrawData(), s.panel ? panel_box : glm::vec4(0.f), panel_refresh);
         if (timed_frame) glFinish();  // timed apart from the swap (which would wait for it anyway)
         const double overlay_ms = ms_since(t_overlay);
         result.panel = panel_box * scale;
         result.insets = inset_box * scale;
 
-        const bool last = scripted && frame == o.frames - 1;
         if (req.screenshot || (last && !o.screenshot.empty())) {
             const std::string file = last && !o.screenshot.empty() ? o.screenshot : timestamped_name();
             write_rgba8(file, read_framebuffer(W, H));
@@ -474,6 +510,8 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
             result.swap_ms.push_back(swap_ms);
         }
         result.frames = frame + 1;
+        result.panel_renders = panel_cache.renders();
+        result.panel_blits = panel_cache.blits();
         result.width = W;
         result.height = H;
         if (!scripted && std::chrono::duration<double>(Clock::now() - t_title).count() > 1.0) {
