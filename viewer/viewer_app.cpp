@@ -364,8 +364,11 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
             glfwWaitEventsTimeout(0.25);
             continue;
         }
-        // The panel is rendered again (not shown from its cache) after an event, a changed setting, or a new file.
-        const bool panel_refresh = event || settle > 0 || !(s == drawn_settings) || frame == 0 || req.screenshot;
+        // The panel is rendered again (not shown from its cache) after an event and while it settles, after a changed
+        // setting, and for a screenshot. A scripted run's hidden window ignores its events (focus, cursor): its
+        // panel is rendered at the same frames from run to run, but for the refresh interval.
+        const bool panel_refresh = (!scripted && (event || settle > 0)) || !(s == drawn_settings) || frame == 0 ||
+                                   req.screenshot;
         if (settle > 0) --settle;
         drawn_cam = cam;
         drawn_settings = s;  // the panel may change s after the draw: the next frame then draws again
