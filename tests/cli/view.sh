@@ -186,13 +186,19 @@ same plain_out panel_out exact
 blank kH kH_out "$px" "$py" "$pw" "$ph"
 same plain_out kH_out exact
 # The panel from its cache (viewer/panel_cache.h): with a refresh interval longer than the run it is rendered on frame 1
-# (on frame 0 Dear ImGui only sizes the window) and copied onto frame 2 without being rendered. The copy lands on the panel's rectangle only (outside it, the plain image exactly), and its lower half
-# (settings, skips, camera: no measured number) equals that of frame 1's panel rendered directly.
+# (on frame 0 Dear ImGui only sizes the window) and copied onto frame 2 without being rendered. The copy lands on the
+# panel's rectangle only (outside it, the plain image exactly), and its lower half (settings, skips, camera: no
+# measured number) equals that of frame 1's panel rendered directly.
 FRAMES=3 view pcache --relief "$M" --orbit 30,20,2.2 --size 640x480 --panel --panel-refresh-ms 1000000
 FRAMES=2 view pdirect --relief "$M" --orbit 30,20,2.2 --size 640x480 --panel --panel-refresh-ms 0
-counts() { python3 -c "import json,sys; j=json.load(open(sys.argv[1])); print(j['panel_renders'], j['panel_blits'])" "$T/$1.json"; }
+counts() {
+  python3 -c "import json,sys; j=json.load(open(sys.argv[1])); print(j['panel_renders'], j['panel_blits'])" "$T/$1.json"
+}
 if [ "$(counts pcache)" = "1 1" ] && [ "$(counts pdirect)" = "1 0" ]; then passes=$((passes + 1))
-else echo "FAIL: panel renders, blits: cached $(counts pcache) (expected 1 1), direct $(counts pdirect) (1 0)"; fails=$((fails + 1)); fi
+else
+  echo "FAIL: panel renders, blits: cached $(counts pcache) (expected 1 1), direct $(counts pdirect) (1 0)"
+  fails=$((fails + 1))
+fi
 read -r cx cy cw ch <<<"$(rect pcache panel)"
 blank pcache pcache_out "$cx" "$cy" "$cw" "$ch"
 blank plain plain_out3 "$cx" "$cy" "$cw" "$ch"
