@@ -41,13 +41,22 @@ struct Input {
     std::optional<std::string> dropped;
     std::optional<float> content_scale;  // the window's new content scale (moved to another monitor)
     bool changed = true;  // any event since the last frame drawn (an unchanged still view is not drawn again)
+    // An event the panel may show (all but the cursor moving or the wheel turning away from it): the panel is
+    // rendered again, not copied (viewer/panel_cache.h). Dragging the view does not re-render it every frame.
+    bool panel_changed = true;
 };
 
 Input& input_of(GLFWwindow* w) { return *static_cast<Input*>(glfwGetWindowUserPointer(w)); }
 
+// An event: the frame is drawn again, and the panel rendered again when `panel` (the event may change what it shows).
+void changed(GLFWwindow* w, bool panel = true) {
+    input_of(w).changed = true;
+    input_of(w).panel_changed = input_of(w).panel_changed || panel;
+}
+
 // The window moved to a monitor of another content scale (DPI): the panel's font and sizes follow at the next frame.
 void on_content_scale(GLFWwindow* w, float x, float) {
-    input_of(w).changed = true;
+    changed(w);
     input_of(w).content_scale = x;
 }
 
@@ -55,14 +64,15 @@ void install_callbacks(GLFWwindow* win) {
     // Installed before ImGui's GLFW back end, which calls them after its own (unless the panel takes the input).
     glfwSetMouseButtonCallback(win, [](GLFWwindow* w, int button, int action, int) {
         Input& in = input_of(w);
-        in.changed = true;
+        changed(w);
         if (button != GLFW_MOUSE_BUTTON_LEFT) return;
         in.dragging = action == GLFW_PRESS && !ImGui::GetIO().WantCaptureMouse;
         glfwGetCursorPos(w, &in.last_x, &in.last_y);
     });
     glfwSetCursorPosCallback(win, [](GLFWwindow* w, double x, double y) {
         Input& in = input_of(w);
-        in.changed = true;
+        // Over the panel (or leaving it: WantCaptureMouse is still the last position's) the hover may change.
+        changed(w, ImGui::GetIO().WantCaptureMouse);
         if (in.dragging) {
             in.drag_x += x - in.last_x;
             in.drag_y += y - in.last_y;
@@ -71,22 +81,22 @@ void install_callbacks(GLFWwindow* win) {
         in.last_y = y;
     });
     glfwSetScrollCallback(win, [](GLFWwindow* w, double, double dy) {
-        input_of(w).changed = true;
+        changed(w, ImGui::GetIO().WantCaptureMouse);
         if (!ImGui::GetIO().WantCaptureMouse) input_of(w).wheel += dy;
     });
     glfwSetKeyCallback(win, [](GLFWwindow* w, int key, int, int action, int) {
-        input_of(w).changed = true;
+        changed(w);
         if (action == GLFW_PRESS && !ImGui::GetIO().WantCaptureKeyboard) input_of(w).presses.push_back(key);
     });
     glfwSetDropCallback(win, [](GLFWwindow* w, int count, const char** paths) {
-        input_of(w).changed = true;
+        changed(w);
         if (count > 0) input_of(w).dropped = std::string(paths[0]);
     });
-    glfwSetWindowRefreshCallback(win, [](GLFWwindow* w) { input_of(w).changed = true; });
-    glfwSetFramebufferSizeCallback(win, [](GLFWwindow* w, int, int) { input_of(w).changed = true; });
-    glfwSetCharCallback(win, [](GLFWwindow* w, unsigned) { input_of(w).changed = true; });
-    glfwSetWindowFocusCallback(win, [](GLFWwindow* w, int) { input_of(w).changed = true; });
-    glfwSetCursorEnterCallback(win, [](GLFWwindow* w, int) { input_of(w).changed = true; });
+    glfwSetWindowRefreshCallback(win, [](GLFWwindow* w) { changed(w); });
+    glfwSetFramebufferSizeCallback(win, [](GLFWwindow* w, int, int) { changed(w); });
+    glfwSetCharCallback(win, [](GLFWwindow* w, unsigned) { changed(w); });
+    glfwSetWindowFocusCallback(win, [](GLFWwindow* w, int) { changed(w); });
+    glfwSetCursorEnterCallback(win, [](GLFWwindow* w, int) { changed(w); });
     glfwSetWindowContentScaleCallback(win, on_content_scale);
 }
 
@@ -228,7 +238,7 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
     std::vector<int> pending = o.keys;
     Camera drawn_cam;  // the camera and settings of the last frame drawn
     ViewSettings drawn_settings;
-    int settle = 0;
+    int settle = 0, panel_settle = 0;
     auto t_title = Clock::now();
     auto t_prev = Clock::now();
     const int warm = o.frames / 10;
@@ -355,20 +365,22 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
         // Interactive and nothing changed (no event, the same camera and settings, no path playing): the window
         // keeps the last frame, so none is drawn (a still view costs nothing). A few frames are drawn after each
         // event, for the panel to settle (hover, layout).
-        const bool event = input.changed;
         if (input.changed) settle = 3;
-        input.changed = false;
+        if (input.panel_changed) panel_settle = 3;
+        input.changed = input.panel_changed = false;
         const bool moving = path && path_active && playing && path_time < path->duration();
         if (!scripted && settle == 0 && !moving && !req.screenshot && same_view(cam, drawn_cam) &&
             s == drawn_settings) {
             glfwWaitEventsTimeout(0.25);
             continue;
         }
-        // The panel is rendered again (not shown from its cache) after an event and while it settles, after a changed
-        // setting, and for a screenshot. A scripted run's hidden window ignores its events (focus, cursor): its
-        // panel is rendered at the same frames from run to run, but for the refresh interval.
-        const bool panel_refresh = (!scripted && (event || settle > 0)) || !(s == drawn_settings) || frame == 0 ||
+        // The panel is rendered again (not shown from its cache) after an event it may show and while it settles
+        // (not while the view is dragged), after a changed setting, and for a screenshot. A scripted run's hidden
+        // window ignores its events (focus, cursor): its panel is rendered at the same frames from run to run, but for
+        // the refresh interval.
+        const bool panel_refresh = (!scripted && panel_settle > 0) || !(s == drawn_settings) || frame == 0 ||
                                    req.screenshot;
+        if (panel_settle > 0) --panel_settle;
         if (settle > 0) --settle;
         drawn_cam = cam;
         drawn_settings = s;  // the panel may change s after the draw: the next frame then draws again
