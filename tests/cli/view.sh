@@ -107,6 +107,13 @@ read -r ix iy iw ih <<<"$(rect vo_insets insets)"
 blank vo_insets vo_insets_out "$ix" "$iy" "$iw" "$ih"
 blank vo_plain vo_plain_out "$ix" "$iy" "$iw" "$ih"
 same vo_plain_out vo_insets_out exact
+# A still camera: the object's faces are pre-warped on frame 0 only, then reused (objects/object_plan.h, through the
+# viewer's object path): the texels warped per frame are 0 on frames 1 and 2 (their median), not on frame 0 (max).
+FRAMES=3 view vo_still --object "$O" --orbit 30,20,2.2 --size $S
+tw=$(python3 -c "import json,sys; t=json.load(open(sys.argv[1]))['texels_warped']; print(t['median'], t['max'] > 0)" \
+  "$T/vo_still.json")
+if [ "$tw" = "0.0 True" ] || [ "$tw" = "0 True" ]; then passes=$((passes + 1))
+else echo "FAIL: a still object's texels warped (median, max > 0): $tw, expected 0 True"; fails=$((fails + 1)); fi
 
 # The town scene: its own camera, an orbit, and its camera path frame by frame (--camera-path given the scene).
 TOWN=$SRC/media/town.scene.json
