@@ -146,7 +146,10 @@ void PanelCache::render(ImDrawData* data, const glm::vec4& panel, bool refresh) 
         } else {
             ++blits_;
         }
-        // One copy of the panel's pixels (no blending: its background is opaque), bottom-left origin.
+        // One copy of the panel's pixels (no blending: its background is opaque), bottom-left origin. A blit, not a
+        // textured quad in the background list's pass: interleaved runs of the relief with the panel (load 9 to 11)
+        // gave an overlay of 1.17 to 1.25 ms with the blit, 1.69 to 1.82 ms with the quad (with the insets: 2.48 to
+        // 2.94 ms against 2.92 to 3.25 ms).
         glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
         glDisable(GL_SCISSOR_TEST);
