@@ -2,6 +2,7 @@
 // only parses the command line: what to open, the camera, the settings, and the scripted options for tests
 // (--frames N --screenshot IMG, --keys, --camera-path, --json).
 #include <algorithm>
+#include <cstdio>
 #include <memory>
 
 #include "cli_common.h"
@@ -34,10 +35,15 @@ void run_view(const ViewArgs& a) {
     if (!a.json.empty() && a.frames == 0) throw UsageError("--json needs --frames N");
     if (a.threads < 0) throw UsageError("--threads: expected N >= 0, found " + std::to_string(a.threads));
     if (a.timed_every < 1) throw UsageError("--timed-every: expected N >= 1, found " + std::to_string(a.timed_every));
+    auto number = [](double v) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%g", v);
+        return std::string(buf);
+    };
     if (!(a.panel_refresh_ms >= 0))
-        throw UsageError("--panel-refresh-ms: expected a time >= 0, found " + std::to_string(a.panel_refresh_ms));
+        throw UsageError("--panel-refresh-ms: expected a time >= 0, found " + number(a.panel_refresh_ms));
     if (!(a.content_scale == 0 || (a.content_scale >= 0.25 && a.content_scale <= 8)))
-        throw UsageError("--content-scale: expected a scale in [0.25, 8], found " + std::to_string(a.content_scale));
+        throw UsageError("--content-scale: expected a scale in [0.25, 8], found " + number(a.content_scale));
     if (!(a.discontinuity >= 0 || a.discontinuity == -1))
         throw UsageError("--discontinuity: expected a threshold >= 0, found " + std::to_string(a.discontinuity));
     viewer::ViewerOptions o;

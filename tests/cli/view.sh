@@ -166,6 +166,10 @@ done
 expect_fail 1 "has no camera_path" -- view --object "$O" --camera-path "$O" --frames 1
 expect_fail 2 "^rtm: --keys: unknown key \"nope\"" -- view --relief "$M" --keys nope --frames 1
 expect_fail 2 "^rtm: --split: raycast" -- view --relief "$M" --split raycast --frames 1
+expect_fail 2 "^rtm: --panel-refresh-ms: expected a time >= 0, found -1$" -- view --relief "$M" \
+  --panel-refresh-ms -1 --frames 1
+expect_fail 2 "^rtm: --content-scale: expected a scale in \\[0.25, 8\\], found 100$" -- view --relief "$M" \
+  --content-scale 100 --frames 1
 echo '{"keys": []}' >"$T/bad_path.json"
 expect_fail 1 "bad_path.json: \"keys\"" -- view --relief "$M" --camera-path "$T/bad_path.json" --frames 1
 
