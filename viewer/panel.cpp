@@ -49,8 +49,8 @@ glm::vec4 draw_panel(ViewSettings& s, PanelContext& c, KeyRequests& r) {
     ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Always);
     const float u = c.ui_scale;
     ImGui::SetNextWindowSize(ImVec2(330 * u, 0), ImGuiCond_Always);
-    // Opaque: the panel's pixels do not depend on the image under it, so they can be kept and copied
-    // (viewer/panel_cache.h), and llvmpipe does not blend its 330x714 pixels every frame.
+    // Opaque: the panel's pixels do not depend on the image under it, so they are kept and copied between its
+    // renders (viewer/panel_cache.h).
     ImGui::SetNextWindowBgAlpha(1.f);
     ImGui::Begin("rtm view", nullptr,
                  ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
