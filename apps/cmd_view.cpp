@@ -2,6 +2,7 @@
 // only parses the command line: what to open, the camera, the settings, and the scripted options for tests
 // (--frames N --screenshot IMG, --keys, --camera-path, --json).
 #include <algorithm>
+#include <cstdio>
 #include <memory>
 
 #include "cli_common.h"
@@ -20,6 +21,7 @@ struct ViewArgs {
                                                                                   split, filter = "point";
     CameraArgs camera;
     int frames = 0, threads = 0, timed_every = 16;
+    double panel_refresh_ms = 100, content_scale = 0;
     bool panel = false, insets = false, outlines = false, fly = false, no_sidewalls = false, depth_correction = false,
          no_skips = false, no_vsync = false;
     double discontinuity = -1;
@@ -33,6 +35,15 @@ void run_view(const ViewArgs& a) {
     if (!a.json.empty() && a.frames == 0) throw UsageError("--json needs --frames N");
     if (a.threads < 0) throw UsageError("--threads: expected N >= 0, found " + std::to_string(a.threads));
     if (a.timed_every < 1) throw UsageError("--timed-every: expected N >= 1, found " + std::to_string(a.timed_every));
+    auto number = [](double v) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%g", v);
+        return std::string(buf);
+    };
+    if (!(a.panel_refresh_ms >= 0))
+        throw UsageError("--panel-refresh-ms: expected a time >= 0, found " + number(a.panel_refresh_ms));
+    if (!(a.content_scale == 0 || (a.content_scale >= 0.25 && a.content_scale <= 8)))
+        throw UsageError("--content-scale: expected a scale in [0.25, 8], found " + number(a.content_scale));
     if (!(a.discontinuity >= 0 || a.discontinuity == -1))
         throw UsageError("--discontinuity: expected a threshold >= 0, found " + std::to_string(a.discontinuity));
     viewer::ViewerOptions o;
@@ -105,6 +116,8 @@ void run_view(const ViewArgs& a) {
     if (a.fly && ca.eye.empty()) o.camera.eye = o.orbit.eye(loaded->bounds());
     o.frames = a.frames;
     o.timed_every = a.timed_every;
+    o.panel_refresh_ms = a.panel_refresh_ms;
+    o.content_scale = float(a.content_scale);
     o.screenshot = a.screenshot;
 
     const viewer::ViewerResult r = viewer::run_viewer(std::move(loaded), o);
@@ -127,6 +140,8 @@ void run_view(const ViewArgs& a) {
             {"overlay_ms", timing_json(r.overlay_ms)},
             {"swap_ms", timing_json(r.swap_ms)},
             {"texels_warped", ll(r.texels_warped)},
+            {"panel_renders", r.panel_renders},
+            {"panel_blits", r.panel_blits},
             {"panel", {r.panel.x, r.panel.y, r.panel.z, r.panel.w}},
             {"insets", {r.insets.x, r.insets.y, r.insets.z, r.insets.w}},
             {"size", {r.width, r.height}},
@@ -169,6 +184,11 @@ void add_view_command(CLI::App& app) {
     sub->add_option("--timed-every", a->timed_every,
                     "Time the stages (each waiting for the GPU) in 1 frame of N; 1 = every frame")
         ->capture_default_str();
+    sub->add_option("--panel-refresh-ms", a->panel_refresh_ms,
+                    "Render the panel at least every T ms, else copy its last pixels; 0 = every frame")
+        ->capture_default_str();
+    sub->add_option("--content-scale", a->content_scale,
+                    "Scripted: the window's content scale changes to S before the first frame (as on another monitor)");
     sub->add_option("--screenshot", a->screenshot, "Write the last frame to IMG (with --frames)");
     sub->add_option("--camera-path", a->camera_path,
                     "Play a camera path (JSON keyframes, docs/VIEWER.md; the scene's own path given the scene)");

@@ -8,28 +8,39 @@
 
 namespace rtm::viewer {
 
-bool describe_drawn_quad(ReliefQuad& quad, const std::string& name, const Camera& cam, const ViewSettings& s,
-                         const std::vector<std::string>& skips, int level, DrawnQuad& q) {
-    auto fired = [&](const char* k) { return std::find(skips.begin(), skips.end(), k) != skips.end(); };
-    if (fired(kSkipOutsideFrustum) || fired(kSkipBackFacing) || fired(kSkipInsideSlab) || !quad.texture()) return false;
-    if (!quad.faces(cam.eye)) return false;
-    q = DrawnQuad{};
+bool maps_prewarp(RenderMethod method, const std::vector<std::string>& skips) {
+    return (method == RenderMethod::two_pass || method == RenderMethod::pipelined) &&
+           std::find(skips.begin(), skips.end(), kSkipSubpixelParallax) == skips.end();
+}
+
+DrawnQuad fill_drawn_quad(ReliefQuad& quad, const std::string& name, const Camera& cam, int level,
+                          const GlTexture& texture, bool warped) {
+    DrawnQuad q;
     q.name = name;
     q.corners = quad.corners();
     q.level = level;
     const ReliefTexture& t = quad.level(level);
     q.width = t.width;
     q.height = t.height;
-    q.texture = quad.texture()->id();
-    q.texture_width = quad.texture()->width();
-    q.texture_height = quad.texture()->height();
-    q.warped = (s.method == RenderMethod::two_pass || s.method == RenderMethod::pipelined) &&
-               !fired(kSkipSubpixelParallax);
+    q.texture = texture.id();
+    q.texture_width = texture.width();
+    q.texture_height = texture.height();
+    q.warped = warped;
     const PrewarpCoefficients k = compute_coefficients(t.geometry, cam.eye);
     q.epipole = {k.epipole_u, k.epipole_v};
+    return q;
+}
+
+bool describe_drawn_quad(ReliefQuad& quad, const std::string& name, const Camera& cam, const ViewSettings& s,
+                         const std::vector<std::string>& skips, int level, DrawnQuad& q) {
+    auto fired = [&](const char* k) { return std::find(skips.begin(), skips.end(), k) != skips.end(); };
+    if (fired(kSkipOutsideFrustum) || fired(kSkipBackFacing) || fired(kSkipInsideSlab) || !quad.texture()) return false;
+    if (!quad.faces(cam.eye)) return false;
+    q = fill_drawn_quad(quad, name, cam, level, *quad.texture(), maps_prewarp(s.method, skips));
     if (!q.warped) return true;
     q.margins = quad.last_stats().extent;
     if (s.side_polygons) {
+        const ReliefTexture& t = quad.level(level);
         // The side polygons along each border that has a margin, spanning [min(0, dmin), max(0, dmax)] along f
         // (texmap/renderer.h, ReliefSurface); drawn clipped to what can show a texel, outlined whole here.
         const glm::dvec3 f = glm::normalize(glm::cross(t.geometry.a, t.geometry.b));

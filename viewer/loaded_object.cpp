@@ -10,8 +10,8 @@
 #include "formats/image_io.h"
 #include "formats/object_manifest.h"
 #include "viewer/bake_mesh.h"
+#include "viewer/drawn_quad.h"
 #include "viewer/loaded_relief.h"
-#include "warp/prewarp_coefficients.h"
 #include "warp/timing.h"
 
 namespace rtm::viewer {
@@ -98,22 +98,12 @@ void LoadedObject::draw(Renderer& renderer, const Camera& cam, const ViewSetting
     for (const ObjectFaceReport& fr : rep.faces) {
         const GlTexture* tex = object_->face_texture(fr.face);
         if (!tex) continue;
-        ReliefQuad& quad = object_->face(fr.face);
-        const ReliefTexture& t = quad.level(fr.level);
-        DrawnQuad q;
-        q.name = kFaceKeys[size_t(fr.face)];
-        q.corners = quad.corners();
-        q.level = fr.level;
-        q.width = t.width;
-        q.height = t.height;
-        q.texture = tex->id();
-        q.texture_width = tex->width();
-        q.texture_height = tex->height();
-        q.warped = s.method != RenderMethod::flat &&
-                   std::find(fr.skips.begin(), fr.skips.end(), kSkipSubpixelParallax) == fr.skips.end();
-        const PrewarpCoefficients k = compute_coefficients(t.geometry, cam.eye);
-        q.epipole = {k.epipole_u, k.epipole_v};  // no margins, no side polygons: an object needs none
-        if (q.warped) report.texels_warped += object_->face_prewarp(fr.face).texels;
+        const bool warped = maps_prewarp(s.method, fr.skips);
+        // No margins, no side polygons: an object needs none.
+        DrawnQuad q = fill_drawn_quad(object_->face(fr.face), kFaceKeys[size_t(fr.face)], cam, fr.level, *tex, warped);
+        // Texels pre-warped this frame: none for a reused pre-warp (the reuse skip), as for a relief.
+        const bool reused = std::find(fr.skips.begin(), fr.skips.end(), kSkipReuse) != fr.skips.end();
+        if (warped && !reused) report.texels_warped += object_->face_prewarp(fr.face).texels;
         report.quads.push_back(std::move(q));
     }
 }

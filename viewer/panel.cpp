@@ -47,8 +47,11 @@ bool method_combo(const char* id, RenderMethod& m, bool with_raycast) {
 
 glm::vec4 draw_panel(ViewSettings& s, PanelContext& c, KeyRequests& r) {
     ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Always);
-    ImGui::SetNextWindowSize(ImVec2(330, 0), ImGuiCond_Always);
-    ImGui::SetNextWindowBgAlpha(0.85f);
+    const float u = c.ui_scale;
+    ImGui::SetNextWindowSize(ImVec2(330 * u, 0), ImGuiCond_Always);
+    // Opaque: the panel's pixels do not depend on the image under it, so they are kept and copied between its
+    // renders (viewer/panel_cache.h).
+    ImGui::SetNextWindowBgAlpha(1.f);
     ImGui::Begin("rtm view", nullptr,
                  ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                      ImGuiWindowFlags_NoSavedSettings);
@@ -80,8 +83,8 @@ glm::vec4 draw_panel(ViewSettings& s, PanelContext& c, KeyRequests& r) {
     if (c.stats && !c.stats->samples().empty()) {
         const std::vector<float> frame = c.stats->series(0), pre = c.stats->series(1);
         const float top = std::max(1.0f, *std::max_element(frame.begin(), frame.end()));
-        ImGui::PlotLines("frame", frame.data(), int(frame.size()), 0, nullptr, 0.f, top, ImVec2(250, 40));
-        ImGui::PlotLines("pre-warp", pre.data(), int(pre.size()), 0, nullptr, 0.f, top, ImVec2(250, 40));
+        ImGui::PlotLines("frame", frame.data(), int(frame.size()), 0, nullptr, 0.f, top, ImVec2(250 * u, 40 * u));
+        ImGui::PlotLines("pre-warp", pre.data(), int(pre.size()), 0, nullptr, 0.f, top, ImVec2(250 * u, 40 * u));
     }
     ImGui::Text("texels warped: %lld / frame", all.texels_warped);
 
@@ -92,7 +95,7 @@ glm::vec4 draw_panel(ViewSettings& s, PanelContext& c, KeyRequests& r) {
     if (ImGui::Checkbox("auto level", &auto_level)) s.level = auto_level ? -1 : 0;
     if (!auto_level) {
         ImGui::SameLine();
-        ImGui::SetNextItemWidth(120);
+        ImGui::SetNextItemWidth(120 * u);
         ImGui::SliderInt("level", &s.level, 0, 8);
     } else if (c.report) {
         ImGui::SameLine();
@@ -106,12 +109,12 @@ glm::vec4 draw_panel(ViewSettings& s, PanelContext& c, KeyRequests& r) {
     if (mark && !ImGui::IsAnyItemActive()) threshold = float(s.discontinuity);
     if (ImGui::Checkbox("discontinuities", &mark)) s.discontinuity = mark ? threshold : -1;
     if (mark) {
-        ImGui::SetNextItemWidth(140);
+        ImGui::SetNextItemWidth(140 * u);
         ImGui::SliderFloat("threshold", &threshold, 0.0f, 0.5f, "%.3f");
         if (ImGui::IsItemDeactivatedAfterEdit()) s.discontinuity = threshold;
     }
     const int hw = int(std::max(1u, std::thread::hardware_concurrency()));
-    ImGui::SetNextItemWidth(140);
+    ImGui::SetNextItemWidth(140 * u);
     ImGui::SliderInt("threads (0 = all)", &s.threads, 0, hw);
 
     section("skips");
@@ -133,14 +136,14 @@ glm::vec4 draw_panel(ViewSettings& s, PanelContext& c, KeyRequests& r) {
     if (ImGui::Button("frame (F)")) r.frame = true;
     if (s.fly && c.fly) {
         float speed = float(c.fly->speed);
-        ImGui::SetNextItemWidth(140);
+        ImGui::SetNextItemWidth(140 * u);
         if (ImGui::DragFloat("speed", &speed, speed * 0.01f, 1e-6f, 1e6f, "%.3g")) c.fly->speed = speed;
     }
     if (c.has_path && c.path_time && c.playing) {
         if (ImGui::Button(*c.playing ? "pause" : "play")) r.toggle_play = true;
         ImGui::SameLine();
         float t = float(*c.path_time);
-        ImGui::SetNextItemWidth(200);
+        ImGui::SetNextItemWidth(200 * u);
         if (ImGui::SliderFloat("path", &t, 0.f, float(c.path_duration), "%.2f s")) *c.path_time = t;
     }
 
@@ -154,11 +157,11 @@ glm::vec4 draw_panel(ViewSettings& s, PanelContext& c, KeyRequests& r) {
     // the error against the truth.
     const char* modes[] = {"no split", "split: method", "split: error vs truth"};
     int si = s.split == SplitMode::off ? 0 : s.split == SplitMode::method ? 1 : 2;
-    ImGui::SetNextItemWidth(200);
+    ImGui::SetNextItemWidth(200 * u);
     if (ImGui::Combo("##split", &si, modes, 3))
         s.split = si == 0 ? SplitMode::off : si == 1 ? SplitMode::method : SplitMode::truth;
     if (s.split == SplitMode::method) {
-        ImGui::SetNextItemWidth(200);
+        ImGui::SetNextItemWidth(200 * u);
         method_combo("right half##splitmethod", s.split_method, false);
     }
     if (ImGui::Button("screenshot (P)")) r.screenshot = true;

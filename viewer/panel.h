@@ -25,6 +25,7 @@ struct PanelContext {
     double* path_time = nullptr;
     double path_duration = 0;
     bool* playing = nullptr;
+    float ui_scale = 1.f;  // the screen's content scale in ImGui units: the panel's fixed widths follow it
 };
 
 // Draws the panel (between ImGui::NewFrame and ImGui::Render) and returns its rectangle (x, y, w, h) in ImGui

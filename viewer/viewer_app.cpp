@@ -24,6 +24,7 @@
 #include "viewer/open_file.h"
 #include "viewer/overlays.h"
 #include "viewer/panel.h"
+#include "viewer/panel_cache.h"
 #include "viewer/screenshot.h"
 #include "warp/timing.h"
 
@@ -38,23 +39,40 @@ struct Input {
     double drag_x = 0, drag_y = 0, wheel = 0;  // accumulated since the last frame
     std::vector<int> presses;
     std::optional<std::string> dropped;
+    std::optional<float> content_scale;  // the window's new content scale (moved to another monitor)
     bool changed = true;  // any event since the last frame drawn (an unchanged still view is not drawn again)
+    // An event the panel may show (all but the cursor moving or the wheel turning away from it): the panel is
+    // rendered again, not copied (viewer/panel_cache.h). Dragging the view does not re-render it every frame.
+    bool panel_changed = true;
 };
 
 Input& input_of(GLFWwindow* w) { return *static_cast<Input*>(glfwGetWindowUserPointer(w)); }
+
+// An event: the frame is drawn again, and the panel rendered again when `panel` (the event may change what it shows).
+void changed(GLFWwindow* w, bool panel = true) {
+    input_of(w).changed = true;
+    input_of(w).panel_changed = input_of(w).panel_changed || panel;
+}
+
+// The window moved to a monitor of another content scale (DPI): the panel's font and sizes follow at the next frame.
+void on_content_scale(GLFWwindow* w, float x, float) {
+    changed(w);
+    input_of(w).content_scale = x;
+}
 
 void install_callbacks(GLFWwindow* win) {
     // Installed before ImGui's GLFW back end, which calls them after its own (unless the panel takes the input).
     glfwSetMouseButtonCallback(win, [](GLFWwindow* w, int button, int action, int) {
         Input& in = input_of(w);
-        in.changed = true;
+        changed(w);
         if (button != GLFW_MOUSE_BUTTON_LEFT) return;
         in.dragging = action == GLFW_PRESS && !ImGui::GetIO().WantCaptureMouse;
         glfwGetCursorPos(w, &in.last_x, &in.last_y);
     });
     glfwSetCursorPosCallback(win, [](GLFWwindow* w, double x, double y) {
         Input& in = input_of(w);
-        in.changed = true;
+        // Over the panel (or leaving it: WantCaptureMouse is still the last position's) the hover may change.
+        changed(w, ImGui::GetIO().WantCaptureMouse);
         if (in.dragging) {
             in.drag_x += x - in.last_x;
             in.drag_y += y - in.last_y;
@@ -63,22 +81,23 @@ void install_callbacks(GLFWwindow* win) {
         in.last_y = y;
     });
     glfwSetScrollCallback(win, [](GLFWwindow* w, double, double dy) {
-        input_of(w).changed = true;
+        changed(w, ImGui::GetIO().WantCaptureMouse);
         if (!ImGui::GetIO().WantCaptureMouse) input_of(w).wheel += dy;
     });
     glfwSetKeyCallback(win, [](GLFWwindow* w, int key, int, int action, int) {
-        input_of(w).changed = true;
+        changed(w);
         if (action == GLFW_PRESS && !ImGui::GetIO().WantCaptureKeyboard) input_of(w).presses.push_back(key);
     });
     glfwSetDropCallback(win, [](GLFWwindow* w, int count, const char** paths) {
-        input_of(w).changed = true;
+        changed(w);
         if (count > 0) input_of(w).dropped = std::string(paths[0]);
     });
-    glfwSetWindowRefreshCallback(win, [](GLFWwindow* w) { input_of(w).changed = true; });
-    glfwSetFramebufferSizeCallback(win, [](GLFWwindow* w, int, int) { input_of(w).changed = true; });
-    glfwSetCharCallback(win, [](GLFWwindow* w, unsigned) { input_of(w).changed = true; });
-    glfwSetWindowFocusCallback(win, [](GLFWwindow* w, int) { input_of(w).changed = true; });
-    glfwSetCursorEnterCallback(win, [](GLFWwindow* w, int) { input_of(w).changed = true; });
+    glfwSetWindowRefreshCallback(win, [](GLFWwindow* w) { changed(w); });
+    glfwSetFramebufferSizeCallback(win, [](GLFWwindow* w, int, int) { changed(w); });
+    glfwSetCharCallback(win, [](GLFWwindow* w, unsigned) { changed(w); });
+    glfwSetWindowFocusCallback(win, [](GLFWwindow* w, int) { changed(w); });
+    glfwSetCursorEnterCallback(win, [](GLFWwindow* w, int) { changed(w); });
+    glfwSetWindowContentScaleCallback(win, on_content_scale);
 }
 
 ImTextureID imgui_texture(const GlTexture& t) { return reinterpret_cast<ImTextureID>(static_cast<intptr_t>(t.id())); }
@@ -99,30 +118,49 @@ void clear_framebuffer(int w, int h) {
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 }
 
+// The panel's scale in ImGui units for a screen content scale: the content scale divided by the framebuffer scale
+// (which ImGui applies already where the framebuffer is larger than the window), within [1, 4].
+float ui_scale_of(GLFWwindow* win, float content_scale) {
+    int ww = 0, wh = 0, fw = 0, fh = 0;
+    glfwGetWindowSize(win, &ww, &wh);
+    glfwGetFramebufferSize(win, &fw, &fh);
+    const float fb_scale = ww > 0 && fw > 0 ? float(fw) / float(ww) : 1.f;
+    return std::clamp(content_scale / fb_scale, 1.f, 4.f);
+}
+
+// The panel's style at `ui_scale`: Dear ImGui's dark style, its sizes and font scaled. Lines are not anti-aliased:
+// on llvmpipe each anti-aliased line is a textured, blended quad wider than the line (with the opaque panel, the
+// relief's overlay rendering the panel every frame fell from 4.2 to 10 ms to 4.3 ms, docs/BENCHMARKS.md "Viewer"),
+// and the cached panel's edges stay inside its rectangle (viewer/panel_cache.h).
+void apply_style(float ui_scale) {
+    ImGuiStyle style;
+    ImGui::StyleColorsDark(&style);
+    style.AntiAliasedLines = false;
+    if (ui_scale != 1.f) style.ScaleAllSizes(ui_scale);
+    ImGui::GetStyle() = style;
+    ImGui::GetIO().FontGlobalScale = ui_scale;
+}
+
 struct ImGuiSession {
+    float ui_scale = 1.f;
     explicit ImGuiSession(GLFWwindow* win) {
         IMGUI_CHECKVERSION();
         ImGui::CreateContext();
         ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the working folder
-        ImGui::StyleColorsDark();
         // High-DPI: the panel's font and sizes follow the screen's content scale, in ImGui's units (window
         // coordinates; where the framebuffer is larger than the window, ImGui maps them onto it already).
         float sx = 1.f, sy = 1.f;
         glfwGetWindowContentScale(win, &sx, &sy);
-        int ww = 0, wh = 0, fw = 0, fh = 0;
-        glfwGetWindowSize(win, &ww, &wh);
-        glfwGetFramebufferSize(win, &fw, &fh);
-        const float fb_scale = ww > 0 && fw > 0 ? float(fw) / float(ww) : 1.f;
-        const float ui_scale = std::clamp(sx / fb_scale, 1.f, 4.f);
-        if (ui_scale > 1.f) {
-            ImGui::GetStyle().ScaleAllSizes(ui_scale);
-            ImGui::GetIO().FontGlobalScale = ui_scale;
-        }
+        rescale(win, sx);
         if (!ImGui_ImplGlfw_InitForOpenGL(win, true)) throw GlError("Dear ImGui: the GLFW back end failed to start");
         if (!ImGui_ImplOpenGL3_Init("#version 330 core")) {
             ImGui_ImplGlfw_Shutdown();
             throw GlError("Dear ImGui: the OpenGL 3 back end failed to start");
         }
+    }
+    void rescale(GLFWwindow* win, float content_scale) {
+        ui_scale = ui_scale_of(win, content_scale);
+        apply_style(ui_scale);
     }
     ~ImGuiSession() {
         ImGui_ImplOpenGL3_Shutdown();
@@ -169,6 +207,8 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
     install_callbacks(win);
     Renderer renderer;
     ImGuiSession imgui(win);
+    PanelCache panel_cache(o.panel_refresh_ms);
+    if (o.content_scale > 0) on_content_scale(win, o.content_scale, o.content_scale);  // as if the window moved
     std::string status;
     // One-time work in the window's context (a mesh's bake), with progress on stderr, in the title and the panel.
     auto prepare = [&](Loaded& l) {
@@ -200,7 +240,7 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
     std::vector<int> pending = o.keys;
     Camera drawn_cam;  // the camera and settings of the last frame drawn
     ViewSettings drawn_settings;
-    int settle = 0;
+    int settle = 0, panel_settle = 0;
     auto t_title = Clock::now();
     auto t_prev = Clock::now();
     const int warm = o.frames / 10;
@@ -214,6 +254,10 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
         if (frame == warm) t_warm = t_frame;
         ctx->poll_events();
         if (ctx->should_close()) break;
+        if (input.content_scale) {
+            imgui.rescale(win, *input.content_scale);
+            input.content_scale.reset();
+        }
 
         // Keys: the scripted ones first, then the window's.
         KeyRequests req;
@@ -324,13 +368,21 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
         // keeps the last frame, so none is drawn (a still view costs nothing). A few frames are drawn after each
         // event, for the panel to settle (hover, layout).
         if (input.changed) settle = 3;
-        input.changed = false;
+        if (input.panel_changed) panel_settle = 3;
+        input.changed = input.panel_changed = false;
         const bool moving = path && path_active && playing && path_time < path->duration();
         if (!scripted && settle == 0 && !moving && !req.screenshot && same_view(cam, drawn_cam) &&
             s == drawn_settings) {
             glfwWaitEventsTimeout(0.25);
             continue;
         }
+        // The panel is rendered again (not shown from its cache) after an event it may show and while it settles
+        // (not while the view is dragged), after a changed setting, and for a screenshot. A scripted run's hidden
+        // window ignores its events (focus, cursor): its panel is rendered at the same frames from run to run, but for
+        // the refresh interval.
+        const bool panel_refresh = (!scripted && panel_settle > 0) || !(s == drawn_settings) || frame == 0 ||
+                                   req.screenshot;
+        if (panel_settle > 0) --panel_settle;
         if (settle > 0) --settle;
         drawn_cam = cam;
         drawn_settings = s;  // the panel may change s after the draw: the next frame then draws again
@@ -423,6 +475,7 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
             pc.path_time = &path_time;
             pc.path_duration = path ? path->duration() : 0;
             pc.playing = &playing;
+            pc.ui_scale = imgui.ui_scale;
             const double before = path_time;
             KeyRequests buttons;  // the panel's buttons, apart from this frame's keys (already applied)
             panel_box = draw_panel(s, pc, buttons);
@@ -437,15 +490,15 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
             }
             req.screenshot = req.screenshot || buttons.screenshot;
         }
+        const bool last = scripted && frame == o.frames - 1;
         const auto t_overlay = Clock::now();
         ImGui::Render();
-        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        panel_cache.render(ImGui::GetDrawData(), s.panel ? panel_box : glm::vec4(0.f), panel_refresh);
         if (timed_frame) glFinish();  // timed apart from the swap (which would wait for it anyway)
         const double overlay_ms = ms_since(t_overlay);
         result.panel = panel_box * scale;
         result.insets = inset_box * scale;
 
-        const bool last = scripted && frame == o.frames - 1;
         if (req.screenshot || (last && !o.screenshot.empty())) {
             const std::string file = last && !o.screenshot.empty() ? o.screenshot : timestamped_name();
             write_rgba8(file, read_framebuffer(W, H));
@@ -474,6 +527,8 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
             result.swap_ms.push_back(swap_ms);
         }
         result.frames = frame + 1;
+        result.panel_renders = panel_cache.renders();
+        result.panel_blits = panel_cache.blits();
         result.width = W;
         result.height = H;
         if (!scripted && std::chrono::duration<double>(Clock::now() - t_title).count() > 1.0) {

@@ -21,13 +21,16 @@ struct ViewerOptions {
     bool start_fly = false;  // start with the fly camera at camera.eye looking at camera.look_at (--eye)
     OrbitCamera orbit;       // the orbit camera's start (--orbit, or the default 30,20,2.2)
     ViewSettings settings;
-    int frames = 0;                // > 0: scripted, render this many frames and return
-    std::string screenshot;        // scripted: write the last frame here
-    std::string camera_path;       // a camera path file (viewer/camera_path.h)
-    bool own_camera_path = false;  // play what is loaded's own camera path (a scene's) instead
-    std::vector<int> keys;         // scripted key presses, applied in order before the first frame
-    double fly_step_s = 0.1;       // a scripted fly key moves the eye by this many seconds of travel
-    int timed_every = 16;          // the stage times (Table 1) are measured in 1 frame of this many (1: every frame)
+    int frames = 0;                 // > 0: scripted, render this many frames and return
+    std::string screenshot;         // scripted: write the last frame here
+    std::string camera_path;        // a camera path file (viewer/camera_path.h)
+    bool own_camera_path = false;   // play what is loaded's own camera path (a scene's) instead
+    std::vector<int> keys;          // scripted key presses, applied in order before the first frame
+    double fly_step_s = 0.1;        // a scripted fly key moves the eye by this many seconds of travel
+    int timed_every = 16;           // the stage times (Table 1) are measured in 1 frame of this many (1: every frame)
+    double panel_refresh_ms = 100;  // the panel is rendered at least this often (viewer/panel_cache.h); 0: every frame
+    float content_scale = 0;        // > 0: the window's content scale changes to this before the first frame, as when
+                                    // it moves to another monitor (the callback's path, testable without one)
 };
 
 // What a run measured (scripted runs report it with --json).
@@ -40,6 +43,7 @@ struct ViewerResult {
     std::vector<double> prewarp_ms, upload_ms, texture_map_ms, other_ms;
     std::vector<double> overlay_ms, swap_ms;
     std::vector<long long> texels_warped;
+    long long panel_renders = 0, panel_blits = 0;  // frames that rendered the panel; that showed it from its cache
     glm::vec4 panel{0.f}, insets{0.f};  // the last frame's rectangles (x, y, w, h) in framebuffer pixels, top-left
     int width = 0, height = 0;
     std::string renderer;

@@ -107,6 +107,13 @@ read -r ix iy iw ih <<<"$(rect vo_insets insets)"
 blank vo_insets vo_insets_out "$ix" "$iy" "$iw" "$ih"
 blank vo_plain vo_plain_out "$ix" "$iy" "$iw" "$ih"
 same vo_plain_out vo_insets_out exact
+# A still camera: the object's faces are pre-warped on frame 0 only, then reused (objects/object_plan.h, through the
+# viewer's object path): the texels warped per frame are 0 on frames 1 and 2 (their median), not on frame 0 (max).
+FRAMES=3 view vo_still --object "$O" --orbit 30,20,2.2 --size $S
+tw=$(python3 -c "import json,sys; t=json.load(open(sys.argv[1]))['texels_warped']; print(t['median'], t['max'] > 0)" \
+  "$T/vo_still.json")
+if [ "$tw" = "0.0 True" ] || [ "$tw" = "0 True" ]; then passes=$((passes + 1))
+else echo "FAIL: a still object's texels warped (median, max > 0): $tw, expected 0 True"; fails=$((fails + 1)); fi
 
 # The town scene: its own camera, an orbit, and its camera path frame by frame (--camera-path given the scene).
 TOWN=$SRC/media/town.scene.json
@@ -159,6 +166,10 @@ done
 expect_fail 1 "has no camera_path" -- view --object "$O" --camera-path "$O" --frames 1
 expect_fail 2 "^rtm: --keys: unknown key \"nope\"" -- view --relief "$M" --keys nope --frames 1
 expect_fail 2 "^rtm: --split: raycast" -- view --relief "$M" --split raycast --frames 1
+expect_fail 2 "^rtm: --panel-refresh-ms: expected a time >= 0, found -1$" -- view --relief "$M" \
+  --panel-refresh-ms -1 --frames 1
+expect_fail 2 "^rtm: --content-scale: expected a scale in \\[0.25, 8\\], found 100$" -- view --relief "$M" \
+  --content-scale 100 --frames 1
 echo '{"keys": []}' >"$T/bad_path.json"
 expect_fail 1 "bad_path.json: \"keys\"" -- view --relief "$M" --camera-path "$T/bad_path.json" --frames 1
 
@@ -185,6 +196,35 @@ blank plain plain_out "$px" "$py" "$pw" "$ph"
 same plain_out panel_out exact
 blank kH kH_out "$px" "$py" "$pw" "$ph"
 same plain_out kH_out exact
+# The panel from its cache (viewer/panel_cache.h): with a refresh interval longer than the run it is rendered on frame 1
+# (on frame 0 Dear ImGui only sizes the window) and copied onto frame 2 without being rendered. The copy lands on the
+# panel's rectangle only (outside it, the plain image exactly), and its lower half (settings, skips, camera: no
+# measured number) equals that of frame 1's panel rendered directly.
+FRAMES=3 view pcache --relief "$M" --orbit 30,20,2.2 --size 640x480 --panel --panel-refresh-ms 1000000
+FRAMES=2 view pdirect --relief "$M" --orbit 30,20,2.2 --size 640x480 --panel --panel-refresh-ms 0
+counts() {
+  python3 -c "import json,sys; j=json.load(open(sys.argv[1])); print(j['panel_renders'], j['panel_blits'])" "$T/$1.json"
+}
+if [ "$(counts pcache)" = "1 1" ] && [ "$(counts pdirect)" = "1 0" ]; then passes=$((passes + 1))
+else
+  echo "FAIL: panel renders, blits: cached $(counts pcache) (expected 1 1), direct $(counts pdirect) (1 0)"
+  fails=$((fails + 1))
+fi
+read -r cx cy cw ch <<<"$(rect pcache panel)"
+blank pcache pcache_out "$cx" "$cy" "$cw" "$ch"
+blank plain plain_out3 "$cx" "$cy" "$cw" "$ch"
+same plain_out3 pcache_out exact
+half=$(awk -v y="$cy" -v h="$ch" 'BEGIN { print int(y + h / 2) }')
+low=$(awk -v w="$cw" -v h="$ch" 'BEGIN { print int(w) "x" int(h / 2) }')
+oiiotool "$T/pcache.png" --cut "${low}+0+$half" -o "$T/pcache_low.png"
+oiiotool "$T/pdirect.png" --cut "${low}+0+$half" -o "$T/pdirect_low.png"
+same pdirect_low pcache_low exact
+# The window moved to a monitor of content scale 2 (the content-scale callback's path, run before the first frame):
+# the panel's font and sizes double, so does its width.
+view pscale2 --relief "$M" --orbit 30,20,2.2 --size 640x480 --panel --content-scale 2
+read -r _ _ sw _ <<<"$(rect pscale2 panel)"
+if awk -v a="$pw" -v b="$sw" 'BEGIN { exit !(b == 2 * a) }'; then passes=$((passes + 1))
+else echo "FAIL: panel width at content scale 2: $sw, expected 2 x $pw"; fails=$((fails + 1)); fi
 # The insets likewise, in their rectangle; the key I shows the same insets as --insets.
 view insets --relief "$M" --orbit 30,20,2.2 --size 640x480 --insets
 view kI --relief "$M" --orbit 30,20,2.2 --size 640x480 --keys I
