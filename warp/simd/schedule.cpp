@@ -177,8 +177,9 @@ namespace {
 
 // ---- Still pixels in the vertical pass (paper section 5: the brick wall) ----
 //
-// The row warps copy runs of still texels (zero displacement) already; the vertical pass is where the brick wall's
-// time goes (1024^2, 1 thread: 1.02 to 1.13 times faster than the same wall lifted off zero before this). A pixel
+// The row warps copy runs of still texels (zero displacement) already; this copies them in the vertical pass too
+// (brick wall 1024^2 against the same wall lifted off zero, 1 thread, CPU time, `rtm bench-skips --wall-only`:
+// 0.99x -> 1.16x AVX-512, 1.03x -> 1.21x AVX2; docs/BENCHMARKS.md says why not more). A pixel
 // of the intermediate image on the centre of its own output line (v == y + 0.5: a still texel that no later
 // sample of its row overwrote) whose column's last sample is the previous step's pixel on the centre of its own
 // line (y - 1 + 0.5 in the bottom part, y + 1 + 0.5 in the top part) is drawn by the column kernels as a span one
@@ -269,9 +270,11 @@ void vertical_with_still(const StillColumns& sc, int s0, int s1, const uint32_t*
         k.vertical(job, 0, 1, band_c, band_v, stride, x0, x1);
         first = 1;
     }
-    uint32_t fresh = 1u;  // steps a column starts afresh at (bit 0 of the first band), never copied
+    // Steps a column starts afresh at (step 0, and split_v where the top part starts, also on a band's first step):
+    // never copied.
+    uint32_t fresh = s0 == 0 ? 1u : 0u;
     if (job.split_v >= s0 && job.split_v < s1) fresh |= 1u << (job.split_v - s0);
-    const uint32_t first_bits = s0 == 0 ? ~fresh : ~(fresh & ~1u);
+    const uint32_t first_bits = ~fresh;
     long long copied = 0;
     int gx0 = x0;
     uint32_t copy = 0;
