@@ -116,6 +116,9 @@ FastTables make_fast_tables(const PrewarpTables& tab) {
         }
         t.dropped[q] = q != kEmptyIndex && !ok;
         t.any_dropped = t.any_dropped || t.dropped[q];
+        const bool id = ok && tab.k1d[q] == 0.0f && tab.k2d[q] == 0.0f && tab.rcp[q] == 1.0f;
+        t.identity[q] = id ? 0x80 : 0;
+        t.any_identity = t.any_identity || id;
     }
     return t;
 }
