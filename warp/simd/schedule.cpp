@@ -182,7 +182,7 @@ namespace {
 //
 // The row warps copy runs of still texels (zero displacement) already; this copies them in the vertical pass too
 // (brick wall 1024^2 against the same wall lifted off zero, 1 thread, CPU time, `rtm bench-skips --wall-only`:
-// 0.99x -> 1.16x AVX-512, 1.03x -> 1.21x AVX2; docs/BENCHMARKS.md says why not more). A pixel
+// 0.99x -> 1.16x to 1.24x AVX-512, 1.03x -> 1.20x to 1.24x AVX2; docs/BENCHMARKS.md says why not more). A pixel
 // of the intermediate image on the centre of its own output line (v == y + 0.5: a still texel that no later
 // sample of its row overwrote) whose column's last sample is the previous step's pixel on the centre of its own
 // line (y - 1 + 0.5 in the bottom part, y + 1 + 0.5 in the top part) is drawn by the column kernels as a span one
