@@ -19,6 +19,8 @@ struct Args {
     int frames = 20;
     std::string scene = "media/town.scene.json";
     bool scene_given = false, no_scene = false, scene_only = false;
+    int wall_size = 1024, wall_rounds = 15;
+    bool wall_only = false;
 };
 
 void run(const Args& a) {
@@ -27,14 +29,49 @@ void run(const Args& a) {
     if (a.no_scene && (a.scene_only || a.scene_given))
         throw UsageError("--no-scene contradicts --scene and --scene-only");
     const bool with_scene = !a.no_scene && (a.scene_given || std::filesystem::exists(a.scene));
+    if (a.wall_only && (a.scene_only || a.scene_given))
+        throw UsageError("--wall-only contradicts --scene and --scene-only");
+    if (a.wall_size < 16 || a.wall_size > 8192)
+        throw UsageError("--wall-size: expected 16 to 8192 texels, found " + std::to_string(a.wall_size));
+    if (a.wall_rounds < 1) throw UsageError("--wall-rounds: expected N >= 1, found " + std::to_string(a.wall_rounds));
     if (a.scene_only && !with_scene) throw IoError(a.scene + ": no such scene (give --scene FILE)");
     auto progress = [](const std::string& s) { std::fprintf(stderr, "%s\n", s.c_str()); };
-    const auto rows = a.scene_only ? std::vector<SkipMeasurement>{} : measure_skips(a.frames, progress);
-    if (!a.scene_only) std::printf("%s", skip_table_markdown(rows).c_str());
+    const bool skips = !a.scene_only && !a.wall_only;
+    const auto rows = skips ? measure_skips(a.frames, progress) : std::vector<SkipMeasurement>{};
+    if (skips) std::printf("%s", skip_table_markdown(rows).c_str());
+    // The brick wall on the fast kernels: the pre-warp alone, still texels against none.
+    const auto wall = a.scene_only ? std::vector<StillWallMeasurement>{}
+                                   : measure_still_wall(a.wall_size, a.wall_rounds, progress);
+    nlohmann::json wall_json = nlohmann::json::array();
+    if (!a.scene_only) {
+        std::printf("\n### The brick wall on the fast kernels\n\n%s", still_wall_markdown(wall).c_str());
+        for (const StillWallMeasurement& m : wall)
+            wall_json.push_back({{"method", to_string(m.method)},
+                                 {"threads", m.threads},
+                                 {"isa", m.isa},
+                                 {"size", m.size},
+                                 {"still_fraction", m.still_fraction},
+                                 {"rounds", m.rounds},
+                                 {"ms_bricks", m.ms_bricks},
+                                 {"ms_bricks_no_copy", m.ms_bricks_no_copy},
+                                 {"ms_lifted", m.ms_lifted},
+                                 {"ms_sunk", m.ms_sunk},
+                                 {"cpu_ms_bricks", m.cpu_bricks},
+                                 {"cpu_ms_bricks_no_copy", m.cpu_bricks_no_copy},
+                                 {"cpu_ms_lifted", m.cpu_lifted},
+                                 {"cpu_ms_sunk", m.cpu_sunk},
+                                 {"ms_moving_alone", m.ms_moving},
+                                 {"cpu_ms_moving_alone", m.cpu_moving},
+                                 {"ms_still_copy_alone", m.ms_still_copy},
+                                 {"cpu_ms_still_copy_alone", m.cpu_still_copy},
+                                 {"same_as_reference", m.same_as_reference}});
+    }
     // Each skip's worth along a scene's camera path: the path without that skip against all skips.
     nlohmann::json scene_json;
     std::printf("\n### Skips along a scene's camera path\n\n");
-    if (with_scene) {
+    if (a.wall_only) {
+        std::printf("Skipped (--wall-only).\n");
+    } else if (with_scene) {
         const SceneBench sb = bench_scene(a.scene, 640, 480, scene_skip_variants(), progress);
         std::printf("%s", scene_bench_markdown(sb).c_str());
         scene_json = scene_bench_json(sb);
@@ -56,7 +93,7 @@ void run(const Args& a) {
                          {"same_picture", m.same_picture},
                          {"psnr_without", std::isfinite(m.psnr_without) ? nlohmann::json(m.psnr_without) : nullptr},
                          {"psnr_with", std::isfinite(m.psnr_with) ? nlohmann::json(m.psnr_with) : nullptr}});
-        write_json(a.json, {{"command", "bench-skips"}, {"rows", j}, {"scene", scene_json}});
+        write_json(a.json, {{"command", "bench-skips"}, {"rows", j}, {"wall", wall_json}, {"scene", scene_json}});
     }
     // The copy of zero-displacement runs adds no error by construction (warp/reference/reference_prewarp.cpp):
     // check it here too.
@@ -78,6 +115,11 @@ void add_bench_skips_command(CLI::App& app) {
         ->each([a](const std::string&) { a->scene_given = true; });
     sub->add_flag("--no-scene", a->no_scene, "Skip the scene's camera path");
     sub->add_flag("--scene-only", a->scene_only, "Only the scene's camera path");
+    sub->add_option("--wall-size", a->wall_size, "Side of the brick wall timed on the fast kernels")
+        ->capture_default_str();
+    sub->add_option("--wall-rounds", a->wall_rounds, "Interleaved rounds of the brick wall's pre-warps")
+        ->capture_default_str();
+    sub->add_flag("--wall-only", a->wall_only, "Only the brick wall on the fast kernels (no GL, no scene)");
     sub->callback([a] { run(*a); });
 }
 

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 
 #include "objects/bounds.h"
 #include "measure/compare.h"
@@ -12,6 +13,7 @@
 #include "procedural/procedural_media.h"
 #include "objects/render_relief.h"
 #include "texmap/gl_context.h"
+#include "warp/prewarp_coefficients.h"
 
 namespace rtm {
 
@@ -157,6 +159,154 @@ std::string skip_table_markdown(const std::vector<SkipMeasurement>& rows) {
                       "| %s | %s | %s | %.3f | %.3f | %.2f | %.2f | %.2f | %.2f | %.4f | %.4f | %s |\n", m.skip.c_str(),
                       m.scenario.c_str(), m.fired ? "yes" : "no", m.work_without, m.work_with, m.ms_without, m.ms_with,
                       m.psnr_without, m.psnr_with, m.iou_without, m.iou_with, m.same_picture ? "yes" : "no");
+        s += buf;
+    }
+    return s;
+}
+
+namespace {
+
+// The brick wall with every displacement moved by `shift` (world units): the same quantized levels over a shifted
+// range, so the same texels are equal and neighbours differ alike, but no level decodes to 0.
+ReliefTexture shifted_wall(int size, double shift) {
+    ProceduralRelief p = make_brick_wall(size);
+    p.range_min += shift;
+    p.range_max += shift;
+    return to_relief(p);
+}
+
+}  // namespace
+
+std::vector<StillWallMeasurement> measure_still_wall(int size, int rounds,
+                                                     const std::function<void(const std::string&)>& progress) {
+    ReliefTexture walls[4] = {to_relief(make_brick_wall(size)),
+                              shifted_wall(size, 0.05),
+                              shifted_wall(size, -0.05),
+                              {}};
+    // The moving texels alone: the still ones emptied.
+    walls[3] = walls[0];
+    bool still_level[256] = {};
+    for (int q = 0; q < 255; ++q) still_level[q] = walls[0].quant.decode(uint8_t(q)) == 0.0;
+    for (ReliefTexel& tx : walls[3].texels)
+        if (still_level[tx.q]) tx.q = kEmptyIndex;
+    // The still texels copied to their own pixels (no margins: PrewarpOptions' default).
+    ImageRGBA8 copy_out(size, size);
+    auto copy_still = [&] {
+        const ReliefTexture& t = walls[0];
+        for (size_t i = 0; i < t.texels.size(); ++i) {
+            const ReliefTexel tx = t.texels[i];
+            if (still_level[tx.q]) copy_out.pixels[i] = Rgba8{tx.r, tx.g, tx.b, 255};
+        }
+    };
+    const ReliefQuad quad(walls[0]);
+    const Camera cam = compare_camera(quad, orbit_view(30.0, 20.0), 512, 512);
+    const double still = double(count_still_texels(walls[0], false)) / (double(size) * size);
+    std::vector<Isa> isas = {resolve_isa(Isa::automatic)};
+    if (isas[0] != Isa::avx2 && isa_supported(Isa::avx2)) isas.push_back(Isa::avx2);
+    std::vector<StillWallMeasurement> out;
+    for (Isa isa : isas) {
+        for (Reconstruction method : {Reconstruction::two_pass, Reconstruction::pipelined}) {
+            for (int threads : {1, 2}) {
+                StillWallMeasurement m;
+                m.method = method;
+                m.threads = threads;
+                m.size = size;
+                m.still_fraction = still;
+                m.rounds = rounds;
+                // Variants: the wall, the wall without the copy, lifted, sunk, the moving texels alone; each its
+                // own workspace and output; then the still copy alone.
+                constexpr int kVariants = 5;
+                PrewarpOptions o[kVariants];
+                const ReliefTexture* relief[kVariants] = {&walls[0], &walls[0], &walls[1], &walls[2], &walls[3]};
+                PrewarpWorkspace ws[kVariants];
+                ImageRGBA8 img[kVariants];
+                std::vector<double> ms[kVariants + 1], cpu[kVariants + 1];
+                PrewarpCoefficients k[kVariants];
+                for (int v = 0; v < kVariants; ++v) {
+                    o[v].method = method;
+                    o[v].threads = threads;
+                    o[v].isa = isa;
+                    o[v].copy_still_runs = v != 1;
+                    k[v] = compute_coefficients(relief[v]->geometry, cam.eye);
+                    m.isa = isa_name(prewarp(*relief[v], k[v], o[v], ws[v], img[v]).isa);  // warm-up
+                }
+                const clockid_t clock = threads == 1 ? CLOCK_THREAD_CPUTIME_ID : CLOCK_PROCESS_CPUTIME_ID;
+                auto cpu_ms = [clock] {
+                    timespec ts;
+                    clock_gettime(clock, &ts);
+                    return double(ts.tv_sec) * 1e3 + double(ts.tv_nsec) * 1e-6;
+                };
+                // Interleaved rounds: load from other processes falls on every variant alike.
+                for (int r = 0; r < rounds; ++r)
+                    for (int v = 0; v <= kVariants; ++v) {
+                        const double c0 = cpu_ms();
+                        const auto t0 = Clock::now();
+                        if (v < kVariants)
+                            prewarp(*relief[v], k[v], o[v], ws[v], img[v]);
+                        else
+                            copy_still();
+                        ms[v].push_back(ms_since(t0));
+                        cpu[v].push_back(cpu_ms() - c0);
+                    }
+                m.ms_bricks = median(ms[0]);
+                m.ms_bricks_no_copy = median(ms[1]);
+                m.ms_lifted = median(ms[2]);
+                m.ms_sunk = median(ms[3]);
+                m.cpu_bricks = median(cpu[0]);
+                m.cpu_bricks_no_copy = median(cpu[1]);
+                m.cpu_lifted = median(cpu[2]);
+                m.cpu_sunk = median(cpu[3]);
+                m.ms_moving = median(ms[4]);
+                m.cpu_moving = median(cpu[4]);
+                m.ms_still_copy = median(ms[5]);
+                m.cpu_still_copy = median(cpu[5]);
+                PrewarpOptions ro = o[0];
+                ro.isa = Isa::generic;
+                ro.threads = 2;
+                PrewarpWorkspace rws;
+                ImageRGBA8 ref;
+                prewarp(walls[0], k[0], ro, rws, ref);
+                m.same_as_reference = ref == img[0] && ref == img[1];
+                if (progress) {
+                    char buf[256];
+                    std::snprintf(buf, sizeof buf,
+                                  "brick wall %d^2 %s %s, %d thread%s: %.3f ms (CPU %.3f), lifted %.3f (CPU %.3f)",
+                                  size, m.isa.c_str(), to_string(method).c_str(), threads, threads == 1 ? "" : "s",
+                                  m.ms_bricks, m.cpu_bricks, m.ms_lifted, m.cpu_lifted);
+                    progress(buf);
+                }
+                out.push_back(m);
+            }
+        }
+    }
+    return out;
+}
+
+std::string still_wall_markdown(const std::vector<StillWallMeasurement>& rows) {
+    std::string s =
+        "| target | method | threads | bricks ms (CPU) | bricks, copy off | lifted +0.05 | sunk -0.05 | "
+        "lifted / bricks (CPU) | sunk / bricks (CPU) | copy off / on (CPU) | moving texels alone | still copy alone "
+        "| lifted / (moving + copy) (CPU) | same as reference |\n"
+        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
+    char buf[800];
+    for (const StillWallMeasurement& m : rows) {
+        std::snprintf(buf, sizeof buf,
+                      "| %s | %s | %d | %.3f (%.3f) | %.3f (%.3f) | %.3f (%.3f) | %.3f (%.3f) | %.2fx (%.2fx) | "
+                      "%.2fx (%.2fx) | %.2fx (%.2fx) | %.3f (%.3f) | %.3f (%.3f) | %.2fx (%.2fx) | %s |\n",
+                      m.isa.c_str(), to_string(m.method).c_str(), m.threads, m.ms_bricks, m.cpu_bricks,
+                      m.ms_bricks_no_copy, m.cpu_bricks_no_copy, m.ms_lifted, m.cpu_lifted, m.ms_sunk, m.cpu_sunk,
+                      m.ms_lifted / m.ms_bricks, m.cpu_lifted / m.cpu_bricks, m.ms_sunk / m.ms_bricks,
+                      m.cpu_sunk / m.cpu_bricks, m.ms_bricks_no_copy / m.ms_bricks, m.cpu_bricks_no_copy / m.cpu_bricks,
+                      m.ms_moving, m.cpu_moving, m.ms_still_copy, m.cpu_still_copy,
+                      m.ms_lifted / (m.ms_moving + m.ms_still_copy), m.cpu_lifted / (m.cpu_moving + m.cpu_still_copy),
+                      m.same_as_reference ? "yes" : "no");
+        s += buf;
+    }
+    if (!rows.empty()) {
+        std::snprintf(buf, sizeof buf,
+                      "\n%d^2, %.0f%% of the texels still; medians of %d interleaved rounds, wall clock and CPU time "
+                      "(the thread's with 1 thread, the process's with 2).\n",
+                      rows[0].size, 100.0 * rows[0].still_fraction, rows[0].rounds);
         s += buf;
     }
     return s;

@@ -80,6 +80,21 @@ sys.exit(not (d["rows"] == [] and len(v) == 7 and v[0] == "all skips" and v[-1] 
 PY
 then passes=$((passes + 1)); else echo "FAIL: bench-skips --scene-only JSON"; fails=$((fails + 1)); fi
 
+# bench-skips --wall-only: the brick wall on the fast kernels (a small one, one round), no GL, no scene; every
+# row's picture the reference kernels' (4 rows per target: two reconstructions, 1 and 2 threads).
+expect_ok bench-skips --wall-only --wall-size 64 --wall-rounds 1 --json "$T/w.json"
+cp "$T/stdout" "$T/w.md"
+if grep -q -- '^### The brick wall on the fast kernels' "$T/w.md" && python3 - "$T/w.json" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+w = d["wall"]
+ok = d["rows"] == [] and d["scene"] is None and len(w) in (4, 8)
+ok = ok and all(r["same_as_reference"] and r["size"] == 64 and r["rounds"] == 1 for r in w)
+ok = ok and all(r[k] > 0 for r in w for k in ("ms_bricks", "ms_lifted", "ms_sunk", "cpu_ms_moving_alone"))
+sys.exit(not ok)
+PY
+then passes=$((passes + 1)); else echo "FAIL: bench-skips --wall-only"; fails=$((fails + 1)); fi
+
 # Without the reference kernels the work columns stay empty (null in the JSON).
 expect_ok bench --sizes 16 --reliefs ridges --threads 1 --min-time 0 --no-reference --no-exact --no-table1 \
   --json "$T/n.json"
@@ -105,4 +120,7 @@ expect_fail 1 'nowhere/f\.json' -- bench-filter --json "$T/nowhere/f.json"
 expect_fail 1 'nowhere/s\.json' -- bench-skips --json "$T/nowhere/s.json"
 expect_fail 2 'no-scene' -- bench --no-scene --scene-only
 expect_fail 1 'missing\.scene\.json' -- bench-skips --scene-only --scene "$T/missing.scene.json"
+expect_fail 2 'wall-size.*8' -- bench-skips --wall-only --wall-size 8
+expect_fail 2 'wall-rounds.*0' -- bench-skips --wall-only --wall-rounds 0
+expect_fail 2 'wall-only' -- bench-skips --wall-only --scene-only
 finish

@@ -72,6 +72,15 @@ inline long long prepare_row(const ReliefTexture& t, const fast::FastTables& tab
         const __m512i qp = _mm512_mask_blend_epi8(kLookup.use23, _mm512_permutex2var_epi8(d[0], from01, d[1]),
                                                   _mm512_permutex2var_epi8(d[2], from23, d[3]));
         const __mmask64 high = _mm512_movepi8_mask(qp);
+        // 64 texels at zero displacement (the brick wall's bricks): (us + K1) * R + ou with K1 = +-0 and R = 1 is
+        // us + ou exactly, and likewise v, without the lookups.
+        if (tab.any_identity && x + 64 <= w && _mm512_movepi8_mask(lookup256(tab.identity, qp, high)) == ~0ull) {
+            for (int m = 0; m < 4; ++m) {
+                lw.put<true>(_mm512_add_ps(us, ou), d[m], _mm512_add_ps(vs, ov), 0xFFFF);
+                us = _mm512_add_ps(us, _mm512_set1_ps(16.0f));
+            }
+            continue;
+        }
         // Table by table, so that fewer registers are live at once (16 of the 32: no spills).
         __m512 rc[4], pos[4], v[4], tmp[4];
         lookup_floats(tab.plane[2], qp, high, rc);

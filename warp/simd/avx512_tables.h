@@ -14,7 +14,11 @@ namespace rtm::fast {
 struct alignas(64) FastTables {
     uint8_t plane[3][4][256];
     uint8_t dropped[256];  // 1 for a non-empty level that cannot be pre-warped
+    // 0x80 for a level whose K1 and K2 are +-0 and R is 1 (zero displacement): (u_s + K1) * R + margin is then
+    // u_s + margin exactly (likewise v), and a chunk of such texels skips the lookups (prepare_row). 64-aligned.
+    uint8_t identity[256];
     bool any_dropped = false;
+    bool any_identity = false;
 };
 
 FastTables make_fast_tables(const PrewarpTables& tab);

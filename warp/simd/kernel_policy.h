@@ -28,6 +28,10 @@ namespace simd::testing {
 // The policy every pre-warp of this process uses (all automatic unless a test set another).
 const FastKernelPolicy& kernel_policy();
 
+// Pixels the two-pass vertical pass copied as still pixels (warp/simd/schedule.cpp, vertical_with_still) since the
+// process started: the tests check that their reliefs reach that path.
+long long vertical_still_copies();
+
 // Sets the policy for the scope's lifetime, then restores the previous one. Not for concurrent pre-warps.
 class ScopedKernelPolicy {
 public:

@@ -1,5 +1,8 @@
 #include "warp/simd/schedule.h"
 
+#if RTM_AVX512_KERNELS
+#include <immintrin.h>
+#endif
 #include <tbb/blocked_range.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
@@ -70,6 +73,9 @@ void run_ranges(int threads, int n, int grain, const Body& body) {
 constexpr int kBandRows = 32;
 constexpr int kBandSlots = 4;
 
+// Pixels the vertical pass copied as still pixels so far (simd::testing::vertical_still_copies).
+std::atomic<long long> g_vertical_still_copies{0};
+
 template <class T>
 T* aligned64(T* p) {
     static_assert(sizeof(T) == 4);
@@ -110,6 +116,9 @@ FastTables make_fast_tables(const PrewarpTables& tab) {
         }
         t.dropped[q] = q != kEmptyIndex && !ok;
         t.any_dropped = t.any_dropped || t.dropped[q];
+        const bool id = ok && tab.k1d[q] == 0.0f && tab.k2d[q] == 0.0f && tab.rcp[q] == 1.0f;
+        t.identity[q] = id ? 0x80 : 0;
+        t.any_identity = t.any_identity || id;
     }
     return t;
 }
@@ -121,6 +130,7 @@ namespace {
 FastKernelPolicy g_policy;
 }
 const FastKernelPolicy& kernel_policy() { return g_policy; }
+long long vertical_still_copies() { return g_vertical_still_copies.load(std::memory_order_relaxed); }
 ScopedKernelPolicy::ScopedKernelPolicy(const FastKernelPolicy& policy) : saved_(g_policy) { g_policy = policy; }
 ScopedKernelPolicy::~ScopedKernelPolicy() { g_policy = saved_; }
 }  // namespace simd::testing
@@ -168,20 +178,183 @@ bool fast_prewarp_covers(Isa isa, const ReliefTexture& relief, const PrewarpCoef
 
 namespace {
 
+// ---- Still pixels in the vertical pass (paper section 5: the brick wall) ----
+//
+// The row warps copy runs of still texels (zero displacement) already; this copies them in the vertical pass too
+// (brick wall 1024^2 against the same wall lifted off zero, 1 thread, CPU time, `rtm bench-skips --wall-only`:
+// 0.99x -> 1.16x to 1.24x AVX-512, 1.03x -> 1.20x to 1.24x AVX2; docs/BENCHMARKS.md says why not more). A pixel
+// of the intermediate image on the centre of its own output line (v == y + 0.5: a still texel that no later
+// sample of its row overwrote) whose column's last sample is the previous step's pixel on the centre of its own
+// line (y - 1 + 0.5 in the bottom part, y + 1 + 0.5 in the top part) is drawn by the column kernels as a span one
+// pixel long holding the one centre y + 0.5 at t = (y + 0.5 - pa) * (1 / (pb - pa)) = +-1 * (1 / +-1) = 1
+// exactly: the pixel gets its own colour with alpha 255 (lerp8 gives b at t = 1), and the column keeps the pixel
+// as its last sample; nothing else is written or changes. So where all columns of a group of 16 (the kernels'
+// column granularity) hold such pixels in consecutive steps, those steps are a copy of the band's colours into
+// their own output lines, at memory speed, and the columns' state becomes the last copied step's pixel; the
+// kernels run on the other steps only, in step order per group as they require. Exact by construction for any
+// relief and view (the test is on the intermediate pixels themselves); the first step of each part is never
+// copied (a column starts afresh there, and the kernels keep the bottom part's last samples for the seam).
+
+// Output v-line of step st (the intermediate row's own line).
+inline int step_line(const fast::TwoPassJob& job, int st) {
+    const int j = st < job.split_v ? st : job.relief->height - 1 - (st - job.split_v);
+    return j + job.extent.bottom;
+}
+
+struct StillColumns {
+    const simd::TwoPassKernels* kernels = nullptr;
+    const fast::TwoPassJob* job = nullptr;
+    // The hand-written AVX-512 kernels keep floor and ceil of each column's v - 0.5 in col_fl and col_ce; the
+    // Highway kernels keep in col_fl whether the column has a sample (warp/simd/avx512_two_pass.h).
+    bool floor_ceil_state = false;
+    // Per group of 16 columns: whether the last step handed to the vertical pass held still pixels in all its
+    // columns (a band's first step continues the previous band's last).
+    uint8_t* group_still = nullptr;
+};
+
+// Bit i: step s0 + i holds in every column of [gx0, gx0 + width) a written pixel on the centre of its own output
+// line. Alpha 255 is tested (the sign bit: written pixels have it, unwritten ones are 0), stricter than the
+// kernels' "alpha != 0": a pixel this turns down goes to the kernels, exact either way.
+uint32_t still_steps(const fast::TwoPassJob& job, int s0, int s1, const uint32_t* band_c, const float* band_v,
+                     size_t stride, int gx0, int width) {
+    uint32_t bits = 0;
+    for (int st = s0; st < s1; ++st) {
+        const float centre = float(step_line(job, st)) + 0.5f;
+        const uint32_t* c = band_c + size_t(st - s0) * stride + gx0;
+        const float* v = band_v + size_t(st - s0) * stride + gx0;
+        int all = 1;
+        for (int x = 0; x < width; ++x) all &= int(int32_t(c[x]) < 0) & int(v[x] == centre);
+        bits |= uint32_t(all) << (st - s0);
+    }
+    return bits;
+}
+
+#if RTM_AVX512_KERNELS
+// The same for 16 columns with AVX-512 (only where the AVX-512 kernels run: the CPU has been checked). The test in
+// plain C++ compiled for the baseline (SSE2) and a kernel call per group and run of steps made the brick wall
+// 1024^2 slower than the kernels on every step (3.9 against 3.4 ms, 1 thread).
+__attribute__((target("avx512f,avx512dq"))) uint32_t still_steps16(const fast::TwoPassJob& job, int s0, int s1,
+                                                                   const uint32_t* band_c, const float* band_v,
+                                                                   size_t stride, int gx0) {
+    uint32_t bits = 0;
+    for (int st = s0; st < s1; ++st) {
+        const __m512 centre = _mm512_set1_ps(float(step_line(job, st)) + 0.5f);
+        const __m512 v = _mm512_loadu_ps(band_v + size_t(st - s0) * stride + gx0);
+        const __m512i c = _mm512_loadu_si512(band_c + size_t(st - s0) * stride + gx0);
+        const __mmask16 m = _mm512_cmp_ps_mask(v, centre, _CMP_EQ_OQ) & _mm512_movepi32_mask(c);
+        bits |= uint32_t(m == 0xFFFF) << (st - s0);
+    }
+    return bits;
+}
+#endif
+
+// The vertical pass of steps [s0, s1) (one band, at most 32 steps) for columns [x0, x1), x0 a multiple of 16: the
+// kernels' vertical_steps, with the still steps of each group copied (see above). Neighbouring groups with the same
+// steps to copy (a brick's width) go together: one kernel call per run of steps for all of them.
+void vertical_with_still(const StillColumns& sc, int s0, int s1, const uint32_t* band_c, const float* band_v,
+                         size_t stride, int x0, int x1) {
+    const fast::TwoPassJob& job = *sc.job;
+    const simd::TwoPassKernels& k = *sc.kernels;
+    if (!job.copy_still) {
+        k.vertical(job, s0, s1, band_c, band_v, stride, x0, x1);
+        return;
+    }
+    const int h = job.relief->height, ow = job.out->width, oh = job.out->height;
+    uint32_t* out = reinterpret_cast<uint32_t*>(job.out->pixels.data());
+    // The kernels on steps [a, b) of this band for columns [c0, c1).
+    auto kernel_steps = [&](int a, int b, int c0, int c1) {
+        if (a < b)
+            k.vertical(job, a, b, band_c + size_t(a - s0) * stride, band_v + size_t(a - s0) * stride, stride, c0, c1);
+    };
+    // The first band: the call that takes step 0 clears the columns' output, all lines; for all groups at once
+    // (group by group, 64-byte pieces of every line, it cost 1.3 ms at 1024^2).
+    int first = s0;
+    if (s0 == 0) {
+        k.vertical(job, 0, 1, band_c, band_v, stride, x0, x1);
+        first = 1;
+    }
+    // Steps a column starts afresh at (step 0, and split_v where the top part starts, also on a band's first step):
+    // never copied.
+    uint32_t fresh = s0 == 0 ? 1u : 0u;
+    if (job.split_v >= s0 && job.split_v < s1) fresh |= 1u << (job.split_v - s0);
+    const uint32_t first_bits = ~fresh;
+    long long copied = 0;
+    int gx0 = x0;
+    uint32_t copy = 0;
+    auto group_copy = [&](int g0) {
+        const int width = std::min(16, x1 - g0);
+#if RTM_AVX512_KERNELS
+        const uint32_t still = width == 16 && sc.floor_ceil_state
+                                   ? still_steps16(job, s0, s1, band_c, band_v, stride, g0)
+                                   : still_steps(job, s0, s1, band_c, band_v, stride, g0, width);
+#else
+        const uint32_t still = still_steps(job, s0, s1, band_c, band_v, stride, g0, width);
+#endif
+        uint8_t& prev = sc.group_still[g0 >> 4];
+        const uint32_t c = still & ((still << 1) | prev) & first_bits;
+        prev = uint8_t((still >> (s1 - 1 - s0)) & 1u);
+        return c;
+    };
+    if (x0 < x1) copy = group_copy(x0);
+    while (gx0 < x1) {
+        // The run of groups [gx0, gx1) with the same steps to copy.
+        int gx1 = std::min(gx0 + 16, x1);
+        uint32_t next = 0;
+        while (gx1 < x1 && (next = group_copy(gx1)) == copy) gx1 = std::min(gx1 + 16, x1);
+        if (!copy) {
+            kernel_steps(first, s1, gx0, gx1);
+        } else {
+            for (int st = first; st < s1;) {
+                const bool copy_here = (copy >> (st - s0)) & 1u;
+                int e = st;
+                while (e < s1 && bool((copy >> (e - s0)) & 1u) == copy_here) ++e;
+                if (!copy_here) {
+                    kernel_steps(st, e, gx0, gx1);
+                } else {
+                    for (int i = st; i < e; ++i) {
+                        const uint32_t* c = band_c + size_t(i - s0) * stride;
+                        uint32_t* o = out + size_t(oh - 1 - step_line(job, i)) * size_t(ow);
+                        for (int x = gx0; x < gx1; ++x) o[x] = c[x] | 0xFF000000u;
+                    }
+                    copied += (long long)(e - st) * (gx1 - gx0);
+                    // The columns' last sample: step e - 1's pixel ("has a sample" is set already: step st - 1's
+                    // pixels were still too).
+                    const int y = step_line(job, e - 1);
+                    const uint32_t* c = band_c + size_t(e - 1 - s0) * stride;
+                    for (int x = gx0; x < gx1; ++x) {
+                        job.col_v[x] = float(y) + 0.5f;
+                        job.col_c[x] = c[x];
+                    }
+                    if (sc.floor_ceil_state)
+                        for (int x = gx0; x < gx1; ++x) job.col_fl[x] = job.col_ce[x] = y;
+                    // The span across the epipole, drawn by the call that reaches step h.
+                    if (e == h) k.vertical(job, h, h, band_c, band_v, stride, gx0, gx1);
+                }
+                st = e;
+            }
+        }
+        gx0 = gx1;
+        copy = next;
+    }
+    if (copied) g_vertical_still_copies.fetch_add(copied, std::memory_order_relaxed);
+}
+
 PrewarpStats fast_two_pass(const simd::TwoPassKernels& kernels, const ReliefTexture& relief,
                            const PrewarpCoefficients& k, const PrewarpOptions& options, const PrewarpExtent& e,
                            const PrewarpTables& ref_tables, const fast::FastTables& tables, PrewarpWorkspace& ws,
-                           ImageRGBA8& out) {
+                           ImageRGBA8& out, bool floor_ceil_state) {
     const int w = relief.width, h = relief.height;
     const int ow = w + e.left + e.right, oh = h + e.bottom + e.top;
     std::atomic<long long> dropped{0};
     ensure_size(out, ow, oh);
+    static_assert(kBandRows <= 32, "vertical_with_still keeps a band's steps in 32 bits");
     // Rows of the workspace's intermediate images (width rounded up to 16, 64-byte aligned thanks to the spare
     // row): 0 the column state (v, colour), 1 the seam, 2 the columns' "has a sample" bits and floor, 3 ceil, then
     // the bands.
     const int stride = (ow + 15) / 16 * 16;
     const int band = kBandRows, slots = kBandSlots;
-    ensure_size(ws.mid_color, stride, 4 + band * slots + 1);
+    // One more row: the groups' still flags (vertical_with_still).
+    ensure_size(ws.mid_color, stride, 4 + band * slots + 2);
     // After the bands: one row scratch (3 source widths of floats) per band slot, for the Highway kernels.
     const size_t scratch_rows = (3 * size_t(w) + size_t(stride) - 1) / size_t(stride);
     ensure_size(ws.mid_v, stride, 4 + band * slots + int(scratch_rows) * slots + 1);
@@ -213,9 +386,14 @@ PrewarpStats fast_two_pass(const simd::TwoPassKernels& kernels, const ReliefText
         kernels.horizontal(job, b * band, std::min(h, (b + 1) * band), band_c(b % slots), band_v(b % slots),
                            size_t(stride), mv + (size_t(4 + band * slots) + (b % slots) * scratch_rows) * stride);
     };
+    StillColumns still;
+    still.kernels = &kernels;
+    still.job = &job;
+    still.floor_ceil_state = floor_ceil_state;
+    still.group_still = reinterpret_cast<uint8_t*>(mc + size_t(4 + band * slots) * stride);
     auto vertical = [&](int b, int x0, int x1) {
-        kernels.vertical(job, b * band, std::min(h, (b + 1) * band), band_c(b % slots), band_v(b % slots),
-                         size_t(stride), x0, x1);
+        vertical_with_still(still, b * band, std::min(h, (b + 1) * band), band_c(b % slots), band_v(b % slots),
+                            size_t(stride), x0, x1);
     };
     if (options.threads == 1 || bands < 2) {
         for (int b = 0; b < bands; ++b) {
@@ -422,14 +600,14 @@ PrewarpStats fast_prewarp(Isa isa, const ReliefTexture& relief, const PrewarpCoe
                                    relief, k, options, e, ref_tables, tables, ws, out);
         else
             stats = fast_two_pass({&fast::horizontal_steps, &fast::vertical_steps}, relief, k, options, e, ref_tables,
-                                  tables, ws, out);
+                                  tables, ws, out, true);
 #endif
     } else if (options.method == Reconstruction::pipelined) {
         stats = fast_pipelined(simd::hwy_pipelined_kernels(isa), relief, k, options, e, ref_tables, fast::FastTables{},
                                ws, out);
     } else {
         stats = fast_two_pass(simd::hwy_two_pass_kernels(isa), relief, k, options, e, ref_tables, fast::FastTables{},
-                              ws, out);
+                              ws, out, false);
     }
     stats.isa = isa;
     return stats;

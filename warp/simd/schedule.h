@@ -10,8 +10,9 @@
 //
 // Still texels (PrewarpOptions::copy_still_runs): the row warps copy runs of 16 spans one pixel wide on pixel
 // centres (what zero displacement gives) instead of interpolating them; with the option off they interpolate them
-// too, so that the copy can be measured. The output is the same either way. The copies are not counted
-// (PrewarpStats::still_copied stays 0 here; tests/objects/skips_test.cpp relies on that).
+// too, so that the copy can be measured; the two-pass vertical pass copies blocks of still pixels, 16 columns by
+// consecutive rows (schedule.cpp, vertical_with_still). The output is the same either way. The copies are not
+// counted (PrewarpStats::still_copied stays 0 here; tests/objects/skips_test.cpp relies on that).
 //
 // Scheduling lives here, kernels in warp/simd/avx512_two_pass.cpp and warp/simd/avx512_pipelined.cpp: a kernel takes a
 // range of rows or columns and every output pixel is computed by exactly one call, or (the pipelined kernel's row
