@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "objects/bounds.h"
+#include "objects/level_choice.h"
 #include "truth/micromesh.h"
 #include "warp/timing.h"
 #include "objects/view_analysis.h"
@@ -107,9 +108,10 @@ void ReliefQuad::draw(Renderer& renderer, const Camera& cam, RenderMethod method
 
 FramePlan ReliefQuad::plan_draw(const Camera& cam, RenderMethod method, const PrewarpOptions& options,
                                 const DrawOptions& d) {
+    if (d.level < 0 && spreads_.empty()) spreads_ = level_displacement_spreads(relief_);
     return plan_frame(
         cam, method, options, d, relief_, [this](int i) -> const ReliefTexture& { return level_texture(i); },
-        last_prewarp_);
+        last_prewarp_, d.level < 0 ? &spreads_ : nullptr);
 }
 
 void ReliefQuad::prewarp_planned(const FramePlan& plan, const DrawOptions& d, StageTimes& times, DrawReport& rep) {
