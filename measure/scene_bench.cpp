@@ -72,6 +72,10 @@ std::vector<SceneVariant> scene_frame_variants() {
     v.push_back(variant("floor", "each frame drawn again after its pre-warps: texture mapping and set-up only"));
     v.back().repeat = true;
     v.back().stride = 4;
+    v.push_back(variant("floor, no depth correction", "as floor, without depth correction (no gl_FragDepth)"));
+    v.back().depth_correction = false;
+    v.back().repeat = true;
+    v.back().stride = 4;
     return v;
 }
 

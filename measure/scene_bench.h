@@ -53,7 +53,7 @@ struct SceneBench {
 // (the rule before objects/level_choice.h), the frame loop before this one (serial pre-warps, a finish per quad),
 // serial pre-warps with one finish, no pyramid level per quad, no depth correction (the pre-warps on the fast
 // kernels), no skips at all, and the floor: each frame again once its pre-warps are done (only texture mapping and
-// the frame's set-up).
+// the frame's set-up), with and without depth correction.
 std::vector<SceneVariant> scene_frame_variants();
 // The variants of `all` named in `names` (separated by ';'), in the order of `all`; std::invalid_argument naming an
 // unknown one.
