@@ -21,6 +21,7 @@ struct BenchArgs {
     bool full = false, no_exact = false, no_reference = false, no_table1 = false, no_objects = false;
     std::string scene = "media/town.scene.json";
     bool scene_given = false, no_scene = false, scene_only = false;
+    std::string scene_variants;
     double min_time = 0;
     bool min_time_given = false;
 };
@@ -83,7 +84,15 @@ void run_bench_command(const BenchArgs& a) {
     std::string md = a.scene_only ? std::string() : bench_markdown(r);
     if (with_scene) {
         md += "\n### A scene along its camera path\n\n";
-        const SceneBench sb = bench_scene(a.scene, 640, 480, scene_frame_variants(), c.progress);
+        std::vector<SceneVariant> variants = scene_frame_variants();
+        if (!a.scene_variants.empty()) {
+            try {
+                variants = select_scene_variants(variants, a.scene_variants);
+            } catch (const std::invalid_argument& e) {
+                throw UsageError(std::string("--scene-variants: ") + e.what());
+            }
+        }
+        const SceneBench sb = bench_scene(a.scene, 640, 480, variants, c.progress);
         md += scene_bench_markdown(sb);
         j["command"] = "bench";
         j["scene"] = scene_bench_json(sb);
@@ -120,6 +129,8 @@ void add_bench_command(CLI::App& app) {
         ->each([a](const std::string&) { a->scene_given = true; });
     sub->add_flag("--no-scene", a->no_scene, "Skip the scene's camera path");
     sub->add_flag("--scene-only", a->scene_only, "Only the scene's camera path");
+    sub->add_option("--scene-variants", a->scene_variants,
+                    "Only these variants of the scene's path, by name, separated by ';' (default all)");
     sub->callback([a] { run_bench_command(*a); });
 }
 

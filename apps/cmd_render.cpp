@@ -34,8 +34,9 @@ struct RenderArgs {
 
 void run_render(const RenderArgs& a) {
     if (a.output_scale != 1 && a.relief.empty()) throw UsageError("--output-scale applies to --relief only");
-    // --level: 0 unless given (auto: in a scene each quad at the level its screen area asks for).
-    const std::string level = !a.level.empty() ? a.level : "0";
+    // --level: 0 unless given, auto for a scene (each quad at the level its screen area asks for, no coarser than
+    // its parallax allows: objects/level_choice.h; the town's margin over flat holds at auto, docs/SCENES.md).
+    const std::string level = !a.level.empty() ? a.level : a.scene.empty() ? "0" : "auto";
     if (!a.object.empty()) {
         if (!a.relief.empty() || !a.scene.empty())
             throw UsageError("render takes one of --relief, --object and --scene");
@@ -186,7 +187,7 @@ void add_render_command(CLI::App& app) {
     sub->add_flag("--exact", a->exact, "Pre-warp with unquantized displacement and double-precision coordinates");
     sub->add_option("--filter", a->filter, "Pre-warp resampling: point or coverage (Fant-style, two-pass only)")
         ->capture_default_str();
-    sub->add_option("--level", a->level, "Pyramid level N or auto (default 0; auto: per quad in a scene)");
+    sub->add_option("--level", a->level, "Pyramid level N or auto (default 0, for --scene auto: per quad)");
     sub->add_option("--output-scale", a->output_scale,
                     "Pre-warp into a texture N times the relief's size in each direction (1 to 8; --relief only)")
         ->capture_default_str();

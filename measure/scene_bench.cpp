@@ -1,6 +1,8 @@
 #include "measure/scene_bench.h"
 
 #include <algorithm>
+#include <ctime>
+#include <limits>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -13,6 +15,13 @@
 namespace rtm {
 
 namespace {
+
+// CPU time of the process, all its threads, in milliseconds.
+double process_cpu_ms() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
 
 std::string loadavg() {
     std::ifstream f("/proc/loadavg");
@@ -44,6 +53,10 @@ SceneVariant old_loop(std::string name, std::string description, bool skips) {
 std::vector<SceneVariant> scene_frame_variants() {
     std::vector<SceneVariant> v;
     v.push_back(variant("skips", "all skips, level per quad, concurrent pre-warps, one finish a frame"));
+    v.push_back(variant("level by density", "as skips, the level by texel density alone (the rule before)"));
+    v.back().draw.level_error_px = std::numeric_limits<double>::infinity();
+    v.push_back(variant("no depth correction", "as skips, without depth correction: the fast pre-warp kernels"));
+    v.back().depth_correction = false;
     v.push_back(variant("serial", "as skips, pre-warps one after another (each with all threads)"));
     v.back().frame.concurrent = false;
     v.push_back(variant("finish per quad", "as serial, and a finish after each quad's upload and draw"));
@@ -59,6 +72,30 @@ std::vector<SceneVariant> scene_frame_variants() {
     v.push_back(variant("floor", "each frame drawn again after its pre-warps: texture mapping and set-up only"));
     v.back().repeat = true;
     v.back().stride = 4;
+    v.push_back(variant("floor, no depth correction", "as floor, without depth correction (no gl_FragDepth)"));
+    v.back().depth_correction = false;
+    v.back().repeat = true;
+    v.back().stride = 4;
+    return v;
+}
+
+std::vector<SceneVariant> select_scene_variants(const std::vector<SceneVariant>& all, const std::string& names) {
+    std::vector<std::string> wanted;
+    std::stringstream ss(names);
+    for (std::string item; std::getline(ss, item, ';');)
+        if (!item.empty()) wanted.push_back(item);
+    std::vector<SceneVariant> v;
+    for (const std::string& w : wanted) {
+        bool known = false;
+        for (const SceneVariant& a : all) known |= a.name == w;
+        if (!known) {
+            std::string list;
+            for (const SceneVariant& a : all) list += (list.empty() ? "" : "; ") + a.name;
+            throw std::invalid_argument("no scene variant \"" + w + "\" (variants: " + list + ")");
+        }
+    }
+    for (const SceneVariant& a : all)
+        if (std::find(wanted.begin(), wanted.end(), a.name) != wanted.end()) v.push_back(a);
     return v;
 }
 
@@ -104,19 +141,21 @@ SceneBench bench_scene(const std::string& scene_path, int width, int height, con
         b.path_frames = n;
         b.quads = int(scene.quads().size());
         DrawOptions draw = v.draw;
-        draw.depth_correction = true;
+        draw.depth_correction = v.depth_correction;
         std::vector<Camera> cams;
         for (int k = 0; k < n; k += std::max(1, v.stride)) cams.push_back(scene_path_camera(scene, k, base));
         SceneBenchRow row;
         row.variant = v;
-        std::vector<double> pre, up, map, total;
+        std::vector<double> pre, up, map, total, cpu;
         auto frame = [&](const Camera& cam, bool timed) {
             SceneFrameReport rep;
             if (v.repeat) scene.draw(renderer, cam, RenderMethod::two_pass, opt, draw, rep, v.frame);
             rep = {};
+            const double cpu0 = process_cpu_ms();
             scene.draw(renderer, cam, RenderMethod::two_pass, opt, draw, rep, v.frame);
             (void)renderer.read_pixels(1, 1);  // as a frame that is shown or saved: the rendering is complete
             if (!timed) return;
+            cpu.push_back(process_cpu_ms() - cpu0);
             pre.push_back(rep.times.prewarp_ms);
             up.push_back(rep.times.upload_ms);
             map.push_back(rep.times.texture_map_ms);
@@ -142,6 +181,7 @@ SceneBench bench_scene(const std::string& scene_path, int width, int height, con
         row.upload_ms = median(up);
         row.texture_map_ms = median(map);
         row.total_ms = median(total);
+        row.cpu_ms = median(cpu);
         row.fps = 1000.0 / row.total_ms;
         row.drawn /= row.frames;
         row.prewarped /= row.frames;
@@ -150,8 +190,9 @@ SceneBench bench_scene(const std::string& scene_path, int width, int height, con
         b.rows.push_back(row);
         if (progress) {
             char buf[256];
-            std::snprintf(buf, sizeof buf, "scene: %s: %d frames, median %.2f ms (%.0f fps), %.1f pre-warps a frame",
-                          v.name.c_str(), row.frames, row.total_ms, row.fps, row.prewarped);
+            std::snprintf(buf, sizeof buf,
+                          "scene: %s: %d frames, median %.2f ms (%.0f fps), CPU %.2f ms, %.1f pre-warps a frame",
+                          v.name.c_str(), row.frames, row.total_ms, row.fps, row.cpu_ms, row.prewarped);
             progress(buf);
         }
     }
@@ -171,18 +212,19 @@ std::string scene_bench_markdown(const SceneBench& b) {
     s << "Median milliseconds a frame over the frames drawn (stride: every k-th frame of the path, for variants that "
          "keep no state from frame to frame); x first: the median frame against the first row's, in this run. "
          "Pre-warp: the wall time of the frame's pre-warp step; upload and texture mapping: issuing the calls, and "
-         "the frame's one finish (or each quad's) in texture mapping.\n\n";
-    s << "| variant | frames | pre-warp | upload | texture mapping | frame | frames/s | x first | drawn | pre-warped | "
-         "Mtexels warped | levels drawn |\n";
-    s << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
+         "the frame's one finish (or each quad's) in texture mapping. CPU: the process's CPU time a frame (every "
+         "thread, llvmpipe's included), the work a frame does whatever the load.\n\n";
+    s << "| variant | frames | pre-warp | upload | texture mapping | frame | frames/s | x first | CPU ms | drawn | "
+         "pre-warped | Mtexels warped | levels drawn |\n";
+    s << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
     for (const SceneBenchRow& r : b.rows) {
         std::string levels;
         for (const auto& [level, count] : r.levels)
             levels += (levels.empty() ? "" : ", ") + std::to_string(level) + ": " + std::to_string(count);
         std::snprintf(buf, sizeof buf,
-                      "| %s | %d | %.2f | %.2f | %.2f | %.2f | %.1f | %.2f | %.1f | %.1f | %.3f | %s |\n",
+                      "| %s | %d | %.2f | %.2f | %.2f | %.2f | %.1f | %.2f | %.2f | %.1f | %.1f | %.3f | %s |\n",
                       r.variant.name.c_str(), r.frames, r.prewarp_ms, r.upload_ms, r.texture_map_ms, r.total_ms, r.fps,
-                      r.ratio, r.drawn, r.prewarped, r.texels / 1e6, levels.c_str());
+                      r.ratio, r.cpu_ms, r.drawn, r.prewarped, r.texels / 1e6, levels.c_str());
         s << buf;
     }
     s << "\n";
@@ -210,6 +252,7 @@ nlohmann::json scene_bench_json(const SceneBench& b) {
                         {"texture_map_ms", r.texture_map_ms},
                         {"total_ms", r.total_ms},
                         {"fps", r.fps},
+                        {"cpu_ms", r.cpu_ms},
                         {"ratio_to_first", r.ratio},
                         {"quads_drawn", r.drawn},
                         {"quads_prewarped", r.prewarped},

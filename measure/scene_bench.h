@@ -20,10 +20,11 @@ namespace rtm {
 
 struct SceneVariant {
     std::string name, description;
-    DrawOptions draw;        // depth_correction is set by the bench (as rtm render --scene draws)
-    QuadFrameOptions frame;  // concurrent pre-warps, finish per quad
-    int stride = 1;          // every stride-th frame of the path (only for variants that keep no state between frames)
-    bool repeat = false;     // each frame drawn twice, the second timed: the frame when nothing needs pre-warping
+    DrawOptions draw;              // depth_correction is set by the bench from the field below
+    bool depth_correction = true;  // as rtm render --scene draws; off, the pre-warps run on the fast kernels
+    QuadFrameOptions frame;        // concurrent pre-warps, finish per quad
+    int stride = 1;       // every stride-th frame of the path (only for variants that keep no state between frames)
+    bool repeat = false;  // each frame drawn twice, the second timed: the frame when nothing needs pre-warping
 };
 
 struct SceneBenchRow {
@@ -31,7 +32,10 @@ struct SceneBenchRow {
     int frames = 0;
     // Medians over the frames, milliseconds (stage times as SceneFrameReport measures them).
     double prewarp_ms = 0, upload_ms = 0, texture_map_ms = 0, total_ms = 0;
-    double fps = 0;                               // 1000 / total_ms
+    double fps = 0;  // 1000 / total_ms
+    // The process's CPU time a frame (all threads: the pre-warps' and llvmpipe's), median: on a shared machine the
+    // work a frame does, where the wall times above also hold the time other jobs had the cores.
+    double cpu_ms = 0;
     double ratio = 0;                             // total_ms / the first row's total_ms
     double drawn = 0, prewarped = 0, texels = 0;  // means per frame
     std::map<std::string, long long> skips;       // skip name -> quads it fired for, over the frames
@@ -45,10 +49,15 @@ struct SceneBench {
     std::vector<SceneBenchRow> rows;
 };
 
-// For rtm bench: all skips (concurrent pre-warps, one finish a frame) first, then the frame loop before this one
-// (serial pre-warps, a finish per quad), serial pre-warps with one finish, no pyramid level per quad, no skips at
-// all, and the floor: each frame again once its pre-warps are done (only texture mapping and the frame's set-up).
+// For rtm bench: all skips (concurrent pre-warps, one finish a frame) first, then the level by texel density alone
+// (the rule before objects/level_choice.h), the frame loop before this one (serial pre-warps, a finish per quad),
+// serial pre-warps with one finish, no pyramid level per quad, no depth correction (the pre-warps on the fast
+// kernels), no skips at all, and the floor: each frame again once its pre-warps are done (only texture mapping and
+// the frame's set-up), with and without depth correction.
 std::vector<SceneVariant> scene_frame_variants();
+// The variants of `all` named in `names` (separated by ';'), in the order of `all`; std::invalid_argument naming an
+// unknown one.
+std::vector<SceneVariant> select_scene_variants(const std::vector<SceneVariant>& all, const std::string& names);
 // For rtm bench-skips: all skips first, then without each skip in turn, then none.
 std::vector<SceneVariant> scene_skip_variants();
 

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "objects/bounds.h"
+#include "objects/level_choice.h"
 #include "warp/pyramid.h"
 
 namespace rtm {
@@ -61,7 +62,8 @@ int auto_level(const Camera& cam, const ReliefTexture& relief) {
 }
 
 FramePlan plan_frame(const Camera& cam, RenderMethod method, const PrewarpOptions& options, const DrawOptions& d,
-                     const ReliefTexture& relief, const LevelSource& level, const LastPrewarp& last) {
+                     const ReliefTexture& relief, const LevelSource& level, const LastPrewarp& last,
+                     const std::vector<double>* spreads) {
     const bool warp_method = method == RenderMethod::two_pass || method == RenderMethod::pipelined;
     if (!warp_method && method != RenderMethod::flat)
         throw std::invalid_argument("plan_frame: method " + to_string(method) + " is not a texture method");
@@ -85,7 +87,13 @@ FramePlan plan_frame(const Camera& cam, RenderMethod method, const PrewarpOption
     }
 
     const int levels = pyramid_levels(relief.width, relief.height);
-    p.level = d.level < 0 ? auto_level(cam, relief) : std::clamp(d.level, 0, levels - 1);
+    if (d.level >= 0) {
+        p.level = std::clamp(d.level, 0, levels - 1);
+    } else if (spreads) {
+        p.level = choose_level(cam, relief, *spreads, d.level_error_px);
+    } else {
+        p.level = choose_level(cam, relief, level_displacement_spreads(relief), d.level_error_px);
+    }
     const ReliefTexture& t = level(p.level);
     p.k = compute_coefficients(t.geometry, cam.eye);
     p.action = FrameAction::flat;

@@ -20,8 +20,11 @@ namespace rtm {
 // How draw() chooses what to do for a frame. Each "skip" keeps the cost proportional to what the viewer sees;
 // `skips` in the report lists those that fired (names as in kSkipNames).
 struct DrawOptions {
-    bool depth_correction = false;    // section 4.2
-    int level = 0;                    // relief texture pyramid level; -1 = auto (texel density ~ pixel density)
+    bool depth_correction = false;  // section 4.2
+    int level = 0;  // relief texture pyramid level; -1 = auto (texel density ~ pixel density, within level_error_px)
+    // auto: a level coarser than 0 only where the parallax of its texels' displacement spread is at most this many
+    // pixels (objects/level_choice.h); infinity = the density alone.
+    double level_error_px = 0.5;
     bool skips = true;                // enable the skips below (off: always pre-warp and upload everything)
     double subpixel_parallax = 0.25;  // pixels: below this largest parallax, draw as a plain texture (far away)
     double reuse_tolerance = 0.05;    // texels: below this largest motion since the last pre-warp, reuse it
@@ -111,11 +114,13 @@ int auto_level(const Camera& cam, const ReliefTexture& relief);
 //   outside-frustum: the relief's bounds lie outside the view frustum -> nothing.
 //   inside-slab-micromesh: a warping method and the eye inside the relief's slab -> micromesh.
 //   back-facing: the eye sees the back of the quad -> nothing (skips off: the work is done, draw = false).
-//   level: d.level < 0 -> auto_level, else d.level clamped to the pyramid.
+//   level: d.level < 0 -> choose_level (objects/level_choice.h) with `spreads` (level_displacement_spreads of
+//          `relief`; computed here when null), else d.level clamped to the pyramid.
 //   subpixel-parallax: a warping method whose largest parallax on screen is below d.subpixel_parallax pixels -> flat.
 //   reuse-prewarp: the last pre-warp has the same setup and no texel moved by d.reuse_tolerance texels since -> reuse.
 FramePlan plan_frame(const Camera& cam, RenderMethod method, const PrewarpOptions& options, const DrawOptions& d,
-                     const ReliefTexture& relief, const LevelSource& level, const LastPrewarp& last);
+                     const ReliefTexture& relief, const LevelSource& level, const LastPrewarp& last,
+                     const std::vector<double>* spreads = nullptr);
 
 // Which pixels of a texture to upload. `now` is what the new image holds (`version`: its pre-warp's; size w x h;
 // for a pre-warp its setup, margins and moving_footprint). Pixels that moving texels cannot reach are written by

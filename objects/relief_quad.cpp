@@ -8,6 +8,8 @@
 #include <stdexcept>
 
 #include "objects/bounds.h"
+#include "objects/fast_displ.h"
+#include "objects/level_choice.h"
 #include "truth/micromesh.h"
 #include "warp/timing.h"
 #include "objects/view_analysis.h"
@@ -107,9 +109,10 @@ void ReliefQuad::draw(Renderer& renderer, const Camera& cam, RenderMethod method
 
 FramePlan ReliefQuad::plan_draw(const Camera& cam, RenderMethod method, const PrewarpOptions& options,
                                 const DrawOptions& d) {
+    if (d.level < 0 && spreads_.empty()) spreads_ = level_displacement_spreads(relief_);
     return plan_frame(
         cam, method, options, d, relief_, [this](int i) -> const ReliefTexture& { return level_texture(i); },
-        last_prewarp_);
+        last_prewarp_, d.level < 0 ? &spreads_ : nullptr);
 }
 
 void ReliefQuad::prewarp_planned(const FramePlan& plan, const DrawOptions& d, StageTimes& times, DrawReport& rep) {
@@ -119,7 +122,14 @@ void ReliefQuad::prewarp_planned(const FramePlan& plan, const DrawOptions& d, St
     const ReliefTexture& t = level_texture(lvl);
     const PrewarpOptions& o = plan.prewarp;
     const auto t0 = Clock::now();
-    stats_ = rtm::prewarp(t, plan.k, o, workspace_, prewarped_, d.depth_correction ? &displ_ : nullptr);
+    if (d.depth_correction && fast_displ_covers(t, plan.k, o)) {  // objects/fast_displ.h
+        if (int(index_levels_.size()) <= lvl) index_levels_.resize(size_t(lvl) + 1);
+        if (!index_levels_[size_t(lvl)]) index_levels_[size_t(lvl)] = index_relief(t);
+        stats_ = prewarp_fast_displ(t, *index_levels_[size_t(lvl)], plan.k, o, workspace_, prewarped_, displ_,
+                                    index_warp_);
+    } else {
+        stats_ = rtm::prewarp(t, plan.k, o, workspace_, prewarped_, d.depth_correction ? &displ_ : nullptr);
+    }
     ++prewarp_version_;
     // Coverage alpha: the texture-mapping stage expects premultiplied colour (it divides the filtered colour by the
     // filtered alpha); point-sampled output has alpha 0 or 255 only.

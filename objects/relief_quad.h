@@ -104,6 +104,11 @@ private:
     // count_still_texels per pyramid level, [level][exact]; -1 = not counted yet (they do not depend on the view).
     std::vector<std::array<long long, 2>> still_texels_;
     std::vector<std::optional<MovingTexels>> moving_;  // moving_texels per pyramid level, computed on first use
+    // Depth correction on the fast kernels (objects/fast_displ.h): index_relief per pyramid level, made on first use,
+    // and the image of the index pre-warp.
+    std::vector<std::optional<ReliefTexture>> index_levels_;
+    ImageRGBA8 index_warp_;
+    std::vector<double> spreads_;  // level_displacement_spreads (objects/level_choice.h), computed on first use
 
     const ReliefTexture& level_texture(int i);
     long long still_texels(int level, bool exact);

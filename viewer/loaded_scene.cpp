@@ -30,7 +30,7 @@ void LoadedScene::draw(Renderer& renderer, const Camera& cam, const ViewSettings
     if (s.method == RenderMethod::micromesh) return;
     std::vector<ReliefQuad>& quads = scene_.quads();
     for (size_t i = 0; i < quads.size() && i < rep.quad_skips.size(); ++i) {
-        const int level = s.level < 0 ? quads[i].auto_level(cam) : std::clamp(s.level, 0, quads[i].levels() - 1);
+        const int level = i < rep.quad_levels.size() ? rep.quad_levels[i] : 0;  // the level the frame drew
         DrawnQuad q;
         if (describe_drawn_quad(quads[i], "quad " + std::to_string(i), cam, s, rep.quad_skips[i], level, q))
             report.quads.push_back(std::move(q));

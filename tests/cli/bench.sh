@@ -60,13 +60,14 @@ for t in t1:
     check(abs(t["fps"] - 1000 / t["total_ms"]) <= 1e-9 * t["fps"], name + ": frames/s")
 sc = d["scene"]
 check(sc["quads"] == 2 and sc["path_frames"] == 5 and sc["size"] == [640, 480], "scene: quads, path, size")
-check([r["variant"] for r in sc["rows"]][0] == "skips" and len(sc["rows"]) == 8, "scene: variants")
+check([r["variant"] for r in sc["rows"]][0] == "skips" and len(sc["rows"]) == 11, "scene: variants")
 for r in sc["rows"]:
     name = "scene " + r["variant"]
     check(r["frames"] == len(range(0, 5, r["stride"])), name + ": frames")
     check(r["total_ms"] > 0 and abs(r["fps"] - 1000 / r["total_ms"]) <= 1e-9 * r["fps"], name + ": frames/s")
     check(abs(r["ratio_to_first"] - r["total_ms"] / sc["rows"][0]["total_ms"]) <= 1e-9, name + ": ratio")
     check(0 <= r["quads_prewarped"] <= r["quads_drawn"] <= 2, name + ": counts")
+    check(r["cpu_ms"] > 0, name + ": CPU time")
 for b in bad: print("FAIL: bench JSON:", b)
 sys.exit(1 if bad else 0)
 PY
@@ -79,6 +80,14 @@ v = [r["variant"] for r in d["scene"]["rows"]]
 sys.exit(not (d["rows"] == [] and len(v) == 7 and v[0] == "all skips" and v[-1] == "no skips"))
 PY
 then passes=$((passes + 1)); else echo "FAIL: bench-skips --scene-only JSON"; fails=$((fails + 1)); fi
+# --scene-variants: only the variants named, in the bench's order; an unknown name is a usage error naming it.
+expect_ok bench --scene-only --scene "$T/s.scene.json" --scene-variants "floor;skips" --json "$T/v.json"
+if python3 - "$T/v.json" <<'PY'
+import json, sys
+sys.exit([r["variant"] for r in json.load(open(sys.argv[1]))["scene"]["rows"]] != ["skips", "floor"])
+PY
+then passes=$((passes + 1)); else echo "FAIL: bench --scene-variants"; fails=$((fails + 1)); fi
+expect_fail 2 "no scene variant \"fast\"" -- bench --scene-only --scene "$T/s.scene.json" --scene-variants "skips;fast"
 
 # bench-skips --wall-only: the brick wall on the fast kernels (a small one, one round), no GL, no scene; every
 # row's picture the reference kernels' (4 rows per target: two reconstructions, 1 and 2 threads).

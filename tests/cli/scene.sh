@@ -15,9 +15,10 @@ cat >"$T/s.scene.json" <<JSON
                                           { "eye": [1.5, 0.3, 2], "look_at": [1, 0, 0], "fov": 50 } ] } }
 JSON
 S=$T/s.scene.json
-expect_ok render --scene "$S" --size 96x64 --out "$T/default.png" --json "$T/default.json"
-# --level auto, per quad: 256^2 reliefs in a 96x64 view are pre-warped at coarser levels.
+expect_ok render --scene "$S" --size 96x64 --level 0 --out "$T/default.png" --json "$T/default.json"
+# --level auto, per quad: 256^2 reliefs in a 96x64 view are pre-warped at coarser levels; a scene's default.
 expect_ok render --scene "$S" --size 96x64 --json "$T/auto.json" --level auto
+expect_ok render --scene "$S" --size 96x64 --json "$T/unset.json"
 expect_ok render --scene "$S" --orbit 20,10,2 --size 96x64 --method flat --out "$T/flat.png"
 expect_ok render --scene "$S" --camera-path 1 --size 96x64 --method micromesh --out "$T/truth.png"
 expect_ok render --scene "$S" --size 96x64 --frames "$T/frames" --json "$T/frames.json"
@@ -26,9 +27,11 @@ for k in 0 1 2; do
   else echo "FAIL: frame $k missing"; fails=$((fails + 1)); fi
 done
 # The JSON: counts per frame, stage times over the frames.
-if python3 - "$T/default.json" "$T/frames.json" "$T/auto.json" <<'PY'
+if python3 - "$T/default.json" "$T/frames.json" "$T/auto.json" "$T/unset.json" <<'PY'
 import json, sys
 d = json.load(open(sys.argv[1])); f = json.load(open(sys.argv[2])); a = json.load(open(sys.argv[3]))
+u = json.load(open(sys.argv[4]))
+assert u["quads_by_level"] == a["quads_by_level"] and u["texels_warped"] == a["texels_warped"], (u, a)
 assert sum(a["quads_by_level"].values()) == a["quads_drawn"] and d["quads_by_level"] == {"0": d["quads_drawn"]}, a
 assert 0 < a["texels_warped"] < d["texels_warped"], (a, d)
 assert all(int(level) > 0 for level in a["quads_by_level"]), a

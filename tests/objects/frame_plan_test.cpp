@@ -6,6 +6,7 @@
 
 #include "objects/frame_plan.h"
 #include "objects/bounds.h"
+#include "objects/level_choice.h"
 #include "procedural/procedural_media.h"
 #include "texmap/camera_rig.h"
 #include "warp/pyramid.h"
@@ -132,7 +133,8 @@ TEST(FramePlan, LevelIsClampedOrChosenForTheDensity) {
     d.level = -1;
     for (double dist : {1.2, 2.5, 10.0, 40.0}) {
         const Camera cam = r.orbit(20, 10, dist);
-        EXPECT_EQ(r.plan(cam, d).level, auto_level(cam, r.t)) << dist;
+        EXPECT_EQ(r.plan(cam, d).level, choose_level(cam, r.t, level_displacement_spreads(r.t), d.level_error_px))
+            << dist;
     }
     // 32x32 texels on a 128x128 image: level 0 close up, coarser levels further away.
     EXPECT_EQ(auto_level(r.orbit(20, 10, 1.2), r.t), 0);

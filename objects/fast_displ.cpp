@@ -1,0 +1,34 @@
+#include "objects/fast_displ.h"
+
+#include <stdexcept>
+
+#include "warp/isa.h"
+#include "warp/simd/schedule.h"
+
+namespace rtm {
+
+ReliefTexture index_relief(const ReliefTexture& t) {
+    ReliefTexture o = t;
+    for (ReliefTexel& x : o.texels)
+        if (x.q != kEmptyIndex) x.r = x.g = x.b = x.q;
+    return o;
+}
+
+bool fast_displ_covers(const ReliefTexture& t, const PrewarpCoefficients& k, const PrewarpOptions& o) {
+    return fast_prewarp_covers(resolve_isa(o.isa), t, k, o, prewarp_extent(t, k, o), nullptr);
+}
+
+PrewarpStats prewarp_fast_displ(const ReliefTexture& t, const ReliefTexture& index, const PrewarpCoefficients& k,
+                                const PrewarpOptions& o, PrewarpWorkspace& ws, ImageRGBA8& out, Image2D<uint8_t>& displ,
+                                ImageRGBA8& scratch) {
+    if (!fast_displ_covers(t, k, o)) throw std::logic_error("prewarp_fast_displ: the fast kernels do not cover this");
+    const PrewarpStats stats = prewarp(t, k, o, ws, out);
+    prewarp(index, k, o, ws, scratch);
+    displ.resize(scratch.width, scratch.height);
+    // Point sampling: alpha is 0 (no sample) or 255.
+    for (size_t i = 0; i < scratch.pixels.size(); ++i)
+        displ.pixels[i] = scratch.pixels[i].a == 0 ? kEmptyIndex : scratch.pixels[i].r;
+    return stats;
+}
+
+}  // namespace rtm
