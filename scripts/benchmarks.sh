@@ -4,14 +4,15 @@
 # ended and the load average before and after (2 is a fully busy machine of two cores). Run it on a quiet machine:
 # every figure of a shared host is an upper bound. Needs build/bin/rtm (Release), media/, xvfb-run for the viewer.
 #   bash scripts/benchmarks.sh [OUT]              about 10 minutes on a quiet 2-core Zen 5 guest
-#   RTM_BENCH_ONLY="bench skips" bash scripts/benchmarks.sh     only the named steps (see the list below)
+#   RTM_BENCH_ONLY="bench skips" bash scripts/benchmarks.sh     only the named steps (see the list below),
+#                                                               added to OUT/runs.txt
 set -euo pipefail
 cd "$(dirname "$0")/.."
 R=${RTM:-build/bin/rtm}
 OUT=${1:-out/benchmarks}
 mkdir -p "$OUT"
 runs="$OUT/runs.txt"
-: >"$runs"
+[ -n "${RTM_BENCH_ONLY:-}" ] || : >"$runs"
 only=${RTM_BENCH_ONLY:-}
 
 load() { cut -d' ' -f1-3 /proc/loadavg; }
@@ -57,12 +58,13 @@ JSON
     --json "$OUT/view-relief.json"
   step view-relief-panel "${V[@]}" --relief media/facade.relief.json --camera-path "$OUT/spin.json" --frames 300 \
     --panel --insets --json "$OUT/view-relief-panel.json"
-  # The object: a hut (a unit cube with a pyramid roof) baked at 256 texels a face, as tests/cli/view.sh does.
-  if [ ! -f "$OUT/hut/hut.object.json" ]; then
-    sed -n '/^cat >"$T\/hut.obj"/,/^OBJ$/p' tests/cli/view.sh | sed '1d;$d' >"$OUT/hut.obj"
-    "$R" bake --mesh "$OUT/hut.obj" --size 256 --out "$OUT/hut" >/dev/null 2>&1
+  # The object: an octahedron baked at 256 texels a face (its box is a cube: six 256x256 faces).
+  if [ ! -f "$OUT/octahedron/octahedron.object.json" ]; then
+    printf 'v 1 0 0\nv -1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nv 0 0 -1\n' >"$OUT/octahedron.obj"
+    printf 'f 1 3 5\nf 3 2 5\nf 2 4 5\nf 4 1 5\nf 3 1 6\nf 2 3 6\nf 4 2 6\nf 1 4 6\n' >>"$OUT/octahedron.obj"
+    "$R" bake --mesh "$OUT/octahedron.obj" --size 256 --out "$OUT/octahedron" >/dev/null 2>&1
   fi
-  step view-object-panel "${V[@]}" --object "$OUT/hut/hut.object.json" --camera-path "$OUT/spin.json" \
+  step view-object-panel "${V[@]}" --object "$OUT/octahedron/octahedron.object.json" --camera-path "$OUT/spin.json" \
     --frames 300 --panel --insets --json "$OUT/view-object-panel.json"
   step view-town-panel "${V[@]}" --scene media/town.scene.json --camera-path media/town.scene.json --frames 120 \
     --panel --insets --json "$OUT/view-town-panel.json"
