@@ -26,7 +26,10 @@ fi
 
 if [ "${RTM_SKIP_SANITIZE:-0}" != 1 ]; then
   echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
-  cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRTM_SANITIZE=ON >/dev/null
+  # -O1 with line tables only: half the compile time of RelWithDebInfo's -O2 -g (21.7 s against 10.6 s for
+  # measure/compare.cpp), and the sanitizers' reports still name file and line.
+  cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRTM_SANITIZE=ON \
+    "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" >/dev/null
   cmake --build build-asan -j"$jobs"
   # OSMesa/llvmpipe and TBB keep some allocations for the life of the process: leaks are not checked here.
   # The random sweeps of the SIMD kernels run whole in the Release suite; here the first RTM_SWEEP_CASES cases of
