@@ -52,10 +52,10 @@ void run_prewarp(const PrewarpArgs& a) {
         throw UsageError("--output-scale: expected a factor from 1 to 8, found " + std::to_string(a.output_scale));
     ReliefQuad quad(apply_output_scale(load_relief(a.relief), a.output_scale, a.relief));
     int level = level_arg;
-    if (level < 0) {  // auto: the level for a 512x512, 45-degree view from the eye towards the relief's centre
+    if (level < 0) {  // auto: the level `render` draws for a 512x512, 45-degree view from the eye to the centre
         Camera cam = aimed_camera(eye, relief_bounds(quad.relief()).centre(), 512, 512);
         if (!cam.validate().empty()) cam = aimed_camera(eye, eye - quad.relief().geometry.f(), 512, 512);
-        level = quad.auto_level(cam);
+        level = quad.choose_level(cam, DrawOptions{}.level_error_px);
     }
     level = std::min(level, quad.levels() - 1);
     const ReliefTexture& relief = quad.level(level);

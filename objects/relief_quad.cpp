@@ -85,6 +85,15 @@ int ReliefQuad::levels() { return pyramid_levels(relief_.width, relief_.height);
 
 int ReliefQuad::auto_level(const Camera& cam) { return rtm::auto_level(cam, relief_); }
 
+const std::vector<double>& ReliefQuad::spreads() {
+    if (spreads_.empty()) spreads_ = level_displacement_spreads(relief_);
+    return spreads_;
+}
+
+int ReliefQuad::choose_level(const Camera& cam, double max_error_px) {
+    return rtm::choose_level(cam, relief_, spreads(), max_error_px);
+}
+
 double ReliefQuad::prewarp(const glm::dvec3& eye, const PrewarpOptions& options, bool with_displ) {
     const auto t0 = Clock::now();
     stats_ = rtm::prewarp(relief_, compute_coefficients(relief_.geometry, eye), options, workspace_, prewarped_,
@@ -109,10 +118,9 @@ void ReliefQuad::draw(Renderer& renderer, const Camera& cam, RenderMethod method
 
 FramePlan ReliefQuad::plan_draw(const Camera& cam, RenderMethod method, const PrewarpOptions& options,
                                 const DrawOptions& d) {
-    if (d.level < 0 && spreads_.empty()) spreads_ = level_displacement_spreads(relief_);
     return plan_frame(
         cam, method, options, d, relief_, [this](int i) -> const ReliefTexture& { return level_texture(i); },
-        last_prewarp_, d.level < 0 ? &spreads_ : nullptr);
+        last_prewarp_, d.level < 0 ? &spreads() : nullptr);
 }
 
 void ReliefQuad::prewarp_planned(const FramePlan& plan, const DrawOptions& d, StageTimes& times, DrawReport& rep) {

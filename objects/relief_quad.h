@@ -53,6 +53,9 @@ public:
     int levels();
     // The level `auto` picks for this camera: texel density roughly matching pixel density.
     int auto_level(const Camera& cam);
+    // The level `auto` picks when this quad is drawn (plan_draw): the coarsest level the density allows whose
+    // displacement spread keeps the parallax error within `max_error_px` (objects/level_choice.h).
+    int choose_level(const Camera& cam, double max_error_px);
 
     // Pre-warps level 0 for `eye` into prewarped(). Returns the time in milliseconds.
     double prewarp(const glm::dvec3& eye, const PrewarpOptions& options, bool with_displ = false);
@@ -109,6 +112,7 @@ private:
     std::vector<std::optional<ReliefTexture>> index_levels_;
     ImageRGBA8 index_warp_;
     std::vector<double> spreads_;  // level_displacement_spreads (objects/level_choice.h), computed on first use
+    const std::vector<double>& spreads();
 
     const ReliefTexture& level_texture(int i);
     long long still_texels(int level, bool exact);
