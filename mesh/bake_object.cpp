@@ -124,11 +124,12 @@ glm::dmat4 relief_view_clip(const ReliefGeometry& g, int width, int height, doub
     return m;
 }
 
-BakedFace bake_view(MeshRenderer& renderer, const ReliefGeometry& g, int width, int height, double d_lo, double d_hi) {
+BakedFace bake_view(MeshRenderer& renderer, const ReliefGeometry& g, int width, int height, double d_lo, double d_hi,
+                    bool cull_back_faces) {
     const glm::dvec3 f = g.f();
     const glm::dvec4 plane(f, -glm::dot(f, g.origin));
     MeshFrame frame = renderer.render(relief_view_clip(g, width, height, d_lo, d_hi), width, height, Rgba8{0, 0, 0, 0},
-                                      plane);
+                                      plane, cull_back_faces);
     BakedFace face;
     face.geometry = g;
     face.color = std::move(frame.color);

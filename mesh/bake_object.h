@@ -72,8 +72,10 @@ class MeshRenderer;
 // displacement slab [d_lo, d_hi] along f, widened by a small margin, onto depth, nearer +f first.
 glm::dmat4 relief_view_clip(const ReliefGeometry& g, int width, int height, double d_lo, double d_hi);
 // One view along -f of what lies in the slab [d_lo, d_hi]: colour (alpha 255 seen, 0 empty), displacement clamped
-// to the slab (0 where empty) and the range seen ([0, 0] when nothing). key is left empty.
-BakedFace bake_view(MeshRenderer& renderer, const ReliefGeometry& g, int width, int height, double d_lo, double d_hi);
+// to the slab (0 where empty) and the range seen ([0, 0] when nothing). key is left empty. cull_back_faces: faces
+// seen from behind (wound clockwise as seen from +f) are not recorded (MeshRenderer::render).
+BakedFace bake_view(MeshRenderer& renderer, const ReliefGeometry& g, int width, int height, double d_lo, double d_hi,
+                    bool cull_back_faces = false);
 
 // Renders the six views through MeshRenderer; needs a current GlContext. `progress(done, 6)` after each face.
 BakedObject bake_object(const TriangleMesh& mesh, int n, const std::function<void(int, int)>& progress = {});

@@ -81,6 +81,12 @@ std::vector<BakePlane> parse_bake_planes(const std::string& path) {
             b.range_lo = r[0].get<double>();
             b.range_hi = r[1].get<double>();
         }
+        if (p.contains("cull_back_faces")) {
+            if (!p["cull_back_faces"].is_boolean())
+                fail(path, where + ": field \"cull_back_faces\" must be true or false, found " +
+                               p["cull_back_faces"].dump(-1, ' ', false, json::error_handler_t::replace));
+            b.cull_back_faces = p["cull_back_faces"].get<bool>();
+        }
         out.push_back(b);
     }
     return out;
@@ -106,7 +112,7 @@ std::vector<std::string> bake_planes(const TriangleMesh& mesh, const std::vector
                 hi = c ? std::max(hi, d) : d;
             }
         }
-        views.push_back(bake_view(renderer, p.geometry, p.width, p.height, lo, hi));
+        views.push_back(bake_view(renderer, p.geometry, p.width, p.height, lo, hi, p.cull_back_faces));
     }
     std::vector<std::string> manifests, written;
     const fs::path d = dir.empty() ? fs::path(".") : fs::path(dir);

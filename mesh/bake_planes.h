@@ -3,11 +3,13 @@
 //
 // P.json:
 //   { "planes": [ { "name": "floor", "origin": [x, y, z], "a": [x, y, z], "b": [x, y, z], "size": [w, h],
-//                   "range": [lo, hi] }, ... ] }
+//                   "range": [lo, hi], "cull_back_faces": false }, ... ] }
 // Each rectangle is a relief frame (the relief conventions: texel (i, r) centre at u = i + 0.5,
 // v = h - 1 - r + 0.5; X = origin + a*u + b*v + f*d, f = normalize(cross(a, b))), w x h texels. The view looks
 // along -f and records the first surface inside the slab of displacements [lo, hi] (optional; default the extent
-// of the mesh's bounding box along f, so everything). "name": letters, digits, '_' and '-', unique; it names the
+// of the mesh's bounding box along f, so everything). "cull_back_faces" (optional, default false): record only
+// the faces seen from their front side (a mesh wound counter-clockwise seen from outside): a view from outside a
+// room then sees through its ceiling and walls from behind. "name": letters, digits, '_' and '-', unique; it names the
 // output DIR/MESH_NAME.relief.json. Unknown fields are ignored; malformed ones are refused with one line naming
 // the file, the plane and the field.
 #pragma once
@@ -26,6 +28,7 @@ struct BakePlane {
     ReliefGeometry geometry;
     int width = 0, height = 0;
     std::optional<double> range_lo, range_hi;
+    bool cull_back_faces = false;  // record only faces seen from their front (MeshRenderer::render)
 };
 
 // Throws IoError naming the file, the plane (by index or name) and the field.

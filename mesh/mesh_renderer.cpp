@@ -216,7 +216,7 @@ MeshRenderer::~MeshRenderer() {
 }
 
 MeshFrame MeshRenderer::render(const glm::dmat4& clip_from_world, int width, int height, Rgba8 background,
-                               const std::optional<glm::dvec4>& plane) {
+                               const std::optional<glm::dvec4>& plane, bool cull_back_faces) {
     Impl& m = *impl_;
     m.ensure_framebuffer(width, height);
     glBindFramebuffer(GL_FRAMEBUFFER, m.fbo);
@@ -224,7 +224,13 @@ MeshFrame MeshRenderer::render(const glm::dmat4& clip_from_world, int width, int
     glDrawBuffers(2, buffers);
     glViewport(0, 0, width, height);
     glDisable(GL_BLEND);
-    glDisable(GL_CULL_FACE);
+    if (cull_back_faces) {
+        glEnable(GL_CULL_FACE);
+        glFrontFace(GL_CCW);
+        glCullFace(GL_BACK);
+    } else {
+        glDisable(GL_CULL_FACE);
+    }
     glDisable(GL_MULTISAMPLE);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
@@ -257,6 +263,7 @@ MeshFrame MeshRenderer::render(const glm::dmat4& clip_from_world, int width, int
             std::copy(d.row(height - 1 - r), d.row(height - 1 - r) + width, frame.distance.row(r));
     }
     check_gl("mesh rendering: read back");
+    glDisable(GL_CULL_FACE);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     return frame;
 }

@@ -121,7 +121,13 @@ public:
                 for (const Rect& h : holes) hole = hole || h.contains(s + 0.5 * cell, t + 0.5 * cell);
                 if (hole) continue;
                 const glm::dvec3 c = glm::mix(w.paper_b, w.paper_a, (t + 0.5 * cell) / kRoomHeight);
-                quad(w.at(s, t, 0), w.at(s + cell, t, 0), w.at(s + cell, t + cell, 0), w.at(s, t + cell, 0), c);
+                // The border cells reach kWallOverlap beyond the room's corners, floor and ceiling (behind the
+                // neighbouring walls, below the floor, above the ceiling: unseen from the room), as real walls
+                // run into their joints: a relief's rectangle reaching a little beyond the room has surface
+                // there, so its pre-warp covers the room's edges whole (no crack where two reliefs meet).
+                const double s0 = i == 0 ? -kWallOverlap : s, s1 = i == ns - 1 ? s + cell + kWallOverlap : s + cell;
+                const double t0 = j == 0 ? -kWallOverlap : t, t1 = j == nt - 1 ? t + cell + kWallOverlap : t + cell;
+                quad(w.at(s0, t0, 0), w.at(s1, t0, 0), w.at(s1, t1, 0), w.at(s0, t1, 0), c);
             }
     }
 };
@@ -246,19 +252,32 @@ std::vector<BakePlane> room_planes(const RoomOptions& o) {
     if (o.texels_per_unit < 8 || o.texels_per_unit > 512)
         throw std::invalid_argument("room: texels per unit must be in 8..512, found " +
                                     std::to_string(o.texels_per_unit));
+    if (!(o.look_down_deg >= 0.0 && o.look_down_deg <= 30.0))
+        throw std::invalid_argument("room: look_down_deg must be in 0..30, found " + std::to_string(o.look_down_deg));
     const double texel = 1.0 / o.texels_per_unit;
+    if (o.border_texels < 0 || o.border_texels * texel > kWallOverlap)
+        throw std::invalid_argument("room: border_texels must be in 0.." + std::to_string(int(kWallOverlap / texel)) +
+                                    " at " + std::to_string(o.texels_per_unit) + " texels per unit, found " +
+                                    std::to_string(o.border_texels));
+    const double down = o.look_down_deg * M_PI / 180.0;
+    const glm::dvec3 up(0, 1, 0);
     std::vector<BakePlane> planes;
     for (const Wall& w : walls()) {
+        const glm::dvec3 g = std::cos(down) * w.normal + std::sin(down) * up;
         BakePlane p;
         p.name = w.name;
-        p.geometry.origin = w.origin;
-        p.geometry.a = w.right * texel;
-        p.geometry.b = glm::dvec3(0, texel, 0);
-        p.width = int(std::lround(2 * kRoomHalf / texel));
-        p.height = int(std::lround(kRoomHeight / texel));
-        // From behind the deepest recess (the window niche, 0.4) to beyond the shelves (0.44).
-        p.range_lo = -0.45;
-        p.range_hi = 0.45;
+        // The wall's texel steps projected along g onto the plane through its floor corner normal to g.
+        p.geometry.a = (w.right - g * glm::dot(g, w.right)) * texel;
+        p.geometry.b = (up - g * glm::dot(g, up)) * texel;
+        const double k = o.border_texels;
+        p.geometry.origin = w.origin - p.geometry.a * k - p.geometry.b * k;
+        p.width = int(std::lround(2 * kRoomHalf / texel)) + 2 * o.border_texels;
+        p.height = int(std::lround(kRoomHeight / texel)) + 2 * o.border_texels;
+        // From behind the deepest recess (the window niche, 0.4) to beyond the shelves (0.44), measured along g
+        // from the wall's own surface, which lies between 0 (floor) and kRoomHeight * sin(down) (ceiling).
+        p.range_lo = -0.45 * std::cos(down) - 0.01;
+        p.range_hi = kRoomHeight * std::sin(down) + 0.45 * std::cos(down) + 0.05;
+        p.cull_back_faces = true;
         planes.push_back(p);
     }
     return planes;
@@ -277,7 +296,11 @@ std::string write_room(const std::string& dir, const RoomOptions& o) {
     const std::string mesh_path = (fs::path(dir) / "room.ply").string();
     write_ply(mesh_path, make_room_mesh());
     // Bake what a user would: the file as assimp reads it.
-    const std::vector<std::string> reliefs = bake_planes(load_mesh(mesh_path), room_planes(o), dir, "room");
+    const TriangleMesh mesh = load_mesh(mesh_path);
+    const std::vector<std::string> reliefs = bake_planes(mesh, room_planes(o), dir, "room");
+    RoomOptions flat = o;
+    flat.look_down_deg = 0.0;
+    const std::vector<std::string> wall_maps = bake_planes(mesh, room_planes(flat), dir, "room_walls");
 
     SceneManifest s;
     s.path = (fs::path(dir) / "room.scene.json").string();
@@ -310,6 +333,12 @@ std::string write_room(const std::string& dir, const RoomOptions& o) {
     };
     s.path_frames = o.path_frames;
     write_scene_manifest(s.path, s);
+    // The same room on the walls' own planes: what conventional texture maps of the walls would be.
+    SceneManifest walls_scene = s;
+    walls_scene.path = (fs::path(dir) / "room_walls.scene.json").string();
+    walls_scene.name = "room_walls";
+    for (size_t i = 0; i < wall_maps.size(); ++i) walls_scene.items[i].relief_path = wall_maps[i];
+    write_scene_manifest(walls_scene.path, walls_scene);
     return s.path;
 }
 

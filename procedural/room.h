@@ -24,9 +24,17 @@ namespace rtm {
 constexpr double kRoomHalf = 2.0;
 constexpr double kRoomHeight = 2.5;
 constexpr double kCornerClear = 0.5;
+// How far the walls' surfaces reach beyond the room's corners, floor and ceiling (procedural/room.cpp).
+constexpr double kWallOverlap = 0.02;
 
 struct RoomOptions {
-    int texels_per_unit = 128;  // relief texels per world unit along the walls (8..512)
+    int texels_per_unit = 256;  // relief texels per world unit along the walls (8..512)
+    // Each relief looks at its wall from this many degrees above the horizontal (0..30): its plane is tilted back
+    // by that much, so the bake sees the tops of books, boards, sills and frames, not only what faces the wall's
+    // normal (docs/ACCURACY.md, "The registered room"). 0 gives planes in the walls' own surfaces.
+    double look_down_deg = 6.0;
+    // Texels each relief reaches beyond its wall's corners, floor and ceiling (at most kWallOverlap's worth).
+    int border_texels = 2;
     int path_frames = 96;
 };
 
@@ -37,8 +45,14 @@ glm::dvec3 room_ceiling_color();
 // The room as one vertex-coloured mesh (walls, floor, ceiling and the fittings), in the room frame.
 TriangleMesh make_room_mesh();
 
-// The four walls' bake planes ("back" z = -kRoomHalf, "left" x = -kRoomHalf, "right", "front"): each spans its
-// wall from floor to ceiling and corner to corner, slab from the deepest recess to the furthest protrusion.
+// The four walls' bake planes ("back" z = -kRoomHalf, "left" x = -kRoomHalf, "right", "front"). Each is seen
+// along -g, g = cos(look_down) * (the wall's normal) + sin(look_down) * up: its plane is normal to g and its texel
+// vectors are the wall's texel steps projected onto that plane, so texel (u, v) sees the wall point u texels from
+// the corner and v texels up (the wall's own surface lies at displacement v * texel * sin(look_down)); the
+// rectangle spans the wall from floor to ceiling and corner to corner plus border_texels on each side; the slab
+// reaches from behind the deepest recess to beyond the furthest protrusion. Back faces are culled: looking down,
+// the rays of the top rows enter through the ceiling from above. Throws std::invalid_argument for options out of
+// range.
 std::vector<BakePlane> room_planes(const RoomOptions& o = {});
 
 // The vertical lines where two relief walls meet (the room's four corners), bottom point first.
@@ -46,7 +60,9 @@ std::vector<std::array<glm::dvec3, 2>> room_seams();
 
 // Writes DIR/room.ply (the mesh), DIR/room_WALL.relief.json with their images (the bake, which needs a current
 // GlContext), and DIR/room.scene.json: the four walls, the floor and ceiling polygons, a default camera and a
-// camera path through the room. Returns the scene manifest's path.
+// camera path through the room. Also DIR/room_walls.scene.json with DIR/room_walls_WALL.relief.json: the same
+// room baked onto the walls' own planes (look_down_deg 0), the conventional texture maps of the walls that flat
+// texture mapping is measured with. Returns the first scene manifest's path.
 std::string write_room(const std::string& dir, const RoomOptions& o = {});
 
 }  // namespace rtm

@@ -90,6 +90,48 @@ TEST_F(BakePlanesTest, SlantedPlaneSeesTheFloorAlongItsNormal) {
         }
 }
 
+TEST_F(BakePlanesTest, CullBackFacesSeesPastSurfacesSeenFromBehind) {
+    // Two unit squares above each other, wound counter-clockwise seen from their front: the lower one (z = 0,
+    // red) faces the plane (+z), the upper one (z = 0.5, blue) faces away from it, as a ceiling does seen from
+    // above. Without culling the bake records the upper one (seen from behind); with it, the lower one.
+    TriangleMesh mesh;
+    auto square = [&](double z, bool up, glm::u8vec4 c) {
+        const auto base = uint32_t(mesh.vertices.size());
+        for (const glm::vec2 q : {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)})
+            mesh.vertices.push_back({glm::vec3(q.x, q.y, float(z)), {0, 0}, c});
+        if (up)
+            mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+        else
+            mesh.indices.insert(mesh.indices.end(), {base, base + 2, base + 1, base, base + 3, base + 2});
+    };
+    square(0.0, true, {255, 0, 0, 255});
+    square(0.5, false, {0, 0, 255, 255});
+    mesh.materials.push_back({"m", glm::vec4(1.0f), {}});
+    mesh.parts.push_back({0, uint32_t(mesh.indices.size()), 0, false, true});
+    mesh.lo = {0, 0, 0};
+    mesh.hi = {1, 1, 0.5};
+    TempDir dir;
+    write_file(dir.file("p.json"), R"({ "planes": [
+        { "name": "both", "origin": [0, 0, 1], "a": [0.25, 0, 0], "b": [0, 0.25, 0], "size": [4, 4] },
+        { "name": "front", "origin": [0, 0, 1], "a": [0.25, 0, 0], "b": [0, 0.25, 0], "size": [4, 4],
+          "cull_back_faces": true } ] })");
+    const std::vector<BakePlane> planes = parse_bake_planes(dir.file("p.json"));
+    ASSERT_EQ(planes.size(), 2u);
+    EXPECT_FALSE(planes[0].cull_back_faces);
+    EXPECT_TRUE(planes[1].cull_back_faces);
+    const std::vector<std::string> out = bake_planes(mesh, planes, dir.file("out"), "sq");
+    const ReliefTexture both = load_relief(out[0]), front = load_relief(out[1]);
+    for (int r = 0; r < 4; ++r)
+        for (int i = 0; i < 4; ++i) {
+            EXPECT_EQ(Rgba8({both.texel(i, r).r, both.texel(i, r).g, both.texel(i, r).b, 255}),
+                      (Rgba8{0, 0, 255, 255}));
+            EXPECT_NEAR(both.displ(i, r), -0.5, 1e-6);
+            EXPECT_EQ(Rgba8({front.texel(i, r).r, front.texel(i, r).g, front.texel(i, r).b, 255}),
+                      (Rgba8{255, 0, 0, 255}));
+            EXPECT_NEAR(front.displ(i, r), -1.0, 1e-6);
+        }
+}
+
 TEST(BakePlanesParse, RefusesMalformedPlanesNamingTheField) {
     TempDir dir;
     struct Case {
@@ -106,6 +148,9 @@ TEST(BakePlanesParse, RefusesMalformedPlanesNamingTheField) {
         {R"({"planes": [{"name": "p", "origin": [0,0,0], "a": [1,0,0], "b": [0,1,0], "size": [2,2],
              "range": [1, 0]}]})",
          "range"},
+        {R"({"planes": [{"name": "p", "origin": [0,0,0], "a": [1,0,0], "b": [0,1,0], "size": [2,2],
+             "cull_back_faces": 1}]})",
+         "cull_back_faces"},
         {R"({"planes": [{"name": "p", "origin": [0,0,0], "a": [1,0,0], "b": [0,1,0], "size": [2,2]},
                         {"name": "p", "origin": [0,0,0], "a": [1,0,0], "b": [0,1,0], "size": [2,2]}]})",
          "twice"},
