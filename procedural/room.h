@@ -1,13 +1,14 @@
 // The registered room of the paper's Figures 22 and 23 (Oliveira, Bishop and McAllister, "Relief Texture Mapping",
 // SIGGRAPH 2000, section 4.4): a room mesh generated here (walls with shelves, a framed plaque, a door frame, a
 // window niche; flat vertex colours with the shading baked in), acquired as four relief textures, one per wall, on
-// planes chosen in the wall surfaces (mesh/bake_planes.h), plus plain polygons for the floor and the ceiling.
-// The walls meet at the room's corners; their registration is by depth alone. Deterministic.
+// user-chosen planes (mesh/bake_planes.h) that look down at the walls a few degrees (so the tops of books, boards
+// and sills are recorded too), plus plain polygons for the floor and the ceiling. The reliefs overlap at the
+// room's corners; their registration is by depth alone. Deterministic.
 //
 // Room frame: the floor is y = 0, the ceiling y = kRoomHeight, the walls x = +-kRoomHalf and z = +-kRoomHalf;
-// every wall's relief normal f points into the room, so shelves and frames stand out (d > 0) and the niche, the
-// door and the window recess (d < 0). Nothing stands within kCornerClear of a corner, so the walls seen edge-on
-// by the neighbouring walls' views are the only geometry in their slabs there.
+// every wall's relief normal f points into the room (and up by look_down_deg), so shelves and frames stand out
+// of the wall and the niche, the door and the window recess into it. Nothing stands within kCornerClear of a
+// corner, so the walls seen edge-on by the neighbouring walls' views are the only geometry in their slabs there.
 #pragma once
 
 #include <array>
