@@ -20,7 +20,7 @@ struct BenchArgs {
     std::string json, sizes, reliefs, threads, methods, isa;
     bool full = false, no_exact = false, no_reference = false, no_table1 = false, no_objects = false;
     std::string scene = "media/town.scene.json";
-    bool scene_given = false, no_scene = false, scene_only = false;
+    bool scene_given = false, no_scene = false, scene_only = false, scene_sequential = false;
     std::string scene_variants;
     double min_time = 0;
     bool min_time_given = false;
@@ -92,7 +92,7 @@ void run_bench_command(const BenchArgs& a) {
                 throw UsageError(std::string("--scene-variants: ") + e.what());
             }
         }
-        const SceneBench sb = bench_scene(a.scene, 640, 480, variants, c.progress);
+        const SceneBench sb = bench_scene(a.scene, 640, 480, variants, c.progress, !a.scene_sequential);
         md += scene_bench_markdown(sb);
         j["command"] = "bench";
         j["scene"] = scene_bench_json(sb);
@@ -131,6 +131,9 @@ void add_bench_command(CLI::App& app) {
     sub->add_flag("--scene-only", a->scene_only, "Only the scene's camera path");
     sub->add_option("--scene-variants", a->scene_variants,
                     "Only these variants of the scene's path, by name, separated by ';' (default all)");
+    sub->add_flag("--scene-sequential", a->scene_sequential,
+                  "The scene's variants one after another, each over the whole path (default: interleaved frame by "
+                  "frame)");
     sub->callback([a] { run_bench_command(*a); });
 }
 

@@ -18,7 +18,7 @@ struct Args {
     std::string json;
     int frames = 20;
     std::string scene = "media/town.scene.json";
-    bool scene_given = false, no_scene = false, scene_only = false;
+    bool scene_given = false, no_scene = false, scene_only = false, scene_sequential = false;
     int wall_size = 1024, wall_rounds = 15;
     bool wall_only = false;
 };
@@ -68,13 +68,15 @@ void run(const Args& a) {
     }
     // Each skip's worth along a scene's camera path: the path without that skip against all skips.
     nlohmann::json scene_json;
+    std::string scene_failures;  // variants whose pictures left their skip's tolerance
     std::printf("\n### Skips along a scene's camera path\n\n");
     if (a.wall_only) {
         std::printf("Skipped (--wall-only).\n");
     } else if (with_scene) {
-        const SceneBench sb = bench_scene(a.scene, 640, 480, scene_skip_variants(), progress);
+        const SceneBench sb = bench_scene(a.scene, 640, 480, scene_skip_variants(), progress, !a.scene_sequential);
         std::printf("%s", scene_bench_markdown(sb).c_str());
         scene_json = scene_bench_json(sb);
+        scene_failures = scene_picture_failures(sb);
     } else {
         std::printf("Skipped: %s not found (run from the source folder or give --scene FILE).\n", a.scene.c_str());
     }
@@ -95,6 +97,10 @@ void run(const Args& a) {
                          {"psnr_with", std::isfinite(m.psnr_with) ? nlohmann::json(m.psnr_with) : nullptr}});
         write_json(a.json, {{"command", "bench-skips"}, {"rows", j}, {"wall", wall_json}, {"scene", scene_json}});
     }
+    // Each skip's picture along the scene's path within the skip's stated tolerance (SceneVariant::max_fraction_off),
+    // after the report and the JSON are written.
+    if (!scene_failures.empty())
+        throw std::runtime_error("bench-skips: " + scene_failures.substr(0, scene_failures.find('\n')));
     // The copy of zero-displacement runs adds no error by construction (warp/reference/reference_prewarp.cpp):
     // check it here too.
     for (const SkipMeasurement& m : rows)
@@ -115,6 +121,9 @@ void add_bench_skips_command(CLI::App& app) {
         ->each([a](const std::string&) { a->scene_given = true; });
     sub->add_flag("--no-scene", a->no_scene, "Skip the scene's camera path");
     sub->add_flag("--scene-only", a->scene_only, "Only the scene's camera path");
+    sub->add_flag("--scene-sequential", a->scene_sequential,
+                  "The scene's variants one after another, each over the whole path (default: interleaved frame by "
+                  "frame)");
     sub->add_option("--wall-size", a->wall_size, "Side of the brick wall timed on the fast kernels")
         ->capture_default_str();
     sub->add_option("--wall-rounds", a->wall_rounds, "Interleaved rounds of the brick wall's pre-warps")

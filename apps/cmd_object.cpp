@@ -10,6 +10,7 @@
 #include "formats/image_io.h"
 #include "formats/object_manifest.h"
 #include "objects/relief_object.h"
+#include "texmap/camera_rig.h"
 #include "texmap/gl_context.h"
 
 namespace rtm::cli {
@@ -144,14 +145,14 @@ void run_prewarp_object(const ObjectPrewarpArgs& a) {
     std::vector<std::pair<std::string, ImageRGBA8>> outputs;
     std::vector<double> totals(size_t(a.repeat), 0.0);  // per repeat, over the visible faces
     int first_level = -1;
+    // auto: per face, the level `render --object --level auto` draws from this eye at its default camera (512x512,
+    // 45 degrees, towards the box's centre): the relief quad's parallax-bounded choice on the face's texture
+    // (objects/level_choice.h, as plan_object_face makes it).
+    Camera auto_cam = aimed_camera(eye, object.bounds().centre(), 512, 512);
+    if (!auto_cam.validate().empty()) auto_cam.up = {0, 0, -1};  // looking straight up or down
+    auto_cam.fit_clip_planes(object.bounds().centre(), std::max(object.bounds().radius(), 1e-12));
     for (int f : region.visible_faces()) {
-        int lvl = level;
-        if (lvl < 0) {  // auto: the level for a 512x512, 45-degree view from the eye towards the box's centre
-            Camera cam;
-            cam.eye = eye;
-            cam.look_at = object.bounds().centre();
-            lvl = object.face(f).auto_level(cam);
-        }
+        const int lvl = level >= 0 ? level : object.face(f).choose_level(auto_cam, DrawOptions{}.level_error_px);
         ObjectFacePrewarp w;
         object.prewarp_face(f, eye, lvl, opt, false, w);  // warm-up (and the only run when repeat == 1)
         std::vector<double> times;

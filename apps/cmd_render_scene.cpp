@@ -29,6 +29,9 @@ nlohmann::json report_json(const SceneFrameReport& r) {
             {"quads_skipped", r.skips},
             {"texels_warped", r.texels_warped},
             {"object_faces_drawn", r.object_faces_drawn},
+            {"object_faces_prewarped", r.object_faces_prewarped},
+            {"object_faces_skipped", r.object_face_skips},
+            {"object_texels_warped", r.object_texels_warped},
             {"quads_by_level", by_level},
             {"prewarp_ms", r.times.prewarp_ms},
             {"upload_ms", r.times.upload_ms},
@@ -131,8 +134,9 @@ void run_render_scene(const SceneRenderArgs& a) {
                             {"size", {sized.width, sized.height}},
                             {"frames", frames}};
         if (frames.size() == 1)  // a single frame's counts also at the top level
-            for (const char* k : {"quads", "quads_drawn", "quads_prewarped", "quads_skipped", "texels_warped",
-                                  "object_faces_drawn", "quads_by_level"})
+            for (const char* k :
+                 {"quads", "quads_drawn", "quads_prewarped", "quads_skipped", "texels_warped", "object_faces_drawn",
+                  "object_faces_prewarped", "object_faces_skipped", "object_texels_warped", "quads_by_level"})
                 j[k] = frames[0][k];
         // Stage times over the frames (min, median, ...), as rtm render writes them for a relief.
         j["prewarp_ms"] = timing_json(t_pre);

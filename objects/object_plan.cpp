@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "objects/bounds.h"
+#include "objects/level_choice.h"
 #include "objects/view_analysis.h"
 
 namespace rtm {
@@ -24,7 +25,8 @@ double box_parallax_texels(const ReliefTexture& t, const PrewarpCoefficients& k,
 
 ObjectFacePlan plan_object_face(const Camera& cam, RenderMethod method, const PrewarpOptions& options,
                                 const DrawOptions& d, const ObjectRegion& region, int face, const ReliefTexture& relief,
-                                const LevelSource& level, double depth, const LastFacePrewarp& last) {
+                                const LevelSource& level, double depth, const LastFacePrewarp& last,
+                                const std::vector<double>* spreads) {
     const bool warp_method = method == RenderMethod::two_pass || method == RenderMethod::pipelined;
     if (!warp_method && method != RenderMethod::flat)
         throw std::invalid_argument("plan_object_face: method " + to_string(method) + " is not a texture method");
@@ -38,8 +40,13 @@ ObjectFacePlan plan_object_face(const Camera& cam, RenderMethod method, const Pr
             return p;
         }
     }
-    p.level = d.level < 0 ? auto_level(cam, relief)
-                          : std::clamp(d.level, 0, pyramid_levels(relief.width, relief.height) - 1);
+    if (d.level < 0) {  // the relief quad's rule on the face's texture (plan_frame's)
+        std::vector<double> own;
+        if (!spreads) own = level_displacement_spreads(relief);
+        p.level = choose_level(cam, relief, spreads ? *spreads : own, d.level_error_px);
+    } else {
+        p.level = std::clamp(d.level, 0, pyramid_levels(relief.width, relief.height) - 1);
+    }
     const ReliefTexture& t = level(p.level);
     p.k = compute_coefficients(t.geometry, cam.eye);
     p.action = FrameAction::flat;

@@ -4,7 +4,9 @@
 // The rules, in order (each only with DrawOptions::skips, except the level choice):
 //   outside-frustum: the face's quad lies outside the view frustum -> nothing (not pre-warped, not drawn). The faces
 //     not visible from the eye (back-facing) never reach the plan: they cost nothing.
-//   level: d.level < 0 -> auto_level of the face, else d.level clamped to the pyramid.
+//   level: d.level < 0 -> choose_level of the face (objects/level_choice.h): the level a relief quad of the face's
+//     texture draws from the same camera (the density level, no coarser than d.level_error_px pixels of parallax of
+//     its texels' displacement spread), else d.level clamped to the pyramid.
 //   subpixel-parallax: a warping method whose largest parallax of any point of the box behind the face is below
 //     d.subpixel_parallax pixels -> flat (the face's colours as a plain texture).
 //   reuse-prewarp: the face's last pre-warp has the same setup and the same adjacent faces, and no point of the box
@@ -55,9 +57,11 @@ double box_parallax_texels(const ReliefTexture& t, const PrewarpCoefficients& k,
 
 // The plan for visible face `face` of an object seen from region `region` (face must be visible in it). `relief` is
 // the face's level 0, `level` its pyramid, `depth` the box's extent along the face's normal, `last` what the face
-// holds. `method` is flat, two_pass or pipelined (else std::invalid_argument).
+// holds, `spreads` level_displacement_spreads of `relief` (computed here when null; ReliefQuad::spreads caches them).
+// `method` is flat, two_pass or pipelined (else std::invalid_argument).
 ObjectFacePlan plan_object_face(const Camera& cam, RenderMethod method, const PrewarpOptions& options,
                                 const DrawOptions& d, const ObjectRegion& region, int face, const ReliefTexture& relief,
-                                const LevelSource& level, double depth, const LastFacePrewarp& last);
+                                const LevelSource& level, double depth, const LastFacePrewarp& last,
+                                const std::vector<double>* spreads = nullptr);
 
 }  // namespace rtm

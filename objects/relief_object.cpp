@@ -151,12 +151,16 @@ void ReliefObject::draw(Renderer& renderer, const Camera& cam, RenderMethod meth
         throw std::invalid_argument("ReliefObject::draw: method " + to_string(method) + " is not a texture method");
     if (rep.region.inside()) {  // the eye inside the box: nothing can be pre-warped for it
         add_skip(rep.skips, kSkipInsideSlab);
+        rep.skip_faces[kSkipInsideSlab] = kFaceCount;
         const auto t0 = Clock::now();
         draw_micromesh(renderer, cam);
         times.texture_map_ms += ms_since(t0);
         return done();
     }
-    if (rep.region.visible_faces().size() < size_t(kFaceCount)) add_skip(rep.skips, kSkipBackFacing);
+    if (rep.region.visible_faces().size() < size_t(kFaceCount)) {
+        add_skip(rep.skips, kSkipBackFacing);
+        rep.skip_faces[kSkipBackFacing] = kFaceCount - int(rep.region.visible_faces().size());
+    }
 
     // Every face is pre-warped and uploaded first, then all are drawn: one wait for the OpenGL pipeline after the
     // uploads and one after the draws, not one per face (llvmpipe's threads wake for each, which a loaded machine makes
@@ -167,8 +171,12 @@ void ReliefObject::draw(Renderer& renderer, const Camera& cam, RenderMethod meth
         ReliefQuad& q = quads_[size_t(f)];
         const ObjectFacePlan plan = plan_object_face(
             cam, method, options, d, rep.region, f, q.relief(),
-            [&](int i) -> const ReliefTexture& { return q.level(i); }, box_.extent()[face_axis(f)], last_[size_t(f)]);
-        for (const std::string& s : plan.skips) add_skip(rep.skips, s);
+            [&](int i) -> const ReliefTexture& { return q.level(i); }, box_.extent()[face_axis(f)], last_[size_t(f)],
+            d.level < 0 ? &q.spreads() : nullptr);
+        for (const std::string& s : plan.skips) {
+            add_skip(rep.skips, s);
+            ++rep.skip_faces[s];
+        }
         if (plan.action == FrameAction::nothing) continue;
         ObjectFaceReport fr;
         fr.face = f;
@@ -220,6 +228,7 @@ void ReliefObject::draw(Renderer& renderer, const Camera& cam, RenderMethod meth
         } else {
             fr.skips.push_back(kSkipPartialUpload);
             add_skip(rep.skips, kSkipPartialUpload);
+            ++rep.skip_faces[kSkipPartialUpload];
         }
         if (depth) {
             rs.displ = displ_textures_[size_t(f)].get();
@@ -256,7 +265,7 @@ ImageRGBA8 render_object_frame(ReliefObject& object, Renderer& renderer, const C
         object.draw_micromesh(renderer, cam);
         times.texture_map_ms += ms_since(t0);
         times.total_ms += ms_since(t0);
-        if (report) *report = ObjectReport{object.region(cam.eye), {}, {}};
+        if (report) *report = ObjectReport{object.region(cam.eye), {}, {}, {}};
     } else {
         StageTimes st;
         object.draw(renderer, cam, method, options, st, draw, report);

@@ -26,6 +26,7 @@
 #pragma once
 
 #include <array>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -68,6 +69,9 @@ struct ObjectReport {
     ObjectRegion region;
     std::vector<ObjectFaceReport> faces;  // the faces drawn (visible and not skipped), in kFaceKeys order
     std::vector<std::string> skips;       // every skip that fired, once
+    // Skip name -> the faces it fired for (back-facing: the faces not visible; inside-slab-micromesh: all six; the
+    // others per visible face), as a scene's --json counts them.
+    std::map<std::string, int> skip_faces;
 };
 
 class ReliefObject {

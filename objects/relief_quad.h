@@ -56,6 +56,9 @@ public:
     // The level `auto` picks when this quad is drawn (plan_draw): the coarsest level the density allows whose
     // displacement spread keeps the parallax error within `max_error_px` (objects/level_choice.h).
     int choose_level(const Camera& cam, double max_error_px);
+    // level_displacement_spreads of the relief (objects/level_choice.h), computed on first use: what choose_level
+    // reads, for callers that plan a frame of this quad themselves (a six-face object's faces).
+    const std::vector<double>& spreads();
 
     // Pre-warps level 0 for `eye` into prewarped(). Returns the time in milliseconds.
     double prewarp(const glm::dvec3& eye, const PrewarpOptions& options, bool with_displ = false);
@@ -112,7 +115,6 @@ private:
     std::vector<std::optional<ReliefTexture>> index_levels_;
     ImageRGBA8 index_warp_;
     std::vector<double> spreads_;  // level_displacement_spreads (objects/level_choice.h), computed on first use
-    const std::vector<double>& spreads();
 
     const ReliefTexture& level_texture(int i);
     long long still_texels(int level, bool exact);

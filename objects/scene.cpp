@@ -117,6 +117,15 @@ void Scene::draw_placed_items(Renderer& renderer, const Camera& cam, RenderMetho
         report.times.upload_ms += st.upload_ms;
         report.times.texture_map_ms += st.texture_map_ms;
         report.object_faces_drawn += method == RenderMethod::micromesh ? kFaceCount : int(orep.faces.size());
+        for (const auto& [name, faces] : orep.skip_faces) report.object_face_skips[name] += faces;
+        for (const ObjectFaceReport& fr : orep.faces) {
+            // A face pre-warped this frame: neither reused nor drawn flat (method flat or subpixel-parallax).
+            bool warped = method != RenderMethod::flat && method != RenderMethod::micromesh;
+            for (const std::string& s : fr.skips) warped &= s != kSkipReuse && s != kSkipSubpixelParallax;
+            if (!warped) continue;
+            ++report.object_faces_prewarped;
+            report.object_texels_warped += o.object().face_prewarp(fr.face).texels;
+        }
     }
 }
 

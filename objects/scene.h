@@ -45,9 +45,15 @@ struct SceneFrameReport {
     std::map<std::string, int> skips;                  // skip name -> quads it fired for
     std::vector<std::vector<std::string>> quad_skips;  // per relief quad, in manifest order: the skips that fired
     int object_faces_drawn = 0;                        // faces of six-face objects drawn (objects/scene_items.h)
-    std::vector<int> quad_levels;                      // per relief quad: the pyramid level drawn
-    std::vector<StageTimes> quad_times;                // per relief quad: its stage times (draw_quad_frame)
-    StageTimes times;                                  // the frame's (draw_quad_frame's frame times, polygons too)
+    // Of those, the faces pre-warped this frame (not reused, not flat), the texels their pre-warps visited (each
+    // face's level and its adjacent faces', ObjectFacePrewarp::texels), and skip name -> the faces it fired for
+    // (ObjectReport::skip_faces, summed over the objects).
+    int object_faces_prewarped = 0;
+    long long object_texels_warped = 0;
+    std::map<std::string, int> object_face_skips;
+    std::vector<int> quad_levels;        // per relief quad: the pyramid level drawn
+    std::vector<StageTimes> quad_times;  // per relief quad: its stage times (draw_quad_frame)
+    StageTimes times;                    // the frame's (draw_quad_frame's frame times, polygons too)
 };
 
 class Scene {
