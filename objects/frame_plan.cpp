@@ -114,12 +114,30 @@ FramePlan plan_frame(const Camera& cam, RenderMethod method, const PrewarpOption
     p.prewarp.method = method == RenderMethod::two_pass ? Reconstruction::two_pass : Reconstruction::pipelined;
     p.prewarp.copy_still_runs = options.copy_still_runs && d.skips;  // --no-skips: warp every texel
     p.setup = {p.level, method, p.prewarp.exact, p.prewarp.keep_outliers, d.depth_correction, p.prewarp.filter};
-    // The eye moved so little that no texel would move by more than the tolerance.
-    if (d.skips && last.valid && last.setup == p.setup && max_texel_motion(t, last.k, p.k) < d.reuse_tolerance) {
+    // Margins (side polygons' texels) whose plane points project outside the viewport are never seen: pre-warp
+    // only the margins the view can show, with a guard of 2 texels (bilinear filtering reads one texel beyond).
+    PrewarpExtent extent = prewarp_extent(t, p.k, p.prewarp);
+    bool margins_cut = false;
+    if (d.skips && d.cull && p.prewarp.keep_outliers) {
+        const PrewarpExtent seen = visible_margins(cam, t, extent, 2.0);
+        if (seen != extent) {
+            p.prewarp.margin_cap = {seen.left, seen.right, seen.bottom, seen.top};
+            extent = seen;
+            margins_cut = true;
+        }
+    }
+    // The eye moved so little that no texel would move by more than the tolerance (and the last pre-warp holds the
+    // margins this view can see).
+    const auto covers = [](const PrewarpExtent& have, const PrewarpExtent& want) {
+        return want.left <= have.left && want.right <= have.right && want.bottom <= have.bottom && want.top <= have.top;
+    };
+    if (d.skips && last.valid && last.setup == p.setup && covers(last.extent, extent) &&
+        max_texel_motion(t, last.k, p.k) < d.reuse_tolerance) {
         p.skips.push_back(kSkipReuse);
         p.action = FrameAction::reuse;
         return p;
     }
+    if (margins_cut) p.skips.push_back(kSkipOffscreenMargins);
     p.action = FrameAction::prewarp;
     return p;
 }

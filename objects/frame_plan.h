@@ -29,7 +29,7 @@ struct DrawOptions {
     double subpixel_parallax = 0.25;  // pixels: below this largest parallax, draw as a plain texture (far away)
     double reuse_tolerance = 0.05;    // texels: below this largest motion since the last pre-warp, reuse it
     // With skips, each of these may be switched off alone (to measure what it saves, rtm bench-skips): cull is
-    // outside-frustum and back-facing, partial_upload the partial-upload skip (plan_upload).
+    // outside-frustum, back-facing and offscreen-margins, partial_upload the partial-upload skip (plan_upload).
     bool cull = true;
     bool partial_upload = true;
 };
@@ -42,6 +42,7 @@ inline constexpr const char* kSkipReuse = "reuse-prewarp";
 inline constexpr const char* kSkipPartialUpload = "partial-upload";
 inline constexpr const char* kSkipInsideSlab = "inside-slab-micromesh";
 inline constexpr const char* kSkipZeroRuns = "zero-displacement-runs";
+inline constexpr const char* kSkipOffscreenMargins = "offscreen-margins";
 
 // What a pre-warp was made for: two pre-warps of the same setup differ only through the eye.
 struct PrewarpSetup {
@@ -57,6 +58,7 @@ struct LastPrewarp {
     bool valid = false;
     PrewarpSetup setup;
     PrewarpCoefficients k;
+    PrewarpExtent extent;  // its margins (offscreen-margins may have cut them to what that view could see)
 };
 
 // What a texture holds: nothing, a pre-warp, or the plain colours of a pyramid level (flat_texture).

@@ -147,7 +147,7 @@ void ReliefQuad::prewarp_planned(const FramePlan& plan, const DrawOptions& d, St
         wall_content_ = margin_content(prewarped_, e.left, e.right, e.bottom, e.top);
     }
     times.prewarp_ms += ms_since(t0);
-    last_prewarp_ = {true, plan.setup, plan.k};
+    last_prewarp_ = {true, plan.setup, plan.k, stats_.extent};
     // The still texels are a property of the level, counted once.
     const long long still = o.copy_still_runs ? still_texels(lvl, o.exact) : 0;
     if (zero_runs_fired(stats_, still)) {

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
+#include <vector>
 
 namespace rtm {
 
@@ -26,6 +28,58 @@ bool outside_frustum(const Camera& cam, const Bounds& box) {
             if (all_out) return true;
         }
     return false;
+}
+
+PrewarpExtent visible_margins(const Camera& cam, const ReliefTexture& t, const PrewarpExtent& full, double guard) {
+    // The rectangle of all margins in the plane, clipped in homogeneous clip space (where clipping is linear, so the
+    // texel coordinates u, v of a cut point interpolate with the same weight as its clip coordinates).
+    struct Vertex {
+        glm::dvec4 clip;
+        double u, v;
+    };
+    const glm::dmat4 m = cam.projection() * cam.view();
+    const ReliefGeometry& g = t.geometry;
+    const double u0 = -full.left, u1 = t.width + full.right, v0 = -full.bottom, v1 = t.height + full.top;
+    std::vector<Vertex> poly;
+    for (const auto& [u, v] : {std::pair{u0, v0}, {u1, v0}, {u1, v1}, {u0, v1}})
+        poly.push_back({m * glm::dvec4(g.origin + u * g.a + v * g.b, 1.0), u, v});
+    // The cone's planes: w + x >= 0, w - x >= 0, w + y >= 0, w - y >= 0 (w > 0 in front of the eye follows).
+    for (int plane = 0; plane < 4 && !poly.empty(); ++plane) {
+        const int axis = plane / 2;
+        const double sign = plane % 2 ? -1.0 : 1.0;
+        const auto dist = [&](const Vertex& p) { return p.clip.w + sign * p.clip[axis]; };
+        std::vector<Vertex> out;
+        for (size_t i = 0; i < poly.size(); ++i) {
+            const Vertex& a = poly[i];
+            const Vertex& b = poly[(i + 1) % poly.size()];
+            const double da = dist(a), db = dist(b);
+            if (da >= 0) out.push_back(a);
+            if ((da >= 0) != (db >= 0)) {
+                const double s = da / (da - db);
+                out.push_back({a.clip + s * (b.clip - a.clip), a.u + s * (b.u - a.u), a.v + s * (b.v - a.v)});
+            }
+        }
+        poly = std::move(out);
+    }
+    PrewarpExtent e;  // all 0: nothing of the plane in view
+    if (poly.empty()) return e;
+    double lo_u = poly[0].u, hi_u = lo_u, lo_v = poly[0].v, hi_v = lo_v;
+    for (const Vertex& p : poly) {
+        lo_u = std::min(lo_u, p.u);
+        hi_u = std::max(hi_u, p.u);
+        lo_v = std::min(lo_v, p.v);
+        hi_v = std::max(hi_v, p.v);
+    }
+    // Texels wanted past each edge of the quad, at most the full margin.
+    const auto need = [guard](double past, int whole) {
+        const double n = std::ceil(past + guard);
+        return n <= 0.0 ? 0 : n >= double(whole) ? whole : int(n);
+    };
+    e.left = need(-lo_u, full.left);
+    e.right = need(hi_u - t.width, full.right);
+    e.bottom = need(-lo_v, full.bottom);
+    e.top = need(hi_v - t.height, full.top);
+    return e;
 }
 
 double projected_area_pixels(const Camera& cam, const std::array<glm::dvec3, 4>& quad) {

@@ -17,6 +17,14 @@ namespace rtm {
 // Conservative: false means "may be visible".
 bool outside_frustum(const Camera& cam, const Bounds& box);
 
+// The margins of a pre-warp with side polygons (paper section 4, Figure 12: samples that leave the quad) that the
+// camera can see: each side of `full` (the margins the view's samples need) cut to the bounding box, in texels, of the
+// part of the relief plane inside the camera's viewing cone, widened by `guard` texels; a margin wholly off screen
+// becomes 0. A margin's texel shows only through a side polygon's fragment whose eye ray meets the relief plane at the
+// texel (texmap/wall_clip.h), so a texel whose plane point projects outside the viewport is never seen. Only the cone's
+// four side planes bound the region (not the near and far planes, which a side polygon may cross).
+PrewarpExtent visible_margins(const Camera& cam, const ReliefTexture& t, const PrewarpExtent& full, double guard);
+
 // Area in pixels of the quad's projection, or -1 when a corner is at or behind the eye's plane (then the area is
 // unbounded and the caller should assume the quad is large).
 double projected_area_pixels(const Camera& cam, const std::array<glm::dvec3, 4>& quad);

@@ -12,7 +12,7 @@ namespace rtm::viewer {
 namespace {
 
 const char* kSkips[] = {kSkipBackFacing,    kSkipOutsideFrustum, kSkipSubpixelParallax, kSkipReuse,
-                        kSkipPartialUpload, kSkipInsideSlab,     kSkipZeroRuns};
+                        kSkipPartialUpload, kSkipInsideSlab,     kSkipZeroRuns,         kSkipOffscreenMargins};
 
 // A titled separator (ImGui 1.86 has no SeparatorText).
 void section(const char* title) {

@@ -58,7 +58,15 @@ PrewarpExtent outlier_extent(const ReliefTexture& t, const PrewarpCoefficients& 
 PrewarpExtent prewarp_extent(const ReliefTexture& relief, const PrewarpCoefficients& k, const PrewarpOptions& options) {
     if (!options.keep_outliers) return {};
     const int mm = options.max_margin >= 0 ? options.max_margin : std::max(relief.width, relief.height) * 2;
-    return outlier_extent(relief, k, mm);
+    PrewarpExtent e = outlier_extent(relief, k, mm);
+    const auto cap = [](int& side, int c) {
+        if (c >= 0) side = std::min(side, c);
+    };
+    cap(e.left, options.margin_cap[0]);
+    cap(e.right, options.margin_cap[1]);
+    cap(e.bottom, options.margin_cap[2]);
+    cap(e.top, options.margin_cap[3]);
+    return e;
 }
 
 PrewarpStats prewarp(const ReliefTexture& relief, const PrewarpCoefficients& k, const PrewarpOptions& options,

@@ -46,6 +46,10 @@ struct PrewarpOptions {
     int threads = 0;             // 0 = all available; the output never depends on it
     bool keep_outliers = false;  // keep samples that leave the quad in a margin (for the side polygons)
     int max_margin = -1;         // largest margin per side in texels; -1 = 2 * max(w, h)
+    // With keep_outliers: no side's margin larger than this side of the cap (the part of the margins a camera can
+    // see, objects/view_analysis.h visible_margins); texels beyond are dropped like those past max_margin. Negative
+    // sides: no cap. Margins only ever shrink; the quad itself is always whole.
+    std::array<int, 4> margin_cap{-1, -1, -1, -1};  // left, right, bottom, top
     // The SIMD target of the kernels (warp/isa.h): automatic takes RTM_ISA or the fastest this CPU has; generic
     // the reference kernels. Same output on every target. A target the CPU lacks throws std::invalid_argument.
     Isa isa = Isa::automatic;

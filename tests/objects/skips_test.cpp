@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <random>
+#include <tuple>
 
 #include "measure/compare.h"
 #include "measure/image_diff.h"
@@ -27,8 +28,10 @@ struct Frame {
     std::unique_ptr<GlContext> ctx = GlContext::create_offscreen(128, 128);
     Renderer r;
     ImageRGBA8 draw(ReliefQuad& q, const Camera& cam, DrawReport& rep, bool skips = true, int level = 0,
-                    bool sidewalls = true, RenderMethod method = RenderMethod::two_pass, bool fast = true) {
+                    bool sidewalls = true, RenderMethod method = RenderMethod::two_pass, bool fast = true,
+                    bool cull = true) {
         RenderSettings s;
+        s.draw.cull = cull;
         s.method = method;
         s.prewarp.keep_outliers = sidewalls;
         s.prewarp.isa = fast ? Isa::automatic : Isa::generic;
@@ -229,6 +232,107 @@ TEST(Skips, ZeroDisplacementRunsOnTheBrickWall) {
     f.draw(bricks, cam, rep, true, 0, true, RenderMethod::two_pass, false);
     EXPECT_TRUE(fired(rep, kSkipReuse));
     EXPECT_FALSE(fired(rep, kSkipZeroRuns));
+}
+
+// A margin's texel is seen only where its plane point projects into the viewport (texmap/wall_clip.h), so
+// visible_margins must keep every such texel: random reliefs' planes and cameras, every margin texel centre whose
+// plane point lies strictly inside the viewing cone is within the returned margins; none is ever larger than the
+// full margins. Exact geometry, up to the guard (0 here: the test asks for the bare bound).
+TEST(ViewAnalysis, VisibleMarginsKeepEveryTexelInView) {
+    const uint64_t seed = test::test_seed(20261203);
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> U(-1.0, 1.0), S(0.0, 1.0);
+    int cut = 0, checked = 0;
+    for (int iter = 0; iter < 300; ++iter) {
+        ReliefTexture t;
+        t.width = 8 + int(S(rng) * 40);
+        t.height = 8 + int(S(rng) * 40);
+        t.geometry.origin = {U(rng), U(rng), U(rng)};
+        t.geometry.a = glm::dvec3{U(rng), U(rng), U(rng)} * 0.05;
+        t.geometry.b = glm::cross(glm::dvec3{U(rng), U(rng), U(rng)}, t.geometry.a);
+        if (!(glm::length(t.geometry.b) > 1e-4) || !(glm::length(t.geometry.a) > 1e-3)) continue;
+        t.geometry.b = glm::normalize(t.geometry.b) * 0.05 * (0.5 + S(rng));
+        const PrewarpExtent full{int(S(rng) * 60), int(S(rng) * 60), int(S(rng) * 60), int(S(rng) * 60)};
+        Camera cam;
+        cam.width = 64 + int(S(rng) * 128);
+        cam.height = 64 + int(S(rng) * 128);
+        cam.fov_deg = 20 + 80 * S(rng);
+        cam.eye = t.geometry.origin + glm::dvec3{U(rng), U(rng), U(rng)} * 3.0;
+        cam.look_at = t.geometry.origin + glm::dvec3{U(rng), U(rng), U(rng)} * 1.5;
+        const PrewarpExtent e = visible_margins(cam, t, full, 0.0);
+        ASSERT_LE(e.left, full.left);
+        ASSERT_LE(e.right, full.right);
+        ASSERT_LE(e.bottom, full.bottom);
+        ASSERT_LE(e.top, full.top);
+        ASSERT_GE(std::min({e.left, e.right, e.bottom, e.top}), 0);
+        cut += !(e == full);
+        const glm::dmat4 m = cam.projection() * cam.view();
+        for (int y = -full.bottom; y < t.height + full.top; ++y)
+            for (int x = -full.left; x < t.width + full.right; ++x) {
+                const double u = x + 0.5, v = y + 0.5;
+                const glm::dvec4 c = m * glm::dvec4(t.geometry.origin + u * t.geometry.a + v * t.geometry.b, 1.0);
+                if (!(c.w > 0) || !(std::abs(c.x) < c.w) || !(std::abs(c.y) < c.w)) continue;
+                ++checked;
+                ASSERT_GE(x, -e.left) << "iter " << iter;
+                ASSERT_LT(x, t.width + e.right) << "iter " << iter;
+                ASSERT_GE(y, -e.bottom) << "iter " << iter;
+                ASSERT_LT(y, t.height + e.top) << "iter " << iter;
+            }
+    }
+    EXPECT_GT(cut, 30);  // the sweep reaches views that cut margins
+    EXPECT_GT(checked, 10000);
+}
+
+// offscreen-margins: close to a tall relief, most of its margins project outside the viewport and are not
+// pre-warped; the picture is the one the full margins give, and far away (the whole relief in view) nothing is cut.
+TEST(Skips, OffscreenMarginsKeepThePicture) {
+    Frame f;
+    ReliefQuad q(to_relief(make_ridges(64)));
+    DrawReport rep;
+    int fired_views = 0;
+    for (const auto& [az, el, dist] :
+         {std::tuple{20.0, 35.0, 0.9}, {-40.0, 25.0, 0.8}, {60.0, 50.0, 1.0}, {0.0, 70.0, 0.7}, {-75.0, 20.0, 1.2}}) {
+        SCOPED_TRACE("az " + std::to_string(az) + " el " + std::to_string(el) + " dist " + std::to_string(dist));
+        Camera cam = orbit(q, az, el, dist);
+        // Look past the quad's centre so that part of the relief and its margins leave the view.
+        cam.look_at += (cam.look_at - cam.eye) * 0.2 + glm::dvec3(0.15, 0.1, 0.0);
+        const ImageRGBA8 cut = f.draw(q, cam, rep);
+        fired_views += fired(rep, kSkipOffscreenMargins);
+        const PrewarpExtent used = q.last_stats().extent;
+        const ImageRGBA8 tex_cut = q.prewarped();
+        const ImageRGBA8 whole = f.draw(q, cam, rep, true, 0, true, RenderMethod::two_pass, true, false);
+        EXPECT_FALSE(fired(rep, kSkipOffscreenMargins));
+        const PrewarpExtent all = q.last_stats().extent;
+        {
+            const ImageRGBA8& tw = q.prewarped();
+            int tdiff = 0;
+            for (int y = 0; y < tex_cut.height; ++y)
+                for (int x = 0; x < tex_cut.width; ++x) {
+                    const Rgba8 a = tex_cut.at(x, y), b = tw.at(x + all.left - used.left, y + all.top - used.top);
+                    tdiff += !(a == b);
+                }
+            // The kept part is the same pre-warp: only a sample's position rounds differently now and then, its
+            // pixel index being the sum of the position and another margin (float).
+            EXPECT_LE(tdiff * 1000, tex_cut.width * tex_cut.height) << tdiff << " texels differ";
+        }
+        EXPECT_LE(used.left + used.right + used.bottom + used.top, all.left + all.right + all.bottom + all.top);
+        int differ = 0, maxd = 0;
+        for (size_t i = 0; i < cut.pixels.size(); ++i) {
+            const Rgba8 a = cut.pixels[i], b = whole.pixels[i];
+            const int d = std::max({std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b),
+                                    std::abs(a.a - b.a)});
+            differ += d != 0;
+            maxd = std::max(maxd, d);
+        }
+        // The texture has another size, so the texture coordinates of the quad and side polygons differ and
+        // llvmpipe's interpolation rounds otherwise at a few pixels: one level, at most 0.1% of the pixels.
+        EXPECT_LE(maxd, 1);
+        EXPECT_LE(differ * 1000, int(cut.pixels.size())) << differ << " pixels differ";
+    }
+    EXPECT_GE(fired_views, 3);
+    f.draw(q, orbit(q, 20, 35, 4.0), rep);  // the whole relief and its margins in view
+    EXPECT_FALSE(fired(rep, kSkipOffscreenMargins));
 }
 
 TEST(Skips, InsideTheSlabFallsBackToMicroPolygons) {
