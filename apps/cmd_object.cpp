@@ -134,6 +134,7 @@ void run_prewarp_object(const ObjectPrewarpArgs& a) {
     opt.exact = a.exact;
     opt.threads = a.threads;
     opt.filter = parse_filter(a.filter, opt.method);
+    opt.isa = parse_isa_arg(a.isa, "--isa");
     check_output_file(a.out, "--out");
 
     ReliefObject object(load_object(a.object));

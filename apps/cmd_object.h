@@ -20,6 +20,7 @@ struct ObjectPrewarpArgs {
     std::string object, eye, out, method = "two-pass", level = "0", json, filter = "point";
     bool exact = false;
     int repeat = 1, threads = 0;
+    std::string isa = "auto";  // --isa, as for --relief
 };
 void run_prewarp_object(const ObjectPrewarpArgs& a);
 

@@ -31,7 +31,7 @@ void run_prewarp(const PrewarpArgs& a) {
     if (!a.object.empty() && a.output_scale != 1) throw UsageError("--output-scale applies to --relief only");
     if (!a.object.empty())
         return run_prewarp_object({a.object, a.eye, a.out, a.method, a.level, a.json, a.filter, a.exact, a.repeat,
-                                   a.threads});
+                                   a.threads, a.isa});
     const glm::dvec3 eye = parse_vec3(a.eye, "--eye");
     PrewarpOptions opt;
     try {

@@ -15,6 +15,10 @@ ReliefTexture index_relief(const ReliefTexture& t) {
 }
 
 bool fast_displ_covers(const ReliefTexture& t, const PrewarpCoefficients& k, const PrewarpOptions& o) {
+    // Reliefs with discontinuity marks (which the AVX-512 two-pass kernels cover for colour) keep the reference's
+    // exact displacement: the index image would differ from it by up to a level, and depth-corrected pictures of
+    // marked reliefs stay what they were.
+    if (!t.breaks.empty() || t.discontinuity_threshold > 0.0) return false;
     return fast_prewarp_covers(resolve_isa(o.isa), t, k, o, prewarp_extent(t, k, o), nullptr);
 }
 

@@ -21,6 +21,7 @@ namespace rtm {
 ReliefTexture index_relief(const ReliefTexture& t);
 
 // True when the fast kernels pre-warp `t` for `k` with `o` (warp/simd/schedule.h), so prewarp_fast_displ applies.
+// Never for a relief with discontinuity marks: its displacement stays the reference's, exact.
 bool fast_displ_covers(const ReliefTexture& t, const PrewarpCoefficients& k, const PrewarpOptions& o);
 
 // The pre-warp of `t` into `out` and the displacement index seen at each output pixel into `displ` (kEmptyIndex

@@ -42,6 +42,13 @@ done
     fails=$((fails + 1)); }
 grep -q '"out"' "$T/pw.json" && grep -q '"adjacent"' "$T/pw.json" && passes=$((passes + 1)) ||
   { echo "FAIL: prewarp --object --json"; fails=$((fails + 1)); }
+# --isa picks the kernels (the faces carry discontinuity marks): every target gives the same textures.
+expect_ok prewarp --object "$O" --eye 3,0.2,4 --isa generic --out "$T/pg.png"
+for f in +x +z; do
+  cmp -s "$T/pw_$f.png" "$T/pg_$f.png" && passes=$((passes + 1)) ||
+    { echo "FAIL: prewarp --object --isa generic differs on face $f"; fails=$((fails + 1)); }
+done
+expect_fail 2 'isa' -- prewarp --object "$O" --eye 3,0.2,4 --isa bogus --out "$T/x.png"
 
 # Bad usage and bad input.
 expect_fail 2 'relief.*object|object.*relief' -- prewarp --eye 3,0,4 --out "$T/x.png"

@@ -926,8 +926,8 @@ TEST_F(TwoPassReverseRows, FoldoversEmptyRowsAndMarksMatchTheReference) {
     // Foldover-heavy reliefs (steep ridges across and along the rows, noise, steps onto still texels) seen from
     // grazing angles, near, from above and from below the highest texels (texels that cannot be pre-warped), the
     // epipole inside the rows, on a texel boundary, on a texel centre and outside; empty texels in some rows only,
-    // so that backward and forward rows meet in one band; and the same reliefs with discontinuity marks, which
-    // the fast kernels leave to the generic ones.
+    // so that backward and forward rows meet in one band; and the same reliefs with discontinuity marks, whose
+    // marked rows the fast kernels take forwards whatever the policy says (warp/simd/avx512_two_pass.cpp).
     const uint64_t seed = test::test_seed(80022);
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> U(0.0, 1.0);
@@ -997,16 +997,21 @@ TEST_F(TwoPassReverseRows, FoldoversEmptyRowsAndMarksMatchTheReference) {
                 }
             }
         }
-        // Discontinuity marks: the generic kernels, whatever the policy says.
+        // Discontinuity marks: the fast kernels, marked rows forwards whatever the policy says.
         mark_discontinuities(t, 0.05);
         o.isa = Isa::generic;
+        o.threads = 1;
         prewarp(t, k, o, ws_ref, ref);
         o.isa = Isa::avx512;
-        EXPECT_FALSE(fast_prewarp_covers(Isa::avx512, t, k, o, sr.extent, nullptr));
+        EXPECT_TRUE(fast_prewarp_covers(Isa::avx512, t, k, o, sr.extent, nullptr));
         for (KernelChoice reverse : {KernelChoice::automatic, KernelChoice::always}) {
             const simd::testing::ScopedKernelPolicy scope(two_pass_policy(reverse));
-            prewarp(t, k, o, ws_fast, fast);
-            ASSERT_EQ(first_difference(ref, fast), "") << "marks, backward rows " << choice_name(reverse);
+            for (int threads : {1, 3}) {
+                o.threads = threads;
+                prewarp(t, k, o, ws_fast, fast);
+                ASSERT_EQ(first_difference(ref, fast), "")
+                    << "marks, backward rows " << choice_name(reverse) << ", threads " << threads;
+            }
         }
     }
 }
@@ -1052,6 +1057,144 @@ TEST(FastPrewarpCovers, OnlyOutputsItsKernelsCanAddress) {
     EXPECT_TRUE(covers(1 << 22, 511));        // the longest side, 2,143,289,344 pixels
     EXPECT_FALSE(covers((1 << 22) + 1, 16));  // a side over 2^22
     EXPECT_FALSE(covers(16, (1 << 22) + 1));
+}
+
+// Surface-discontinuity marks (paper section 4.1.1: ReliefTexture::breaks and discontinuity_threshold), which the
+// AVX-512 two-pass kernels handle (TwoPassJob::breaks, threshold): the random cases above with marks from
+// mark_discontinuities at a random threshold, random kBreakRight / kBreakUp bits with and without a threshold, and
+// a threshold without marks, against the reference pixel by pixel: every backward-row policy, one and two threads,
+// copies of still runs on and off (the vertical pass's still copies are reached: printed).
+void mark_randomly(ReliefTexture& t, std::mt19937_64& rng, int mode) {
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    const double range = t.quant.max - t.quant.min;
+    // Thresholds from a fraction of a level to most of the range (0 when the range is: every texel one level).
+    const double threshold = range * (U(rng) < 0.3 ? U(rng) * 0.02 : U(rng) * 0.6);
+    switch (mode) {
+        case 0: mark_discontinuities(t, threshold); break;
+        case 1:
+        case 2: {
+            const double p = U(rng) * 0.5;
+            t.breaks.assign(t.texels.size(), 0);
+            for (uint8_t& b : t.breaks) b = uint8_t((U(rng) < p ? kBreakRight : 0) | (U(rng) < p ? kBreakUp : 0));
+            t.discontinuity_threshold = mode == 2 ? threshold : 0.0;
+            break;
+        }
+        default:
+            t.breaks.clear();
+            t.discontinuity_threshold = threshold;
+            break;
+    }
+}
+
+TEST_F(ReverseModeFixture, MarkedReliefsMatchTheReference) {
+    const uint64_t seed = test::test_seed(80041);
+    std::mt19937_64 rng(seed);
+    const int cases = test::sweep_cases(600);
+    PrewarpWorkspace ws_ref, ws_fast;
+    ImageRGBA8 ref, fast;
+    int covered = 0;
+    const long long copies_before = simd::testing::vertical_still_copies();
+    for (int i = 0; i < cases; ++i) {
+        Case c = random_case(rng);
+        const int mode = int(rng() % 4);
+        mark_randomly(c.relief, rng, mode);
+        c.options.method = Reconstruction::two_pass;
+        SCOPED_TRACE("seed " + std::to_string(seed) + " case " + std::to_string(i) + ": " + c.describe + " marks " +
+                     std::to_string(mode) + " threshold " + std::to_string(c.relief.discontinuity_threshold));
+        const PrewarpCoefficients k = compute_coefficients(c.relief.geometry, c.eye);
+        PrewarpOptions o = c.options;
+        o.isa = Isa::generic;
+        o.threads = 1;
+        const PrewarpStats sr = prewarp(c.relief, k, o, ws_ref, ref);
+        o.isa = Isa::avx512;
+        covered += fast_prewarp_covers(Isa::avx512, c.relief, k, o, sr.extent, nullptr);
+        for (const NamedPolicy& policy : kTwoPassReverse) {
+            const simd::testing::ScopedKernelPolicy scope(policy.policy);
+            for (int threads : {1, 2})
+                for (bool copy : {true, false}) {
+                    o.threads = threads;
+                    o.copy_still_runs = copy;
+                    const PrewarpStats sf = prewarp(c.relief, k, o, ws_fast, fast);
+                    ASSERT_EQ(first_difference(ref, fast), "")
+                        << policy.name << ", threads " << threads << ", copy " << copy << " " << k.to_string();
+                    ASSERT_EQ(sf.dropped, sr.dropped);
+                    ASSERT_EQ(sf.extent, sr.extent);
+                }
+        }
+    }
+    // Everything but the eye in the relief's plane goes through the fast kernels.
+    EXPECT_GT(covered, cases * 9 / 10);
+    const long long copies = simd::testing::vertical_still_copies() - copies_before;
+    std::printf("seed %llu: %d of %d marked cases on the fast kernels, %lld still pixels copied by the vertical pass\n",
+                (unsigned long long)seed, covered, cases, copies);
+    EXPECT_GT(copies, 0);
+}
+
+// Large marked reliefs (many bands, the two-thread band pipeline): 256^2 to 700x300 steps and noise marked at a
+// threshold, seen from near and far, one to three threads.
+TEST_F(ReverseModeFixture, LargeMarkedReliefsMatchTheReference) {
+    const uint64_t seed = test::test_seed(80042);
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    PrewarpWorkspace ws_ref, ws_fast;
+    ImageRGBA8 ref, fast;
+    for (int i = 0; i < 12; ++i) {
+        const int w = 256 + int(rng() % 450), h = 256 + int(rng() % 50);
+        const ReliefGeometry g = unit_width_geometry(w);
+        const uint32_t salt = uint32_t(rng());
+        const int kind = i % 3;
+        ReliefTexture t = test::make_test_relief(
+            w, h, 0.0, 0.3,
+            [&](int x, int r) -> double {
+                switch (kind) {
+                    case 0: return hash01(x / 8, r / 8, salt) < 0.5 ? 0.0 : 0.3;  // steps onto still texels
+                    case 1: return 0.3 * hash01(x, r, salt);                      // noise
+                    default: return 0.15 + 0.15 * std::sin(x * 0.05) * std::cos(r * 0.07);
+                }
+            },
+            g);
+        mark_discontinuities(t, 0.3 * (0.05 + U(rng) * 0.5));
+        const double az = (U(rng) - 0.5) * 6.0, el = 0.1 + U(rng) * 1.3, d = 0.6 + U(rng) * 3;
+        const glm::dvec3 eye{d * std::cos(el) * std::sin(az), d * std::cos(el) * std::cos(az), d * std::sin(el)};
+        const PrewarpCoefficients k = compute_coefficients(g, eye);
+        PrewarpOptions o;
+        o.method = Reconstruction::two_pass;
+        o.isa = Isa::generic;
+        o.threads = 1;
+        SCOPED_TRACE("seed " + std::to_string(seed) + " case " + std::to_string(i) + " kind " + std::to_string(kind) +
+                     " " + std::to_string(w) + "x" + std::to_string(h) + " " + k.to_string());
+        prewarp(t, k, o, ws_ref, ref);
+        o.isa = Isa::avx512;
+        for (int threads : {1, 2, 3}) {
+            o.threads = threads;
+            prewarp(t, k, o, ws_fast, fast);
+            ASSERT_EQ(first_difference(ref, fast), "") << "threads " << threads;
+        }
+    }
+}
+
+// Marked reliefs go to the AVX-512 two-pass kernels only: the pipelined reconstruction and the Highway targets keep
+// the reference for them.
+TEST(FastKernelCoverage, MarkedReliefsOnlyOnTheAvx512TwoPassKernels) {
+    ReliefTexture t = test::make_test_relief(
+        32, 32, 0.0, 0.1, [](int x, int) { return x < 16 ? 0.0 : 0.1; }, unit_width_geometry(32));
+    mark_discontinuities(t, 0.05);
+    ASSERT_FALSE(t.breaks.empty());
+    const PrewarpCoefficients k = compute_coefficients(t.geometry, {0.1, 0.2, 2.0});
+    PrewarpOptions o;
+    const PrewarpExtent e = prewarp_extent(t, k, o);
+    for (Isa isa : supported_isas()) {
+        if (isa == Isa::generic) continue;
+        SCOPED_TRACE(isa_name(isa));
+        o.method = Reconstruction::two_pass;
+        EXPECT_EQ(fast_prewarp_covers(isa, t, k, o, e, nullptr), isa == Isa::avx512);
+        o.method = Reconstruction::pipelined;
+        EXPECT_FALSE(fast_prewarp_covers(isa, t, k, o, e, nullptr));
+    }
+    // Marks that do not match the texels (a malformed relief) are left to the reference.
+    t.breaks.pop_back();
+    o.method = Reconstruction::two_pass;
+    EXPECT_FALSE(fast_prewarp_covers(Isa::avx512, t, k, o, e, nullptr));
 }
 
 // Every SIMD target this machine supports with both reconstructions.

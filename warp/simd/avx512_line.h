@@ -1,8 +1,9 @@
 // The fast 1-D forward warp of one line (AVX-512), for warp/simd/avx512_two_pass.cpp and warp/simd/avx512_pipelined.cpp
 // only.
 //
-// It computes exactly what warp_line_to (warp/line_warp.h) computes for float coordinates, always-connected
-// samples and one float attribute or none: the same occlusion-compatible order, the same spans, the same float
+// It computes exactly what warp_line_to (warp/line_warp.h) computes for float coordinates, samples connected unless
+// the span between them was removed (discontinuity marks, apply_row_breaks in warp/simd/avx512_row.h) and one float
+// attribute or none: the same occlusion-compatible order, the same spans, the same float
 // operations per output pixel (no contraction into FMA: the files that include this header are compiled with
 // -ffp-contract=off) and lerp8's integer colour interpolation, hence bit-identical pixels. What changes is how
 // the work is organised:
@@ -743,13 +744,15 @@ inline void warp_part(const LineSoA& s, int first, int end, const LineOut& out, 
     }
 }
 
-// The whole line, as warp_line_to does it with AlwaysConnected: the part before the split from the first sample,
-// the part after it from the last sample, then the span across the split.
+// The whole line, as warp_line_to does it: the part before the split from the first sample, the part after it from
+// the last sample, then the span across the split where samples split - 1 and split are connected (both take part
+// and no discontinuity mark removed the up span keyed split, apply_row_breaks; without marks, connected samples
+// are all pairs of adjacent samples that take part, as with AlwaysConnected).
 template <bool kAttr, class OnRange>
 inline void warp_line_fast(const LineSoA& s, int split, const LineOut& out, OnRange&& on_range) {
     warp_part<-1, kAttr>(s, 0, split, out, on_range);
     warp_part<+1, kAttr>(s, s.n - 1, split - 1, out, on_range);
-    if (split >= 1 && split < s.n && bit(s.valid, split - 1) && bit(s.valid, split)) {
+    if (split >= 1 && split < s.n && (bit(s.up_inc, split) || bit(s.up_dec, split))) {
         int x_lo, x_hi;
         scalar_span<kAttr>(s, split - 1, split, out, x_lo, x_hi);
         if (x_lo <= x_hi) on_range(x_lo, x_hi);

@@ -99,5 +99,46 @@ inline long long prepare_row(const ReliefTexture& t, const fast::FastTables& tab
     return dropped;
 }
 
+// Surface discontinuities along a row (paper section 4.1.1): removes the spans between texels k and k + 1 that the
+// relief marks as not connected (kBreakRight in `row_breaks`, the row's marks), as the reference's RowConnected
+// does in warp_line_to: with the span gone, sample k + 1 (k in the part after the split) starts a run of its own and
+// is drawn as a point, exactly as warp_line_to's raster_point after an unconnected pair. Up span k joins k - 1 and
+// k, down span k joins k + 1 and k; a one-pixel copy (ident) needs its up span. Returns whether the row has a mark.
+inline bool apply_row_breaks(LineSoA& s, const uint8_t* row_breaks) {
+    const int n = s.n;
+    uint64_t carry = 0;  // the mark of the previous word's last texel
+    bool any = false;
+    for (int x = 0; x < n; x += 64) {
+        const __mmask64 lanes = n - x >= 64 ? ~__mmask64(0) : (__mmask64(1) << (n - x)) - 1;
+        const uint64_t b = _mm512_mask_test_epi8_mask(lanes, _mm512_maskz_loadu_epi8(lanes, row_breaks + x),
+                                                      _mm512_set1_epi8(char(kBreakRight)));
+        if (!(b | carry)) continue;
+        any = any || b;
+        const int w = x >> 6;
+        const uint64_t up = (b << 1) | carry;
+        s.up_inc[w] &= ~up;
+        s.up_dec[w] &= ~up;
+        s.ident[w] &= ~up;
+        s.dn_inc[w] &= ~b;
+        s.dn_dec[w] &= ~b;
+        carry = b >> 63;
+    }
+    return any;
+}
+
+// The attribute of every sample of storage row r replaced by its texel's displacement (the reference's
+// tables' displ[q], what row_samples carries as RowAttr::d), for a second warp of the row that carries d instead
+// of v (the columns' discontinuity threshold). Empty and dropped texels get whatever their level holds: they take
+// no part.
+inline void row_displacements(const ReliefTexture& t, const PrewarpTables& tab, int r, LineSoA& s) {
+    const int w = t.width;
+    const uint32_t* src = reinterpret_cast<const uint32_t*>(t.texels.data() + size_t(r) * size_t(w));
+    for (int x = 0; x < w; x += 16) {
+        const __mmask16 m = first_lanes(w - x);
+        const __m512i q = _mm512_srli_epi32(_mm512_maskz_loadu_epi32(m, src + x), 24);
+        _mm512_mask_storeu_ps(s.attr + x, m, _mm512_mask_i32gather_ps(_mm512_setzero_ps(), m, q, tab.displ.data(), 4));
+    }
+}
+
 }  // namespace
 }  // namespace rtm

@@ -49,9 +49,15 @@ struct NoRange {
 // also keeps floor and ceil of v - 0.5 (clamped to [-1, oh]), from which a span's first and last rows follow in
 // integers: raster_span's floor(pa - 0.5) + 1 .. floor(pb - 0.5) or ceil(pb - 0.5) .. ceil(pa - 0.5) - 1 (clamping
 // to integers commutes with floor and ceil).
+//
+// With kThreshold (the relief's discontinuity threshold, TwoPassJob::threshold) a column connects its previous sample
+// to the new one only where |d_prev - d| <= threshold, d being the displacement carried along the row (band rows
+// job.d_offset floats after rv): elsewhere the new sample starts a run, as in the reference's DisplConnected.
+template <bool kThreshold>
 inline void vertical_step(const fast::TwoPassJob& job, const ColumnOut& o, const uint32_t* rc, const float* rv, int x0,
                           int x1) {
     const __m512 half = _mm512_set1_ps(0.5f);
+    const __m512 thr = _mm512_set1_ps(job.threshold);
     const __m512 lo_clamp = _mm512_set1_ps(-1.0f), hi_clamp = _mm512_set1_ps(float(o.oh));
     const __m512i one = _mm512_set1_epi32(1), last = _mm512_set1_epi32(o.oh - 1);
     for (int x = x0; x < x1; x += 16) {
@@ -59,9 +65,16 @@ inline void vertical_step(const fast::TwoPassJob& job, const ColumnOut& o, const
         const __m512 v = _mm512_maskz_loadu_ps(m, rv + x);
         const __m512i c = _mm512_maskz_loadu_epi32(m, rc + x);
         const __mmask16 fin = m & _mm512_test_epi32_mask(c, _mm512_set1_epi32(int(0xFF000000))) & ~nonfinite(v);
-        const __mmask16 pok = fin & job.col_ok[x >> 4];
+        __mmask16 pok = fin & job.col_ok[x >> 4];
         job.col_ok[x >> 4] = fin;
         if (!fin) continue;
+        if constexpr (kThreshold) {
+            // std::abs(d[a] - d[b]) <= threshold, operation by operation (the sign bit cleared).
+            const __m512 d = _mm512_maskz_loadu_ps(m, rv + job.d_offset + x);
+            const __m512 pd = _mm512_load_ps(job.col_d + x);
+            pok = _mm512_mask_cmp_ps_mask(pok, _mm512_abs_ps(_mm512_sub_ps(pd, d)), thr, _CMP_LE_OQ);
+            _mm512_mask_store_ps(job.col_d + x, fin, d);
+        }
         const __m512 pv = _mm512_load_ps(job.col_v + x);
         const __m512i pc = _mm512_load_si512(job.col_c + x);
         const __m512i pf = _mm512_load_si512(job.col_fl + x), pe = _mm512_load_si512(job.col_ce + x);
@@ -110,18 +123,36 @@ void horizontal_steps(const TwoPassJob& job, int s0, int s1, uint32_t* band_c, f
     for (int st = s0; st < s1; ++st) {
         uint32_t* rc = band_c + size_t(st - s0) * stride;
         float* rv = band_v + size_t(st - s0) * stride;
-        dropped += prepare_row(t, *job.tables, job.extent, ow, step_row(job, st), s);
+        const int r = step_row(job, st);
+        dropped += prepare_row(t, *job.tables, job.extent, ow, r, s);
+        // Marked discontinuities: a row with marks loses the spans across them, and its samples are no longer one
+        // connected path, which the backward order requires (warp_line_reverse): such rows go forwards.
+        const bool marked = job.breaks && apply_row_breaks(s, job.breaks + size_t(r) * size_t(t.width));
         std::memset(rc, 0, size_t(ow) * 4);
         LineOut lo{rc, rv, ow};
         lo.copy = job.copy_still;
         // Rows that fold over: backwards, each pixel shaded once (warp_line_reverse). Bumps never folds over and
         // takes the forward order as before.
-        if (job.reverse != KernelChoice::never &&
+        bool backward = false;
+        if (!marked && job.reverse != KernelChoice::never &&
             line_folds_over(s, job.split_u, job.reverse == KernelChoice::always)) {
-            if (warp_line_reverse<true>(s, job.split_u, lo) && !job.redo_forwards) continue;
-            std::memset(rc, 0, size_t(ow) * 4);  // only with redo_forwards (warp_line_reverse says why)
+            backward = warp_line_reverse<true>(s, job.split_u, lo) && !job.redo_forwards;
+            if (!backward) std::memset(rc, 0, size_t(ow) * 4);  // only with redo_forwards (warp_line_reverse says why)
         }
-        warp_line_fast<true>(s, job.split_u, lo, NoRange{});
+        if (!backward) warp_line_fast<true>(s, job.split_u, lo, NoRange{});
+        if (job.threshold > 0.0f) {
+            // The displacement carried along the row (the reference's RowAttr::d): the same warp again with d as
+            // the attribute. The samples' positions, the spans and the order are the same, so every pixel gets the
+            // same t, the same colour again and d interpolated as attr_lerp does. (One line kernel carrying two
+            // attributes would save the second walk; this keeps the kernel as it is.)
+            row_displacements(t, *job.ref_tables, r, s);
+            LineOut ld{rc, rv + job.d_offset, ow};
+            ld.copy = job.copy_still;
+            if (backward)
+                warp_line_reverse<true>(s, job.split_u, ld);
+            else
+                warp_line_fast<true>(s, job.split_u, ld, NoRange{});
+        }
     }
     if (dropped) *job.dropped += dropped;
 }
@@ -146,13 +177,18 @@ void vertical_steps(const TwoPassJob& job, int s0, int s1, const uint32_t* band_
                 job.seam_v[x] = job.col_v[x];
                 job.seam_c[x] = ok_bit(job, x) ? (job.col_c[x] | 0xFF000000u) : 0u;
             }
+            if (job.threshold > 0.0f)
+                for (int x = x0; x < x1; ++x) job.seam_d[x] = job.col_d[x];
             for (int x = x0; x < x1; x += 16) job.col_ok[x >> 4] = 0;
         }
         // The output lines a band ahead, in the direction the part moves (bumps 1024^2: 5.4 -> 5.2 ms; 4 and 16
         // rows ahead measured in between). (Processing the columns in strips of 128 or 256, so that the output
         // lines being written stay in L1, made no difference.)
         o.ahead = st < job.split_v ? 8 : -8;
-        vertical_step(job, o, band_c + size_t(st - s0) * stride, band_v + size_t(st - s0) * stride, x0, x1);
+        if (job.threshold > 0.0f)
+            vertical_step<true>(job, o, band_c + size_t(st - s0) * stride, band_v + size_t(st - s0) * stride, x0, x1);
+        else
+            vertical_step<false>(job, o, band_c + size_t(st - s0) * stride, band_v + size_t(st - s0) * stride, x0, x1);
     }
     if (s1 == h && job.split_v > 0 && job.split_v < h) {
         // The span across the epipole (warp_line_to's seam): the samples at split_v - 1 and split_v, where both
@@ -160,6 +196,7 @@ void vertical_steps(const TwoPassJob& job, int s0, int s1, const uint32_t* band_
         auto rgba = [](uint32_t c) { return Rgba8{uint8_t(c), uint8_t(c >> 8), uint8_t(c >> 16), uint8_t(c >> 24)}; };
         for (int x = x0; x < x1; ++x) {
             if (!(job.seam_c[x] >> 24) || !ok_bit(job, x)) continue;
+            if (job.threshold > 0.0f && !(std::abs(job.seam_d[x] - job.col_d[x]) <= job.threshold)) continue;
             raster_span(job.seam_v[x], rgba(job.seam_c[x]), 0.0f, job.col_v[x], rgba(job.col_c[x]), 0.0f, oh,
                         [&](int y, Rgba8 c, float) { job.out->at(x, oh - 1 - y) = c; });
         }

@@ -1,5 +1,5 @@
 // The fast two-pass pre-warp kernels (AVX-512): the same output as prewarp()'s two-pass lookup-table path
-// (warp/reference/) bit for bit, for reliefs without discontinuity marks and without depth output. Scheduling
+// (warp/reference/) bit for bit, for reliefs with or without discontinuity marks, without depth output. Scheduling
 // (threads, bands of rows) lives in warp/simd/schedule.cpp; these functions only work on the ranges they are given.
 //
 // The two passes are interleaved row by row instead of going through a whole intermediate image. The reference's
@@ -50,6 +50,17 @@ struct TwoPassJob {
     uint16_t* col_ok = nullptr;
     float* seam_v = nullptr;
     uint32_t* seam_c = nullptr;
+    // Surface discontinuities (paper section 4.1.1; the AVX-512 kernels only, fast_prewarp_covers): the relief's
+    // per-texel marks (kBreakRight: no span to the texel on the right; null when it has none), and the threshold
+    // on the displacement carried into the columns (0: none). With a threshold the horizontal pass also carries
+    // each pixel's interpolated displacement d into band rows `d_offset` floats after the v rows, the column state
+    // keeps the last sample's d in col_d (seam_d for the bottom part's last), and two samples of a column are
+    // connected only when |d_a - d_b| <= threshold, as the reference's DisplConnected.
+    const uint8_t* breaks = nullptr;
+    float threshold = 0.0f;
+    std::ptrdiff_t d_offset = 0;
+    float* col_d = nullptr;
+    float* seam_d = nullptr;
     bool copy_still = true;                          // PrewarpOptions::copy_still_runs
     KernelChoice reverse = KernelChoice::automatic;  // FastKernelPolicy::two_pass_reverse
     bool redo_forwards = false;                      // FastKernelPolicy::two_pass_redo_forwards

@@ -169,7 +169,11 @@ bool fast_prewarp_covers(Isa isa, const ReliefTexture& relief, const PrewarpCoef
     if (isa != Isa::avx512 && !(options.method == Reconstruction::two_pass ? !!simd::hwy_two_pass_kernels(isa).vertical
                                                                            : !!simd::hwy_pipelined_kernels(isa).part))
         return false;
-    if (!relief.breaks.empty() || relief.discontinuity_threshold > 0.0) return false;
+    // Discontinuity marks (paper section 4.1.1): the AVX-512 two-pass kernels (TwoPassJob::breaks, threshold).
+    if ((!relief.breaks.empty() || relief.discontinuity_threshold > 0.0) &&
+        !(isa == Isa::avx512 && options.method == Reconstruction::two_pass))
+        return false;
+    if (!relief.breaks.empty() && relief.breaks.size() != relief.texels.size()) return false;
     if (k.side == ViewSide::on_plane || relief.width <= 0 || relief.height <= 0) return false;
     const long long ow = (long long)relief.width + e.left + e.right, oh = (long long)relief.height + e.bottom + e.top;
     if (ow > kMaxSide || oh > kMaxSide || ow * oh > kMaxPixels) return false;
@@ -327,6 +331,12 @@ void vertical_with_still(const StillColumns& sc, int s0, int s1, const uint32_t*
                     }
                     if (sc.floor_ceil_state)
                         for (int x = gx0; x < gx1; ++x) job.col_fl[x] = job.col_ce[x] = y;
+                    // And its carried displacement (a copied pixel is the same whether or not it was connected to
+                    // the one before: a one-pixel span at t = 1 or a point on the same pixel).
+                    if (job.threshold > 0.0f) {
+                        const float* d = band_v + size_t(e - 1 - s0) * stride + job.d_offset;
+                        for (int x = gx0; x < gx1; ++x) job.col_d[x] = d[x];
+                    }
                     // The span across the epipole, drawn by the call that reaches step h.
                     if (e == h) k.vertical(job, h, h, band_c, band_v, stride, gx0, gx1);
                 }
@@ -357,7 +367,13 @@ PrewarpStats fast_two_pass(const simd::TwoPassKernels& kernels, const ReliefText
     ensure_size(ws.mid_color, stride, 4 + band * slots + 2);
     // After the bands: one row scratch (3 source widths of floats) per band slot, for the Highway kernels.
     const size_t scratch_rows = (3 * size_t(w) + size_t(stride) - 1) / size_t(stride);
-    ensure_size(ws.mid_v, stride, 4 + band * slots + int(scratch_rows) * slots + 1);
+    // With a discontinuity threshold (the AVX-512 kernels only), then: the columns' carried displacement, the
+    // seam's, and the bands' (each band's d rows d_offset floats after its v rows).
+    const float threshold = float(relief.discontinuity_threshold);
+    const bool carry_d = threshold > 0.0f;
+    const int d_rows = carry_d ? 2 + band * slots : 0;
+    const size_t d_base = 4 + size_t(band * slots) + scratch_rows * size_t(slots);
+    ensure_size(ws.mid_v, stride, int(d_base) + d_rows + 1);
     uint32_t* mc = aligned64(reinterpret_cast<uint32_t*>(ws.mid_color.pixels.data()));
     float* mv = aligned64(ws.mid_v.pixels.data());
     fast::TwoPassJob job;
@@ -379,6 +395,13 @@ PrewarpStats fast_two_pass(const simd::TwoPassKernels& kernels, const ReliefText
     job.col_fl = reinterpret_cast<int32_t*>(mv + 2 * size_t(stride));
     job.col_ce = reinterpret_cast<int32_t*>(mv + 3 * size_t(stride));
     job.dropped = &dropped;
+    job.breaks = relief.breaks.empty() ? nullptr : relief.breaks.data();
+    if (carry_d) {
+        job.threshold = threshold;
+        job.col_d = mv + d_base * size_t(stride);
+        job.seam_d = job.col_d + stride;
+        job.d_offset = std::ptrdiff_t(d_base + 2 - 4) * stride;  // band_v(slot) + d_offset: band_d(slot)
+    }
     auto band_c = [&](int slot) { return mc + size_t(4 + slot * band) * stride; };
     auto band_v = [&](int slot) { return mv + size_t(4 + slot * band) * stride; };
     const int bands = (h + band - 1) / band;

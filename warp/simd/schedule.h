@@ -2,11 +2,12 @@
 // output is bit-identical to the generic implementation's (tests/warp/fast_kernels_test.cpp compares them pixel by
 // pixel over random reliefs, views, sizes and thread counts).
 //
-// Covered: the lookup-table path (not --exact) with the point filter, without depth output (displ_out), without
-// surface-discontinuity marks or threshold, margins (keep_outliers) or not; on the avx512 target (a CPU with AVX-512
-// F, BW, DQ, VL, VBMI, VNNI and BMI2: the hand-written kernels warp/simd/avx512_*) and on the Highway targets (avx2,
-// sse4, neon, sve: warp/simd/hwy_two_pass.h, warp/simd/hwy_pipelined.h), both reconstructions. Everything else
-// stays with the generic implementation, which remains the reference.
+// Covered: the lookup-table path (not --exact) with the point filter, without depth output (displ_out), margins
+// (keep_outliers) or not; on the avx512 target (a CPU with AVX-512 F, BW, DQ, VL, VBMI, VNNI and BMI2: the
+// hand-written kernels warp/simd/avx512_*) and on the Highway targets (avx2, sse4, neon, sve:
+// warp/simd/hwy_two_pass.h, warp/simd/hwy_pipelined.h), both reconstructions. Surface-discontinuity marks or a
+// threshold (paper section 4.1.1): the avx512 two-pass kernels only (warp/simd/avx512_two_pass.h, TwoPassJob::breaks
+// and threshold). Everything else stays with the generic implementation, which remains the reference.
 //
 // Still texels (PrewarpOptions::copy_still_runs): the row warps copy runs of 16 spans one pixel wide on pixel
 // centres (what zero displacement gives) instead of interpolating them; with the option off they interpolate them
