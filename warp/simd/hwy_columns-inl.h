@@ -88,9 +88,17 @@ HWY_INLINE void StoreLanes(DI di, const ColumnTarget& o, int x, MI on, hn::Vec<D
 
 // Writes the lanes `act` of col to pixels (x + lane, v-row y[lane]): two masked row stores when every lane is on the
 // first active lane's row or the next (and the vector is `full`), else lane by lane.
+// Targets whose BlendedStore is a masked store instruction (AVX2, AVX-512, SVE); elsewhere it loads, blends and
+// stores the whole vector, which costs more than the lanes one by one.
+#if HWY_TARGET == HWY_SSE4 || HWY_TARGET == HWY_NEON
+constexpr bool kMaskedStore = false;
+#else
+constexpr bool kMaskedStore = true;
+#endif
+
 template <class DI, class MI>
 HWY_INLINE void StoreRows(DI di, const ColumnTarget& o, int x, bool full, MI act, hn::Vec<DI> y, hn::Vec<DI> col) {
-    if (full) {
+    if (kMaskedStore && full) {
         HWY_ALIGN int32_t lane_y[HWY_MAX_BYTES / 4];
         hn::Store(y, di, lane_y);
         const int yf = lane_y[hn::FindFirstTrue(di, act)];
