@@ -303,8 +303,8 @@ TEST_P(FastKernels, SteepReliefsAndLongSpansMatch) {
             w, h, 0.0, amp,
             [&](int x, int r) {
                 switch (kind) {
-                    case 0: return amp * hash01(int(x / cell), int(r / cell), salt);          // blocky noise
-                    case 1: return amp * std::abs(std::sin(x * f)) * (r % 7 == 0 ? 0.2 : 1);  // ridges, steps
+                    case 0: return amp * hash01(int(x / cell), int(r / cell), salt);             // blocky noise
+                    case 1: return amp * std::abs(std::sin(x * f)) * (r % 7 == 0 ? 0.2 : 1);     // ridges, steps
                     case 2: return amp * (0.5 + 0.5 * std::sin(x * f) * std::cos(r * f * 0.7));  // bumps
                     default: return (x / int(cell + 2) + r / 3) % 4 == 0 ? amp : 0.0;            // towers
                 }

@@ -40,7 +40,7 @@ PartRows part_rows(const fast::PipelinedJob& job, int part) {
 // One task's buffers, carved out of its float vector in the workspace (PrewarpWorkspace::task_buffers), which grows
 // to the largest relief and output seen and never shrinks (steady state allocates nothing).
 struct PipeBuffers {
-    float* row;  // one row's samples: positions, row coordinates, colours (RowScratch)
+    float* row;    // one row's samples: positions, row coordinates, colours (RowScratch)
     uint32_t* rc;  // one row of pixels: packed colour and final row coordinate
     float* rv;
     // The column state: each column's last sample of the previous row (prev_*) and of the row being warped (cur_*),

@@ -58,7 +58,7 @@ void VerticalSteps(const fast::TwoPassJob& job, int s0, int s1, const uint32_t* 
             }
         }
         ColumnStep(Columns{job.col_v, col_ok, job.col_c}, ColumnTarget{out, ow, oh, 0, oh},
-                          band_c + size_t(st - s0) * stride, band_v + size_t(st - s0) * stride, x0, x1);
+                   band_c + size_t(st - s0) * stride, band_v + size_t(st - s0) * stride, x0, x1);
     }
     if (s1 == h && job.split_v > 0 && job.split_v < h) {
         // The span across the epipole (warp_line_to's seam): the samples at split_v - 1 and split_v, where both
