@@ -3,7 +3,7 @@
 // header's guard toggles with HWY_TARGET_TOGGLE). A row's samples (PrepareRow), its horizontal warp (WarpRow) and
 // the step of the output columns by one row of pixels (ColumnStep), each the reference's arithmetic operation by
 // operation in float (no contraction: the files are compiled with -ffp-contract=off, and SSE4 has no FMA anyway),
-// the colour with lerp8's integer formula. Pixels are written lane by lane (Highway 1.0.3 has no masked scatter).
+// the colour with lerp8's integer formula. The columns' pixels are drawn by warp/simd/hwy_columns-inl.h.
 #if defined(RTM_WARP_SIMD_HWY_ROW_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef RTM_WARP_SIMD_HWY_ROW_INL_H_
 #undef RTM_WARP_SIMD_HWY_ROW_INL_H_
