@@ -43,37 +43,37 @@ struct ColumnTarget {
 // Spans longer than this many pixels (yhi - ylo >= kLongSpan) go row by row over the lanes (ColumnLongSpans).
 constexpr int kLongSpan = 4;
 
-// Colours of raster_span(pv, pc, v, c) at the pixel centres yc (per lane), as raster_span_pixels computes them:
-// t = clamp((yc - pv) * inv, 0, 1) with inv = 1 / (v - pv), lerp8's weight floor(t * 2^14) made odd, at most
-// 2^14 - 1 (also for NaN), each channel (a * (2^14 - w) + b * w + 2^13) >> 14, alpha 255.
-template <class DF>
-struct SpanColour {
-    using DI = hn::RebindToSigned<DF>;
-    using VF = hn::Vec<DF>;
+// lerp8 of packed colours ca -> cb at parameters tt in [0, 1] (per lane): the weight floor(t * 2^14) made odd, at
+// most 2^14 - 1 (also for NaN), each channel (a * (2^14 - w) + b * w + 2^13) >> 14, alpha 255.
+template <class DF, class DI>
+HWY_INLINE hn::Vec<DI> Lerp8At(DF df, DI di, hn::Vec<DF> tt, hn::Vec<DI> ca, hn::Vec<DI> cb) {
     using VI = hn::Vec<DI>;
-    VF pv, inv;
-    VI pc, c;
+    const VI byte = hn::Set(di, 0xFF), w_max = hn::Set(di, 16383);
+    VI wt = hn::Min(hn::Or(hn::ConvertTo(di, hn::Mul(tt, hn::Set(df, 16384.0f))), hn::Set(di, 1)), w_max);
+    wt = hn::IfThenElse(hn::RebindMask(di, hn::Ge(tt, hn::Zero(df))), wt, w_max);
+    const VI round = hn::Set(di, 8192);
+    auto channel = [&](int shift) {
+        const VI a = hn::And(hn::ShiftRightSame(ca, shift), byte);
+        const VI b = hn::And(hn::ShiftRightSame(cb, shift), byte);
+        // a * (2^14 - w) + b * w == (a << 14) + (b - a) * w, exactly (below 2^23): one multiplication, not two.
+        return hn::ShiftRight<14>(hn::Add(hn::Add(hn::ShiftLeft<14>(a), hn::Mul(hn::Sub(b, a), wt)), round));
+    };
+    return hn::Or(hn::Or(channel(0), hn::ShiftLeft<8>(channel(8))),
+                  hn::Or(hn::ShiftLeft<16>(channel(16)), hn::Set(di, int32_t(0xFF000000u))));
+}
 
-    HWY_INLINE VI At(VF yc) const {
-        const DF df;
-        const DI di;
-        const VF zero = hn::Zero(df), one = hn::Set(df, 1.0f);
-        const VI byte = hn::Set(di, 0xFF), w_max = hn::Set(di, 16383);
-        VF tt = hn::Mul(hn::Sub(yc, pv), inv);
-        tt = hn::IfThenElse(hn::Lt(tt, zero), zero, hn::IfThenElse(hn::Lt(one, tt), one, tt));  // std::clamp
-        VI wt = hn::Min(hn::Or(hn::ConvertTo(di, hn::Mul(tt, hn::Set(df, 16384.0f))), hn::Set(di, 1)), w_max);
-        wt = hn::IfThenElse(hn::RebindMask(di, hn::Ge(tt, zero)), wt, w_max);
-        const VI round = hn::Set(di, 8192);
-        auto channel = [&](int shift) {
-            const VI a = hn::And(hn::ShiftRightSame(pc, shift), byte);
-            const VI b = hn::And(hn::ShiftRightSame(c, shift), byte);
-            // a * (2^14 - w) + b * w == (a << 14) + (b - a) * w, exactly (below 2^23): one multiplication, not two.
-            return hn::ShiftRight<14>(hn::Add(hn::Add(hn::ShiftLeft<14>(a), hn::Mul(hn::Sub(b, a), wt)), round));
-        };
-        return hn::Or(hn::Or(channel(0), hn::ShiftLeft<8>(channel(8))),
-                      hn::Or(hn::ShiftLeft<16>(channel(16)), hn::Set(di, int32_t(0xFF000000u))));
-    }
-};
+// Colours of raster_span(pv, pc, v, c) at the pixel centres yc (per lane), as raster_span_pixels computes them:
+// t = clamp((yc - pv) * inv, 0, 1) with inv = 1 / (v - pv), then lerp8. (A function, not a struct of vectors: SVE's
+// vectors are sizeless and cannot be members.)
+template <class DF>
+HWY_INLINE hn::Vec<hn::RebindToSigned<DF>> SpanColour(DF df, hn::Vec<DF> yc, hn::Vec<DF> pv, hn::Vec<DF> inv,
+                                                      hn::Vec<hn::RebindToSigned<DF>> pc,
+                                                      hn::Vec<hn::RebindToSigned<DF>> c) {
+    const hn::Vec<DF> zero = hn::Zero(df), one = hn::Set(df, 1.0f);
+    hn::Vec<DF> tt = hn::Mul(hn::Sub(yc, pv), inv);
+    tt = hn::IfThenElse(hn::Lt(tt, zero), zero, hn::IfThenElse(hn::Lt(one, tt), one, tt));  // std::clamp
+    return Lerp8At(df, hn::RebindToSigned<DF>(), tt, pc, c);
+}
 
 // Writes the lanes `on` of col to pixels (x + lane, v-row y[lane]), one at a time.
 template <class DI, class MI>
@@ -122,7 +122,9 @@ HWY_INLINE void StoreRows(DI di, const ColumnTarget& o, int x, bool full, MI act
 // Only for `full` vectors.
 template <class DF, class MI>
 HWY_NOINLINE void ColumnLongSpans(DF df, const ColumnTarget& o, int x, MI lng, hn::Vec<hn::RebindToSigned<DF>> ylo,
-                                  hn::Vec<hn::RebindToSigned<DF>> yhi, const SpanColour<DF>& sc, hn::Vec<DF> v) {
+                                  hn::Vec<hn::RebindToSigned<DF>> yhi, hn::Vec<DF> pv, hn::Vec<DF> inv,
+                                  hn::Vec<hn::RebindToSigned<DF>> pc, hn::Vec<hn::RebindToSigned<DF>> c,
+                                  hn::Vec<DF> v) {
     const hn::RebindToSigned<DF> di;
     const size_t N = hn::Lanes(df);
     HWY_ALIGN int32_t ilo[HWY_MAX_BYTES / 4], ihi[HWY_MAX_BYTES / 4], on[HWY_MAX_BYTES / 4];
@@ -149,10 +151,10 @@ HWY_NOINLINE void ColumnLongSpans(DF df, const ColumnTarget& o, int x, MI lng, h
             HWY_ALIGN uint32_t fpc[HWY_MAX_BYTES / 4], fc[HWY_MAX_BYTES / 4];
             HWY_ALIGN int32_t al[HWY_MAX_BYTES / 4];
             const hn::RebindToUnsigned<DF> du;
-            hn::Store(sc.pv, df, fpv);
+            hn::Store(pv, df, fpv);
             hn::Store(v, df, fv);
-            hn::Store(hn::BitCast(du, sc.pc), du, fpc);
-            hn::Store(hn::BitCast(du, sc.c), du, fc);
+            hn::Store(hn::BitCast(du, pc), du, fpc);
+            hn::Store(hn::BitCast(du, c), du, fc);
             hn::Store(hn::VecFromMask(di, alone), di, al);
             auto rgba = [](uint32_t u) {
                 return Rgba8{uint8_t(u), uint8_t(u >> 8), uint8_t(u >> 16), uint8_t(u >> 24)};
@@ -175,7 +177,7 @@ HWY_NOINLINE void ColumnLongSpans(DF df, const ColumnTarget& o, int x, MI lng, h
     hn::Vec<DF> yc = hn::Set(df, float(ymin) + 0.5f);  // steps by 1 exactly
     for (int yy = ymin; yy <= ymax; ++yy) {
         const auto act = hn::And(rowwise, hn::And(hn::Lt(ylo, hn::Set(di, yy + 1)), hn::Gt(yhi, hn::Set(di, yy - 1))));
-        hn::BlendedStore(sc.At(yc), act, di, reinterpret_cast<int32_t*>(o.vline(yy) + x));
+        hn::BlendedStore(SpanColour(df, yc, pv, inv, pc, c), act, di, reinterpret_cast<int32_t*>(o.vline(yy) + x));
         yc = hn::Add(yc, hn::Set(df, 1.0f));
     }
 }
@@ -207,12 +209,12 @@ HWY_INLINE void ColumnDraw(DF df, const ColumnTarget& o, int x, bool full, MF fi
     const auto pointi = hn::RebindMask(di, point), spani = hn::RebindMask(di, span);
     const VI ylo = hn::ConvertTo(di, hn::IfThenElse(point, v, lo));
     const VI yhi = hn::IfThenElse(pointi, ylo, hn::ConvertTo(di, hi));
-    const SpanColour<DF> sc{pv, hn::Div(one, hn::Sub(v, pv)), pc, c};
+    const VF inv = hn::Div(one, hn::Sub(v, pv));
     auto act = todo;
     if (full) {
         const auto lng = hn::And(spani, hn::Gt(hn::Sub(yhi, ylo), hn::Set(di, kLongSpan - 1)));
         if (!hn::AllFalse(di, lng)) {
-            ColumnLongSpans(df, o, x, lng, ylo, yhi, sc, v);
+            ColumnLongSpans(df, o, x, lng, ylo, yhi, pv, inv, pc, c, v);
             act = hn::AndNot(lng, act);
             if (hn::AllFalse(di, act)) return;
         }
@@ -222,12 +224,12 @@ HWY_INLINE void ColumnDraw(DF df, const ColumnTarget& o, int x, bool full, MF fi
     const VI cpoint = hn::Or(c, hn::Set(di, int32_t(0xFF000000u)));
     VI y = ylo;
     VF yc = hn::Add(hn::ConvertTo(df, ylo), half);
-    StoreRows(di, o, x, full, act, y, hn::IfThenElse(pointi, cpoint, sc.At(yc)));
+    StoreRows(di, o, x, full, act, y, hn::IfThenElse(pointi, cpoint, SpanColour(df, yc, pv, inv, pc, c)));
     act = hn::And(act, hn::And(spani, hn::Lt(y, yhi)));
     while (!hn::AllFalse(di, act)) {
         y = hn::Add(y, hn::Set(di, 1));
         yc = hn::Add(yc, one);
-        StoreRows(di, o, x, full, act, y, sc.At(yc));
+        StoreRows(di, o, x, full, act, y, SpanColour(df, yc, pv, inv, pc, c));
         act = hn::And(act, hn::Lt(y, yhi));
     }
 }

@@ -49,25 +49,6 @@ struct RowOut {
     float* v;
 };
 
-// Colour (lerp8's integer formula) and carried row coordinate (attr_lerp) at parameters tt in [0, 1] of spans from
-// (ca, va) to (cb, vb), as raster_span_pixels computes them.
-template <class DF, class DI>
-HWY_INLINE hn::Vec<DI> SpanColourAt(DF df, DI di, hn::Vec<DF> tt, hn::Vec<DI> ca, hn::Vec<DI> cb) {
-    using VI = hn::Vec<DI>;
-    const VI byte = hn::Set(di, 0xFF), w_max = hn::Set(di, 16383);
-    VI wt = hn::Min(hn::Or(hn::ConvertTo(di, hn::Mul(tt, hn::Set(df, 16384.0f))), hn::Set(di, 1)), w_max);
-    wt = hn::IfThenElse(hn::RebindMask(di, hn::Ge(tt, hn::Zero(df))), wt, w_max);
-    const VI round = hn::Set(di, 8192);
-    auto channel = [&](int shift) {
-        const VI p = hn::And(hn::ShiftRightSame(ca, shift), byte);
-        const VI q = hn::And(hn::ShiftRightSame(cb, shift), byte);
-        // p * (2^14 - w) + q * w == (p << 14) + (q - p) * w, exactly (below 2^23): one multiplication, not two.
-        return hn::ShiftRight<14>(hn::Add(hn::Add(hn::ShiftLeft<14>(p), hn::Mul(hn::Sub(q, p), wt)), round));
-    };
-    return hn::Or(hn::Or(channel(0), hn::ShiftLeft<8>(channel(8))),
-                  hn::Or(hn::ShiftLeft<16>(channel(16)), hn::Set(di, int32_t(0xFF000000u))));
-}
-
 // The spans of lanes `span` (pa != pb, from sample a to sample b) into row `out`: each lane's pixels lo .. hi as
 // raster_span computes them (centres in (pa, pb] or [pb, pa), clamped to [0, n_out)), colour by lerp8's integer
 // formula and the carried row coordinate by attr_lerp at each centre. The lanes are consecutive samples whose
@@ -129,7 +110,7 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
             const auto ixi = hn::IndicesFromVec(di, own);
             VF tt = hn::Mul(hn::Sub(xc, hn::TableLookupLanes(pa, ix)), hn::TableLookupLanes(inv, ix));
             tt = hn::IfThenElse(hn::Lt(tt, zero), zero, hn::IfThenElse(hn::Lt(one, tt), one, tt));  // std::clamp
-            const VI col = SpanColourAt(df, di, tt, hn::TableLookupLanes(ca, ixi), hn::TableLookupLanes(cb, ixi));
+            const VI col = Lerp8At(df, di, tt, hn::TableLookupLanes(ca, ixi), hn::TableLookupLanes(cb, ixi));
             const VF v = hn::Add(hn::Mul(hn::TableLookupLanes(va, ix), hn::Sub(one, tt)),
                                  hn::Mul(hn::TableLookupLanes(vb, ix), tt));  // attr_lerp, no contraction
             if (j + N <= len) {
@@ -156,7 +137,7 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
     while (!hn::AllFalse(di, on)) {
         VF tt = hn::Mul(hn::Sub(xc, pa), inv);
         tt = hn::IfThenElse(hn::Lt(tt, zero), zero, hn::IfThenElse(hn::Lt(one, tt), one, tt));  // std::clamp
-        const VI col = SpanColourAt(df, di, tt, ca, cb);
+        const VI col = Lerp8At(df, di, tt, ca, cb);
         const VF v = hn::Add(hn::Mul(va, hn::Sub(one, tt)), hn::Mul(vb, tt));  // attr_lerp, no contraction
         hn::Store(x, di, lane_x);
         hn::Store(col, di, lane_c);
