@@ -278,6 +278,60 @@ TEST_P(FastKernels, LargeReliefsAndManyThreadsMatch) {
     }
 }
 
+TEST_P(FastKernels, SteepReliefsAndLongSpansMatch) {
+    // The paths of the Highway kernels that only wide, steep reliefs reach (warp/simd/hwy_columns-inl.h,
+    // hwy_row-inl.h, hwy_pipelined.cpp): column spans of 5 pixels and more drawn row by row over the lanes, with
+    // lanes far apart from the others alone; columns that receive several pixels from a row (foldovers), the
+    // pipelined kernel's runs of groups cut where a group writes over the pending run; rows whose spans are drawn a
+    // vector of pixels at a time; row set-up with gathers, and widths that are not a multiple of the lanes (the
+    // last vector of every task lane by lane). Relief widths 48 to 300, heights of a fifth to 1.5 times the width,
+    // eyes near and far, the epipole inside and outside.
+    const uint64_t seed = test::test_seed(80006);
+    std::mt19937_64 rng(seed);
+    std::printf("seed %llu\n", (unsigned long long)seed);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    PrewarpWorkspace ws_ref, ws_fast;
+    ImageRGBA8 ref, fast;
+    const int cases = std::max(4, test::sweep_cases(2000) / 20);
+    for (int i = 0; i < cases; ++i) {
+        const int w = 48 + int(rng() % 253), h = std::max(8, int(w * (0.2 + U(rng) * 1.3)));
+        const ReliefGeometry g = unit_width_geometry(w);
+        const uint32_t salt = uint32_t(rng());
+        const int kind = int(rng() % 4);
+        const double amp = 0.05 + U(rng) * 0.6, f = 0.02 + U(rng) * 0.3, cell = 1 + int(rng() % 6);
+        const ReliefTexture t = test::make_test_relief(
+            w, h, 0.0, amp,
+            [&](int x, int r) {
+                switch (kind) {
+                    case 0: return amp * hash01(int(x / cell), int(r / cell), salt);             // blocky noise
+                    case 1: return amp * std::abs(std::sin(x * f)) * (r % 7 == 0 ? 0.2 : 1);     // ridges, steps
+                    case 2: return amp * (0.5 + 0.5 * std::sin(x * f) * std::cos(r * f * 0.7));  // bumps
+                    default: return (x / int(cell + 2) + r / 3) % 4 == 0 ? amp : 0.0;            // towers
+                }
+            },
+            g);
+        const double az = (U(rng) - 0.5) * 3.0, el = 0.05 + U(rng) * 1.45, d = 0.3 + U(rng) * (rng() % 2 ? 1 : 6);
+        const glm::dvec3 eye{d * std::cos(el) * std::sin(az) + (U(rng) - 0.5) * 0.8,
+                             d * std::cos(el) * std::cos(az) * 0.5 + (U(rng) - 0.5) * 0.8, d * std::sin(el)};
+        const PrewarpCoefficients k = compute_coefficients(g, eye);
+        PrewarpOptions o;
+        o.method = method();
+        o.keep_outliers = i % 2 == 0;
+        o.isa = Isa::generic;
+        o.threads = 1;
+        SCOPED_TRACE("seed " + std::to_string(seed) + " case " + std::to_string(i) + " " + std::to_string(w) + "x" +
+                     std::to_string(h) + " kind " + std::to_string(kind) + " " + k.to_string());
+        const PrewarpStats sr = prewarp(t, k, o, ws_ref, ref);
+        for (int threads : {1, 2}) {
+            o.isa = isa();
+            o.threads = threads;
+            const PrewarpStats sf = prewarp(t, k, o, ws_fast, fast);
+            ASSERT_EQ(first_difference(ref, fast), "") << "threads " << threads;
+            ASSERT_EQ(sf.dropped, sr.dropped);
+        }
+    }
+}
+
 TEST_P(FastKernels, ExtremeConfigurationsMatch) {
     // World scales from 1e-4 to 1e4, eyes a hair above the plane, far outside, grazing, below the highest texels,
     // huge and tiny coefficients: positions far outside the output, non-finite ones, spans of zero length.

@@ -11,6 +11,7 @@
 #include <cstring>
 #include <limits>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "warp/line_warp.h"
@@ -39,21 +40,24 @@ PartRows part_rows(const fast::PipelinedJob& job, int part) {
 // One task's buffers, carved out of its float vector in the workspace (PrewarpWorkspace::task_buffers), which grows
 // to the largest relief and output seen and never shrinks (steady state allocates nothing).
 struct PipeBuffers {
-    float* row;  // one row's samples: positions, row coordinates, colours (RowScratch)
-    uint32_t *rc, *col_c, *m_c;
-    float *rv, *col_v, *m_v;
-    int32_t *col_ok, *m_ok, *multi_flag;
-    int32_t* multi;  // the columns that received more than one pixel from the row, n_multi of them
-    int n_multi = 0;
+    float* row;    // one row's samples: positions, row coordinates, colours (RowScratch)
+    uint32_t* rc;  // one row of pixels: packed colour and final row coordinate
+    float* rv;
+    // The column state: each column's last sample of the previous row (prev_*) and of the row being warped (cur_*),
+    // ok -1 where the column has one and 0 elsewhere.
+    uint32_t *prev_c, *cur_c;
+    float *prev_v, *cur_v;
+    int32_t *prev_ok, *cur_ok;
 };
 
 PipeBuffers task_buffers(const fast::PipelinedJob& job) {
     const int w = job.relief->width, ow = job.out->width;
     std::vector<float>& v = (*job.task_buffers)[size_t(job.next_task->fetch_add(1))];
-    // Arrays are read up to a whole vector past the output width (ColumnStep): 64 lanes is SVE's most. Sizes are
-    // rounded up to 64, so that outputs a few pixels wider (the next view's margins) fit.
+    // Arrays are read and written (BlendedStore: on SSE4 and NEON a whole vector) up to a whole vector past the
+    // output width: 64 lanes is SVE's most. Sizes are rounded up to 64, so that outputs a few pixels wider (the next
+    // view's margins) fit.
     const size_t n = (size_t(ow) + 63) / 64 * 64 + 64, nr = 3 * ((size_t(w) + 63) / 64 * 64);
-    if (v.size() < nr + 10 * n) v.resize(nr + 10 * n);
+    if (v.size() < nr + 8 * n) v.resize(nr + 8 * n);
     float* p = v.data();
     PipeBuffers b;
     b.row = p;
@@ -62,9 +66,8 @@ PipeBuffers task_buffers(const fast::PipelinedJob& job) {
         q = reinterpret_cast<std::remove_reference_t<decltype(q)>>(p);
         p += n;
     };
-    take(b.rc), take(b.col_c), take(b.m_c), take(b.rv), take(b.col_v), take(b.m_v);
-    take(b.col_ok), take(b.m_ok), take(b.multi_flag), take(b.multi);
-    std::fill(b.multi_flag, b.multi_flag + n, 0);
+    take(b.rc), take(b.rv), take(b.prev_c), take(b.cur_c), take(b.prev_v), take(b.cur_v);
+    take(b.prev_ok), take(b.cur_ok);
     return b;
 }
 
@@ -88,6 +91,72 @@ struct RowRange {
     float lo, hi;
 };
 
+// What the reference's put() does for each pixel the row warp emits, for the pixels xa .. xb of one group (WarpRow's
+// range) at once, clipped to columns [x0, x1): connect the column's sample of the previous row to the new one
+// (raster_span along the column) or start a run with it (raster_point), drawing only the output rows of `o`, and
+// make the new sample the column's current one. A column that receives several pixels from a row (a foldover along
+// the row) is handed each of them in the row warp's order, each drawn from the previous row's sample, as the
+// reference draws them.
+struct Emitter {
+    PipeBuffers& b;
+    ColumnTarget o;
+    int x0, x1;
+
+    void operator()(int xa, int xb) const {
+        const hn::ScalableTag<float> df;
+        const hn::RebindToSigned<decltype(df)> di;
+        using VF = hn::Vec<decltype(df)>;
+        using VI = hn::Vec<decltype(di)>;
+        const int N = int(hn::Lanes(df));
+        xa = std::max(xa, x0);
+        xb = std::min(xb, x1 - 1);
+        for (int x = xa; x <= xb; x += N) {
+            const auto m = hn::FirstN(df, size_t(xb - x + 1));
+            const auto mi = hn::RebindMask(di, m);
+            const VF v = hn::IfThenElseZero(m, hn::LoadU(df, b.rv + x));  // (SSE4's MaskedLoad needs alignment)
+            const auto fin = hn::And(m, hn::IsFinite(v));  // the reference skips emissions with a non-finite row
+            if (hn::AllFalse(df, fin)) continue;           // coordinate
+            const auto fini = hn::RebindMask(di, fin);
+            const VI c = hn::IfThenElseZero(mi, hn::LoadU(di, reinterpret_cast<const int32_t*>(b.rc + x)));
+            const auto pok = hn::And(fin, hn::RebindMask(df, hn::Ne(hn::LoadU(di, b.prev_ok + x), hn::Zero(di))));
+            const VF pv = hn::LoadU(df, b.prev_v + x);
+            const VI pc = hn::LoadU(di, reinterpret_cast<const int32_t*>(b.prev_c + x));
+            hn::BlendedStore(v, fin, df, b.cur_v + x);
+            hn::BlendedStore(c, fini, di, reinterpret_cast<int32_t*>(b.cur_c + x));
+            hn::BlendedStore(hn::Set(di, -1), fini, di, b.cur_ok + x);
+            ColumnDraw(df, o, x, x + N <= x1, fin, pok, pv, pc, v, c);
+        }
+    }
+};
+
+// WarpRow's range for the pipelined kernel: the groups of pixels of a row go to the Emitter in runs as long as
+// possible. A group that extends the pending run (adjacent to it) joins it; any other (apart from it, or writing
+// over its pixels: a foldover along the row) hands the pending run to the Emitter first, before the group's pixels
+// are written. Each column of a run was written once since its run began, and the runs reach the Emitter in the
+// row warp's order, so every pixel is drawn as the reference draws it, with one Emitter call for most rows in
+// place of one per group (bumps 256^2 and 1024^2: 0.93 -> 0.80 ms and 16.8 -> 14.1 ms of CPU on avx2).
+struct Coalescer {
+    const Emitter& emit;
+    mutable int pa = 0, pb = -1;  // the pending run (pa > pb: none)
+
+    void before(int xa, int xb) const {
+        if (pa > pb) {
+            pa = xa, pb = xb;
+        } else if (xb == pa - 1) {
+            pa = xa;
+        } else if (xa == pb + 1) {
+            pb = xb;
+        } else {
+            emit(pa, pb);
+            pa = xa, pb = xb;
+        }
+    }
+    void done() const {
+        if (pa <= pb) emit(pa, pb);
+        pa = 0, pb = -1;
+    }
+};
+
 // Rows [r0, r1) of part `part` (counted in the part's order), columns [x0, x1), drawn into `pixels` (an image of
 // the output's size; only the part's output rows). A task that does not start at its part's first row starts from
 // the row before it, warped without drawing: the column state after it is the one the reference carries into the
@@ -100,11 +169,9 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
     const PartRows p = part_rows(job, part);
     PipeBuffers b = task_buffers(job);
     const RowScratch s{b.row, b.row + w, reinterpret_cast<uint32_t*>(b.row + 2 * size_t(w))};
-    const Columns col{b.col_v, b.col_ok, b.col_c};
     uint32_t* rc = b.rc;
     float* rv = b.rv;
-    int32_t* flag = b.multi_flag;
-    std::fill(col.ok + x0, col.ok + x1, 0);
+    std::fill(b.prev_ok + x0, b.prev_ok + x1, 0);
     RowRange range{std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
     // Row j, drawing into v-rows [ya, yb); returns the texels dropped.
     auto row = [&](int j, int ya, int yb) {
@@ -115,43 +182,12 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
                     range.lo = std::min(range.lo, s.v[x]);
                     range.hi = std::max(range.hi, s.v[x]);
                 }
-        std::memset(rc, 0, size_t(ow) * 4);
-        b.n_multi = 0;
-        // Every pixel written has alpha 255: one written before in this row marks a column with more than one.
-        WarpRow(s.pos, s.color, s.v, w, job.split_u, ow, [&](int x, uint32_t c, float v) {
-            if ((rc[x] >> 24) && !flag[x]) {
-                flag[x] = 1;
-                b.multi[b.n_multi++] = x;
-            }
-            rc[x] = c;
-            rv[x] = v;
-        });
-        ColumnStep<true>(col, ColumnTarget{pixels, ow, oh, ya, yb}, rc, rv, flag, x0, x1);
-        if (b.n_multi == 0) return dropped;
-        // The columns with more than one pixel: every pixel in the row warp's order, each from the column's
-        // sample of the previous row (the reference's row_put); the column keeps the last finite one.
-        for (int i = 0; i < b.n_multi; ++i) b.m_ok[b.multi[i]] = 0;
-        WarpRow(s.pos, s.color, s.v, w, job.split_u, ow, [&](int x, uint32_t c, float v) {
-            if (!flag[x] || x < x0 || x >= x1 || !std::isfinite(v)) return;
-            auto put = [&](int y, Rgba8 cc, float) {
-                if (y >= ya && y < yb) pixels[size_t(oh - 1 - y) * size_t(ow) + size_t(x)] = pack(cc);
-            };
-            if (col.ok[x])
-                raster_span(col.v[x], unpack(col.c[x]), 0.0f, v, unpack(c), 0.0f, oh, put);
-            else
-                raster_point(v, unpack(c), 0.0f, oh, put);
-            b.m_v[x] = v;
-            b.m_c[x] = c;
-            b.m_ok[x] = -1;
-        });
-        for (int i = 0; i < b.n_multi; ++i) {
-            const int x = b.multi[i];
-            flag[x] = 0;
-            if (x < x0 || x >= x1) continue;
-            col.v[x] = b.m_v[x];
-            col.c[x] = b.m_c[x];
-            col.ok[x] = b.m_ok[x];
-        }
+        std::fill(b.cur_ok + x0, b.cur_ok + x1, 0);
+        const Emitter emit{b, ColumnTarget{pixels, ow, oh, ya, yb}, x0, x1};
+        WarpRow(s.pos, s.color, s.v, w, job.split_u, ow, RowOut{rc, rv}, Coalescer{emit});
+        std::swap(b.prev_c, b.cur_c);
+        std::swap(b.prev_v, b.cur_v);
+        std::swap(b.prev_ok, b.cur_ok);
         return dropped;
     };
     const int ja = p.first + p.step * r0, jb = p.first + p.step * r1;
@@ -163,8 +199,8 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
     }
     if (r1 == p.count)
         for (int x = x0; x < x1; ++x) {
-            job.seam_v[part][x] = col.v[x];
-            job.seam_c[part][x] = col.ok[x] ? (col.c[x] | 0xFF000000u) : 0u;
+            job.seam_v[part][x] = b.prev_v[x];
+            job.seam_c[part][x] = b.prev_ok[x] ? (b.prev_c[x] | 0xFF000000u) : 0u;
         }
     if (dropped) *job.dropped += dropped;
     return range;

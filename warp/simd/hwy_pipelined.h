@@ -5,12 +5,14 @@
 // (warp/simd/schedule.cpp): the output of prewarp()'s pipelined lookup-table path bit for bit.
 //
 // Each row of a part is set up and warped horizontally as in the two-pass kernels (warp/simd/hwy_row-inl.h:
-// PrepareRow, WarpRow) into a row of pixels, and every column that received one pixel from the row steps at once,
-// the columns in the lanes of vectors (ColumnStep, drawing only the part's output rows). A column that received
-// more than one pixel from the row (a foldover along the row) draws every one of them in the row warp's order, each
-// from the column's last sample of the previous row, as the reference does: the row is warped a second time and
-// those columns' pixels are drawn one by one (raster_span / raster_point). No reverse mode
-// (FastKernelPolicy::pipelined_reverse is the AVX-512 kernel's).
+// PrepareRow, WarpRow) into a row of pixels, and the pixels reach the columns group by group in the row warp's order,
+// as the reference's put() does, each drawn from the column's sample of the previous row (raster_span along the
+// column, or raster_point), the columns in the lanes of vectors (ColumnDraw, warp/simd/hwy_columns-inl.h, drawing
+// only the part's output rows). Groups are handed over in runs: a group that extends the pending run joins it, any
+// other (apart from it, or writing over its pixels: a foldover along the row) hands the pending run over first, so a
+// row without foldovers is one run and a column that receives several pixels from a row (a foldover) draws every
+// one of them, in order. No reverse mode (FastKernelPolicy::pipelined_reverse is the AVX-512 kernel's): on
+// foldover-heavy reliefs the forward painter's long column spans, drawn row by row over the lanes, are the cost.
 #pragma once
 
 #include "warp/isa.h"

@@ -32,10 +32,7 @@ void HorizontalSteps(const fast::TwoPassJob& job, int s0, int s1, uint32_t* band
         uint32_t* rc = band_c + size_t(st - s0) * stride;
         float* rv = band_v + size_t(st - s0) * stride;
         std::memset(rc, 0, size_t(ow) * 4);
-        WarpRow(s.pos, s.color, s.v, w, job.split_u, ow, [rc, rv](int x, uint32_t c, float v) {
-            rc[x] = c;
-            rv[x] = v;
-        });
+        WarpRow(s.pos, s.color, s.v, w, job.split_u, ow, RowOut{rc, rv});
     }
     if (dropped) *job.dropped += dropped;
 }
@@ -60,8 +57,8 @@ void VerticalSteps(const fast::TwoPassJob& job, int s0, int s1, const uint32_t* 
                 col_ok[x] = 0;
             }
         }
-        ColumnStep<false>(Columns{job.col_v, col_ok, job.col_c}, ColumnTarget{out, ow, oh, 0, oh},
-                          band_c + size_t(st - s0) * stride, band_v + size_t(st - s0) * stride, nullptr, x0, x1);
+        ColumnStep(Columns{job.col_v, col_ok, job.col_c}, ColumnTarget{out, ow, oh, 0, oh},
+                   band_c + size_t(st - s0) * stride, band_v + size_t(st - s0) * stride, x0, x1);
     }
     if (s1 == h && job.split_v > 0 && job.split_v < h) {
         // The span across the epipole (warp_line_to's seam): the samples at split_v - 1 and split_v, where both

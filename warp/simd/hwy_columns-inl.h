@@ -1,0 +1,240 @@
+// The vertical work of the Highway kernels (warp/simd/hwy_two_pass.cpp, warp/simd/hwy_pipelined.cpp), compiled once
+// per target (Highway's -inl.h convention, included from warp/simd/hwy_row-inl.h): N adjacent output columns in the
+// lanes of one vector, each lane computing what raster_span / raster_point (warp/line_warp.h, the naive reference)
+// computes for its column, operation by operation in float (no contraction), the colour with lerp8's integer formula.
+//
+// Where the pixels go (the structure of the hand-written AVX-512 kernels, warp/simd/avx512_columns.h, over Highway
+// 1.0.3, which has no masked scatter):
+// - short spans and points (at most 4 pixels a lane): the first pixel of every lane, then the second of those that
+//   have one, ...; each step writes its lanes with two masked row stores (BlendedStore) when they all lie on the
+//   first active lane's row or the next (neighbouring columns mostly do), lane by lane otherwise;
+// - long spans (5 pixels or more, common where rows fold over) go row by row over the rows they share, one masked
+//   store a row for all of them; lanes far apart from the others go alone through raster_span_pixels.
+// Masked stores are used only where the whole vector lies in the caller's columns [x0, x1) (`full`): on SSE4 and
+// NEON BlendedStore loads, blends and stores the whole vector, which must not touch another task's columns or run
+// past the end of a row. Elsewhere (the last vector of a task) every pixel is written lane by lane.
+#if defined(RTM_WARP_SIMD_HWY_COLUMNS_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef RTM_WARP_SIMD_HWY_COLUMNS_INL_H_
+#undef RTM_WARP_SIMD_HWY_COLUMNS_INL_H_
+#else
+#define RTM_WARP_SIMD_HWY_COLUMNS_INL_H_
+#endif
+
+#include <hwy/highway.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+
+#include "warp/image.h"
+#include "warp/line_warp.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace rtm::simd::HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+// Where a column step draws: an image ow x oh (v-row y in storage row oh - 1 - y), only v-rows [y0, y1).
+struct ColumnTarget {
+    uint32_t* pixels;
+    int ow, oh, y0, y1;
+    uint32_t* vline(int y) const { return pixels + size_t(oh - 1 - y) * size_t(ow); }
+};
+
+// Spans longer than this many pixels (yhi - ylo >= kLongSpan) go row by row over the lanes (ColumnLongSpans).
+constexpr int kLongSpan = 4;
+
+// lerp8 of packed colours ca -> cb at parameters tt in [0, 1] (per lane): the weight floor(t * 2^14) made odd, at
+// most 2^14 - 1 (also for NaN), each channel (a * (2^14 - w) + b * w + 2^13) >> 14, alpha 255.
+template <class DF, class DI>
+HWY_INLINE hn::Vec<DI> Lerp8At(DF df, DI di, hn::Vec<DF> tt, hn::Vec<DI> ca, hn::Vec<DI> cb) {
+    using VI = hn::Vec<DI>;
+    const VI byte = hn::Set(di, 0xFF), w_max = hn::Set(di, 16383);
+    VI wt = hn::Min(hn::Or(hn::ConvertTo(di, hn::Mul(tt, hn::Set(df, 16384.0f))), hn::Set(di, 1)), w_max);
+    wt = hn::IfThenElse(hn::RebindMask(di, hn::Ge(tt, hn::Zero(df))), wt, w_max);
+    const VI round = hn::Set(di, 8192);
+    auto channel = [&](int shift) {
+        const VI a = hn::And(hn::ShiftRightSame(ca, shift), byte);
+        const VI b = hn::And(hn::ShiftRightSame(cb, shift), byte);
+        // a * (2^14 - w) + b * w == (a << 14) + (b - a) * w, exactly (below 2^23): one multiplication, not two.
+        return hn::ShiftRight<14>(hn::Add(hn::Add(hn::ShiftLeft<14>(a), hn::Mul(hn::Sub(b, a), wt)), round));
+    };
+    return hn::Or(hn::Or(channel(0), hn::ShiftLeft<8>(channel(8))),
+                  hn::Or(hn::ShiftLeft<16>(channel(16)), hn::Set(di, int32_t(0xFF000000u))));
+}
+
+// Colours of raster_span(pv, pc, v, c) at the pixel centres yc (per lane), as raster_span_pixels computes them:
+// t = clamp((yc - pv) * inv, 0, 1) with inv = 1 / (v - pv), then lerp8. (A function, not a struct of vectors: SVE's
+// vectors are sizeless and cannot be members.)
+template <class DF>
+HWY_INLINE hn::Vec<hn::RebindToSigned<DF>> SpanColour(DF df, hn::Vec<DF> yc, hn::Vec<DF> pv, hn::Vec<DF> inv,
+                                                      hn::Vec<hn::RebindToSigned<DF>> pc,
+                                                      hn::Vec<hn::RebindToSigned<DF>> c) {
+    const hn::Vec<DF> zero = hn::Zero(df), one = hn::Set(df, 1.0f);
+    hn::Vec<DF> tt = hn::Mul(hn::Sub(yc, pv), inv);
+    tt = hn::IfThenElse(hn::Lt(tt, zero), zero, hn::IfThenElse(hn::Lt(one, tt), one, tt));  // std::clamp
+    return Lerp8At(df, hn::RebindToSigned<DF>(), tt, pc, c);
+}
+
+// Writes the lanes `on` of col to pixels (x + lane, v-row y[lane]), one at a time.
+template <class DI, class MI>
+HWY_INLINE void StoreLanes(DI di, const ColumnTarget& o, int x, MI on, hn::Vec<DI> y, hn::Vec<DI> col) {
+    HWY_ALIGN int32_t lane_y[HWY_MAX_BYTES / 4], lane_c[HWY_MAX_BYTES / 4], lane_on[HWY_MAX_BYTES / 4];
+    hn::Store(y, di, lane_y);
+    hn::Store(col, di, lane_c);
+    hn::Store(hn::VecFromMask(di, on), di, lane_on);
+    const size_t N = hn::Lanes(di);
+    for (size_t i = 0; i < N; ++i)
+        if (lane_on[i]) o.vline(lane_y[i])[size_t(x) + i] = uint32_t(lane_c[i]);
+}
+
+// Writes the lanes `act` of col to pixels (x + lane, v-row y[lane]): two masked row stores when every lane is on the
+// first active lane's row or the next (and the vector is `full`), else lane by lane.
+// Targets whose BlendedStore is a masked store instruction (AVX2, AVX-512, SVE); elsewhere it loads, blends and
+// stores the whole vector, which costs more than the lanes one by one.
+#if HWY_TARGET == HWY_SSE4 || HWY_TARGET == HWY_NEON
+constexpr bool kMaskedStore = false;
+#else
+constexpr bool kMaskedStore = true;
+#endif
+
+template <class DI, class MI>
+HWY_INLINE void StoreRows(DI di, const ColumnTarget& o, int x, bool full, MI act, hn::Vec<DI> y, hn::Vec<DI> col) {
+    if (kMaskedStore && full) {
+        HWY_ALIGN int32_t lane_y[HWY_MAX_BYTES / 4];
+        hn::Store(y, di, lane_y);
+        const int yf = lane_y[hn::FindFirstTrue(di, act)];
+        const auto d = hn::Sub(y, hn::Set(di, yf));
+        const auto same = hn::And(act, hn::Eq(d, hn::Zero(di)));
+        const auto next = hn::And(act, hn::Eq(d, hn::Set(di, 1)));
+        if (hn::AllFalse(di, hn::AndNot(hn::Or(same, next), act))) {
+            int32_t* row = reinterpret_cast<int32_t*>(o.vline(yf) + x);
+            hn::BlendedStore(col, same, di, row);
+            if (!hn::AllFalse(di, next)) hn::BlendedStore(col, next, di, row - o.ow);
+            return;
+        }
+    }
+    StoreLanes(di, o, x, act, y, col);
+}
+
+// Long spans, lanes `lng`, rows ylo .. yhi: row by row over the rows they cover together, one masked store a row (so
+// that each line of the output is touched once rather than once per column); where the lanes' rows are sparse (the
+// union more than twice their sum), the lanes outside the range of the longest go alone through raster_span_pixels.
+// Only for `full` vectors.
+template <class DF, class MI>
+HWY_NOINLINE void ColumnLongSpans(DF df, const ColumnTarget& o, int x, MI lng, hn::Vec<hn::RebindToSigned<DF>> ylo,
+                                  hn::Vec<hn::RebindToSigned<DF>> yhi, hn::Vec<DF> pv, hn::Vec<DF> inv,
+                                  hn::Vec<hn::RebindToSigned<DF>> pc, hn::Vec<hn::RebindToSigned<DF>> c,
+                                  hn::Vec<DF> v) {
+    const hn::RebindToSigned<DF> di;
+    const size_t N = hn::Lanes(df);
+    HWY_ALIGN int32_t ilo[HWY_MAX_BYTES / 4], ihi[HWY_MAX_BYTES / 4], on[HWY_MAX_BYTES / 4];
+    hn::Store(ylo, di, ilo);
+    hn::Store(yhi, di, ihi);
+    hn::Store(hn::VecFromMask(di, lng), di, on);
+    int ymin = 1 << 30, ymax = -(1 << 30), best = -1;
+    long long total = 0, count = 0;
+    for (size_t i = 0; i < N; ++i) {
+        if (!on[i]) continue;
+        ymin = std::min(ymin, ilo[i]);
+        ymax = std::max(ymax, ihi[i]);
+        total += ihi[i] - ilo[i] + 1;
+        ++count;
+        if (best < 0 || ihi[i] - ilo[i] > ihi[best] - ilo[best]) best = int(i);
+    }
+    auto rowwise = lng;
+    if ((long long)(ymax - ymin + 1) * count > 2 * total) {
+        rowwise = hn::And(lng,
+                          hn::And(hn::Gt(ylo, hn::Set(di, ilo[best] - 1)), hn::Lt(yhi, hn::Set(di, ihi[best] + 1))));
+        const auto alone = hn::AndNot(rowwise, lng);
+        if (!hn::AllFalse(di, alone)) {
+            HWY_ALIGN float fpv[HWY_MAX_BYTES / 4], fv[HWY_MAX_BYTES / 4];
+            HWY_ALIGN uint32_t fpc[HWY_MAX_BYTES / 4], fc[HWY_MAX_BYTES / 4];
+            HWY_ALIGN int32_t al[HWY_MAX_BYTES / 4];
+            const hn::RebindToUnsigned<DF> du;
+            hn::Store(pv, df, fpv);
+            hn::Store(v, df, fv);
+            hn::Store(hn::BitCast(du, pc), du, fpc);
+            hn::Store(hn::BitCast(du, c), du, fc);
+            hn::Store(hn::VecFromMask(di, alone), di, al);
+            auto rgba = [](uint32_t u) {
+                return Rgba8{uint8_t(u), uint8_t(u >> 8), uint8_t(u >> 16), uint8_t(u >> 24)};
+            };
+            for (size_t i = 0; i < N; ++i) {
+                if (!al[i]) continue;
+                uint32_t* px = o.pixels + size_t(x) + i;
+                raster_span_pixels(fpv[i], rgba(fpc[i]), 0.0f, fv[i], rgba(fc[i]), 0.0f, ilo[i], ihi[i],
+                                   [&](int y, Rgba8 cc, float) {
+                                       px[size_t(o.oh - 1 - y) * size_t(o.ow)] = uint32_t(cc.r) | uint32_t(cc.g) << 8 |
+                                                                                 uint32_t(cc.b) << 16 | 0xFF000000u;
+                                   });
+            }
+        }
+        ymin = 1 << 30, ymax = -(1 << 30);
+        hn::Store(hn::VecFromMask(di, rowwise), di, on);
+        for (size_t i = 0; i < N; ++i)
+            if (on[i]) ymin = std::min(ymin, ilo[i]), ymax = std::max(ymax, ihi[i]);
+    }
+    hn::Vec<DF> yc = hn::Set(df, float(ymin) + 0.5f);  // steps by 1 exactly
+    for (int yy = ymin; yy <= ymax; ++yy) {
+        const auto act = hn::And(rowwise, hn::And(hn::Lt(ylo, hn::Set(di, yy + 1)), hn::Gt(yhi, hn::Set(di, yy - 1))));
+        hn::BlendedStore(SpanColour(df, yc, pv, inv, pc, c), act, di, reinterpret_cast<int32_t*>(o.vline(yy) + x));
+        yc = hn::Add(yc, hn::Set(df, 1.0f));
+    }
+}
+
+// Columns x .. x + N - 1 (`full`: all of them in the caller's columns): in lanes `fin` a new sample (final row
+// coordinate v, packed colour c) arrives; in lanes `pok` (a subset) the column's previous sample (pv, pc) is
+// connected to it, raster_span(pv, pc, v, c) along the column; in the other lanes of `fin` the new sample starts a
+// run, raster_point(v, c). Only pixels in v-rows [y0, y1) are written.
+template <class DF, class MF>
+HWY_INLINE void ColumnDraw(DF df, const ColumnTarget& o, int x, bool full, MF fin, MF pok, hn::Vec<DF> pv,
+                           hn::Vec<hn::RebindToSigned<DF>> pc, hn::Vec<DF> v, hn::Vec<hn::RebindToSigned<DF>> c) {
+    const hn::RebindToSigned<DF> di;
+    using VF = hn::Vec<DF>;
+    using VI = hn::Vec<decltype(di)>;
+    const VF half = hn::Set(df, 0.5f), one = hn::Set(df, 1.0f);
+    const VF first = hn::Set(df, float(o.y0)), last = hn::Set(df, float(o.y1 - 1)), end = hn::Set(df, float(o.y1));
+    // raster_span's rows in float: lo .. hi, clamped to [0, oh - 1] and to [y0, y1 - 1].
+    const auto inc = hn::And(pok, hn::Gt(v, pv)), dec = hn::And(pok, hn::Lt(v, pv));
+    const VF pvh = hn::Sub(pv, half), vh = hn::Sub(v, half);
+    VF lo = hn::IfThenElse(inc, hn::Add(hn::Floor(pvh), one), hn::Ceil(vh));
+    VF hi = hn::IfThenElse(inc, hn::Floor(vh), hn::Sub(hn::Ceil(pvh), one));
+    lo = hn::IfThenElse(hn::Lt(lo, first), first, lo);
+    hi = hn::IfThenElse(hn::Lt(last, hi), last, hi);
+    const auto span = hn::And(hn::Or(inc, dec), hn::Le(lo, hi));
+    // raster_point: row int(v) where 0 <= v < oh, and y0 <= int(v) < y1.
+    const auto point = hn::AndNot(pok, hn::And(fin, hn::And(hn::Ge(v, first), hn::Lt(v, end))));
+    const auto todo = hn::RebindMask(di, hn::Or(span, point));
+    if (hn::AllFalse(di, todo)) return;
+    const auto pointi = hn::RebindMask(di, point), spani = hn::RebindMask(di, span);
+    const VI ylo = hn::ConvertTo(di, hn::IfThenElse(point, v, lo));
+    const VI yhi = hn::IfThenElse(pointi, ylo, hn::ConvertTo(di, hi));
+    const VF inv = hn::Div(one, hn::Sub(v, pv));
+    auto act = todo;
+    if (full) {
+        const auto lng = hn::And(spani, hn::Gt(hn::Sub(yhi, ylo), hn::Set(di, kLongSpan - 1)));
+        if (!hn::AllFalse(di, lng)) {
+            ColumnLongSpans(df, o, x, lng, ylo, yhi, pv, inv, pc, c, v);
+            act = hn::AndNot(lng, act);
+            if (hn::AllFalse(di, act)) return;
+        }
+    }
+    // Pixel k of every lane: y = ylo + k, colour at the centre y + 0.5 (steps by 1 exactly); a point's colour is
+    // its own with alpha 255.
+    const VI cpoint = hn::Or(c, hn::Set(di, int32_t(0xFF000000u)));
+    VI y = ylo;
+    VF yc = hn::Add(hn::ConvertTo(df, ylo), half);
+    StoreRows(di, o, x, full, act, y, hn::IfThenElse(pointi, cpoint, SpanColour(df, yc, pv, inv, pc, c)));
+    act = hn::And(act, hn::And(spani, hn::Lt(y, yhi)));
+    while (!hn::AllFalse(di, act)) {
+        y = hn::Add(y, hn::Set(di, 1));
+        yc = hn::Add(yc, one);
+        StoreRows(di, o, x, full, act, y, SpanColour(df, yc, pv, inv, pc, c));
+        act = hn::And(act, hn::Lt(y, yhi));
+    }
+}
+
+}  // namespace rtm::simd::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#endif  // RTM_WARP_SIMD_HWY_COLUMNS_INL_H_
