@@ -104,7 +104,8 @@ std::vector<SceneVariant> select_scene_variants(const std::vector<SceneVariant>&
 std::vector<SceneVariant> scene_skip_variants() {
     std::vector<SceneVariant> v;
     v.push_back(variant("all skips", "every skip on, level per quad"));
-    v.push_back(variant("without outside-frustum, back-facing", "hidden quads pre-warped (and drawn if in view)"));
+    v.push_back(variant("without outside-frustum, back-facing, offscreen-margins",
+                        "hidden quads pre-warped (and drawn if in view), whole margins"));
     v.back().draw.cull = false;
     v.push_back(variant("without subpixel-parallax", "far quads pre-warped instead of drawn as plain textures"));
     v.back().draw.subpixel_parallax = 0.0;
