@@ -258,7 +258,7 @@ void bench_objects(const BenchConfig& c, Renderer& renderer, int threads, BenchR
             res.objects.push_back(r);
             char buf[256];
             std::snprintf(buf, sizeof buf,
-                          "object: %s 6x%d^2, %s, in %dx%d: %.3f ms a frame (%.0f fps, %.1fx the relief)",
+                          "object: %s 6x%d^2, %s, in %dx%d: %.3f ms a frame (%.0f fps, %.2fx the relief)",
                           r.object.c_str(), r.size, r.view.c_str(), c.view_width, c.view_height, r.total_ms, r.fps,
                           r.single_ratio);
             progress(buf);
@@ -599,7 +599,7 @@ std::string bench_markdown(const BenchResult& r) {
                 per += b;
             }
             std::snprintf(buf, sizeof buf,
-                          "| %s | 6x%d^2 | %s (%g,%g) | %.3f (%s) | %.3f | %.3f | %.3f | %.3f | %.0f | %.1f |\n",
+                          "| %s | 6x%d^2 | %s (%g,%g) | %.3f (%s) | %.3f | %.3f | %.3f | %.3f | %.0f | %.2f |\n",
                           o.object.c_str(), o.size, o.view.c_str(), o.az, o.el, o.prewarp_ms, per.c_str(),
                           o.adjacent_ms, o.upload_ms, o.texture_map_ms, o.total_ms, o.fps, o.single_ratio);
             s << buf;
