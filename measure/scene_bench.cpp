@@ -65,6 +65,10 @@ std::vector<SceneVariant> scene_frame_variants() {
     v.back().frame = {.concurrent = false, .finish_each = true};
     v.push_back(variant("level 0", "as skips, every quad at pyramid level 0"));
     v.back().draw.level = 0;
+    v.push_back(variant("micromesh whole",
+                        "as skips, the micro-polygons of quads whose slab holds the eye uploaded and drawn whole "
+                        "(not kept on the GPU by tiles)"));
+    v.back().draw.micromesh_tiles = false;
     v.push_back(old_loop("skips, old loop", "level 0, serial pre-warps, a finish per quad (before this frame loop)",
                          true));
     v.push_back(variant("no skips", "every quad pre-warped and uploaded every frame, level per quad, concurrent"));

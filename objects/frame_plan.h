@@ -32,6 +32,9 @@ struct DrawOptions {
     // outside-frustum, back-facing and offscreen-margins, partial_upload the partial-upload skip (plan_upload).
     bool cull = true;
     bool partial_upload = true;
+    // inside-slab-micromesh draws the relief's micro-polygons from a copy kept on the GPU, only the 16x16-cell tiles
+    // not wholly outside the frustum (objects/micromesh_tiles.h); off: the whole mesh, uploaded every frame.
+    bool micromesh_tiles = true;
 };
 
 // Skip names, reported in --json "skips".

@@ -153,7 +153,7 @@ void ReliefObject::draw(Renderer& renderer, const Camera& cam, RenderMethod meth
         add_skip(rep.skips, kSkipInsideSlab);
         rep.skip_faces[kSkipInsideSlab] = kFaceCount;
         const auto t0 = Clock::now();
-        draw_micromesh(renderer, cam);
+        draw_micromesh(renderer, cam, d.skips && d.micromesh_tiles);
         times.texture_map_ms += ms_since(t0);
         return done();
     }
@@ -251,8 +251,8 @@ void ReliefObject::draw(Renderer& renderer, const Camera& cam, RenderMethod meth
     done();
 }
 
-void ReliefObject::draw_micromesh(Renderer& renderer, const Camera& cam) {
-    for (ReliefQuad& q : quads_) renderer.draw_mesh(cam, q.micromesh().vertices, q.micromesh().indices);
+void ReliefObject::draw_micromesh(Renderer& renderer, const Camera& cam, bool tiles) {
+    for (ReliefQuad& q : quads_) q.draw_micromesh(renderer, cam, tiles);
     renderer.finish();
 }
 

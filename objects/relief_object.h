@@ -97,8 +97,9 @@ public:
     // Draws with `method` (flat, two_pass or pipelined) into the current frame; requires a current GL context.
     void draw(Renderer& renderer, const Camera& cam, RenderMethod method, const PrewarpOptions& options,
               StageTimes& times, const DrawOptions& draw = {}, ObjectReport* report = nullptr);
-    // The ground truth: the six faces' micro-polygon meshes.
-    void draw_micromesh(Renderer& renderer, const Camera& cam);
+    // The ground truth: the six faces' micro-polygon meshes. With `tiles`, from copies kept on the GPU, only their
+    // tiles not wholly outside the frustum (ReliefQuad::draw_micromesh): the same picture.
+    void draw_micromesh(Renderer& renderer, const Camera& cam, bool tiles = false);
     // What the last draw() mapped on face f (for the viewer's insets): the texture (null before the face was first
     // drawn) and the pre-warp it holds.
     const GlTexture* face_texture(int f) const { return textures_[size_t(f)].get(); }

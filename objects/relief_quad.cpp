@@ -10,6 +10,7 @@
 #include "objects/bounds.h"
 #include "objects/fast_displ.h"
 #include "objects/level_choice.h"
+#include "objects/micromesh_tiles.h"
 #include "truth/micromesh.h"
 #include "warp/timing.h"
 #include "objects/view_analysis.h"
@@ -44,6 +45,31 @@ std::array<glm::dvec3, 4> ReliefQuad::corners() const { return quad_corners(reli
 const MicroMesh& ReliefQuad::micromesh() {
     if (!micromesh_) micromesh_ = std::make_unique<MicroMesh>(build_micromesh(relief_));
     return *micromesh_;
+}
+
+const TiledMicroMesh& ReliefQuad::tiled_micromesh() {
+    if (!tiled_micromesh_) tiled_micromesh_ = std::make_unique<TiledMicroMesh>(build_tiled_micromesh(relief_));
+    return *tiled_micromesh_;
+}
+
+void ReliefQuad::draw_micromesh(Renderer& renderer, const Camera& cam, bool tiles, DrawReport* report) {
+    if (!tiles) {
+        const MicroMesh& m = micromesh();
+        renderer.draw_mesh(cam, m.vertices, m.indices);
+        if (report) report->micromesh_triangles = report->micromesh_triangles_total = (long long)(m.indices.size() / 3);
+        return;
+    }
+    const TiledMicroMesh& tm = tiled_micromesh();
+    if (!micromesh_gl_) {
+        micromesh_gl_ = std::make_unique<GlMesh>();
+        micromesh_gl_->upload(tm.mesh.vertices, tm.mesh.indices);
+    }
+    size_t drawn = 0;
+    renderer.draw_mesh_ranges(cam, *micromesh_gl_, visible_tile_ranges(tm, cam, &drawn));
+    if (report) {
+        report->micromesh_triangles = (long long)drawn;
+        report->micromesh_triangles_total = (long long)(tm.mesh.indices.size() / 3);
+    }
 }
 
 bool ReliefQuad::faces(const glm::dvec3& eye) const {
@@ -163,7 +189,7 @@ void ReliefQuad::present(Renderer& renderer, const Camera& cam, const FramePlan&
     if (plan.action == FrameAction::nothing) return;
     if (plan.action == FrameAction::micromesh) {
         const auto t0 = Clock::now();
-        renderer.draw_mesh(cam, micromesh().vertices, micromesh().indices);
+        draw_micromesh(renderer, cam, d.micromesh_tiles, &rep);
         if (finish_each) renderer.finish();
         times.texture_map_ms += ms_since(t0);
         return;

@@ -20,6 +20,7 @@
 namespace rtm {
 
 struct MicroMesh;
+struct TiledMicroMesh;
 
 struct StageTimes {
     double prewarp_ms = 0.0;      // pre-warping and resampling
@@ -36,6 +37,9 @@ struct DrawReport {
     // how many of them the reference kernels copied this frame (0 from the fast kernels: they copy without counting).
     long long still_texels = 0;
     long long still_copied = 0;
+    // inside-slab-micromesh: the micro-polygons drawn (with DrawOptions::micromesh_tiles, those of the tiles the
+    // frustum can hold) and the mesh's whole count.
+    long long micromesh_triangles = 0, micromesh_triangles_total = 0;
 };
 
 class ReliefQuad {
@@ -68,6 +72,11 @@ public:
     const GlTexture* texture() const { return texture_.get(); }
     // The micro-polygon mesh of this relief (ground truth), built on first use.
     const MicroMesh& micromesh();
+    // The same triangles ordered by 16x16-cell tiles (objects/micromesh_tiles.h), built on first use.
+    const TiledMicroMesh& tiled_micromesh();
+    // Draws the micro-polygon mesh for the eye inside the slab: with `tiles`, from a copy kept on the GPU, only the
+    // tiles not wholly outside the frustum; else the whole mesh, uploaded for this draw. Counts into `report`.
+    void draw_micromesh(Renderer& renderer, const Camera& cam, bool tiles, DrawReport* report = nullptr);
     // The per-pixel methods' textures and programs for this relief (level 0), made on first use.
     PerPixelQuad& perpixel();
 
@@ -104,6 +113,8 @@ private:
     ImageRGBA8 flat_;               // source colours of level flat_level_ as an ordinary texture (alpha 0 where empty)
     int flat_level_ = -1;
     std::unique_ptr<MicroMesh> micromesh_;
+    std::unique_ptr<TiledMicroMesh> tiled_micromesh_;
+    std::unique_ptr<GlMesh> micromesh_gl_;  // tiled_micromesh_ on the GPU, uploaded on first use
     LastPrewarp last_prewarp_;                // what prewarped_ was made for (reuse when the eye barely moved)
     UploadedTexture uploaded_;                // what texture_ holds (partial upload)
     std::unique_ptr<PerPixelQuad> perpixel_;  // the per-pixel methods' textures and programs, made on first use

@@ -12,8 +12,11 @@
 namespace rtm {
 
 bool outside_frustum(const Camera& cam, const Bounds& box) {
+    return outside_frustum(cam.projection() * cam.view(), box);
+}
+
+bool outside_frustum(const glm::dmat4& m, const Bounds& box) {
     if (box.empty()) return true;
-    const glm::dmat4 m = cam.projection() * cam.view();
     glm::dvec4 clip[8];
     int n = 0;
     for (int i = 0; i < 8; ++i) {

@@ -3,6 +3,8 @@
 // Pure geometry, double precision.
 #pragma once
 
+#include <glm/mat4x4.hpp>
+
 #include <array>
 
 #include "objects/bounds.h"
@@ -16,6 +18,8 @@ namespace rtm {
 // True when the box lies entirely outside the camera's view frustum (all 8 corners outside one clip plane).
 // Conservative: false means "may be visible".
 bool outside_frustum(const Camera& cam, const Bounds& box);
+// The same with the camera's clip-from-world matrix (projection * view), for many boxes in one view.
+bool outside_frustum(const glm::dmat4& clip_from_world, const Bounds& box);
 
 // The margins of a pre-warp with side polygons (paper section 4, Figure 12: samples that leave the quad) that the
 // camera can see: each side of `full` (the margins the view's samples need) cut to the bounding box, in texels, of the

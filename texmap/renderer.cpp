@@ -247,6 +247,51 @@ void GlTexture::upload_as_float(const ImageRGBA8& img) {
     check_gl("GlTexture::upload_as_float");
 }
 
+GlMesh::GlMesh() {
+    require_context("GlMesh");
+    GLuint vao = 0, buffers[2] = {0, 0};
+    glGenVertexArrays(1, &vao);
+    glGenBuffers(2, buffers);
+    vao_ = vao;
+    vbo_ = buffers[0];
+    ebo_ = buffers[1];
+    glBindVertexArray(vao);
+    glBindBuffer(GL_ARRAY_BUFFER, vbo_);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);  // recorded in the VAO
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(MeshVertex),
+                          reinterpret_cast<void*>(offsetof(MeshVertex, position)));
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(MeshVertex),
+                          reinterpret_cast<void*>(offsetof(MeshVertex, color)));
+    glBindVertexArray(0);
+    check_gl("GlMesh: creating buffers");
+}
+
+GlMesh::~GlMesh() {
+    if (vao_ && glad_glDeleteVertexArrays) {
+        GLuint vao = vao_, buffers[2] = {vbo_, ebo_};
+        glDeleteVertexArrays(1, &vao);
+        glDeleteBuffers(2, buffers);
+    }
+}
+
+void GlMesh::upload(const std::vector<MeshVertex>& vertices, const std::vector<uint32_t>& indices) {
+    const size_t count = indices.size() - indices.size() % 3;  // whole triangles only
+    for (size_t i = 0; i < count; ++i)
+        if (indices[i] >= vertices.size())
+            throw std::out_of_range("GlMesh::upload: index " + std::to_string(i) + " is " +
+                                    std::to_string(indices[i]) + " but there are only " +
+                                    std::to_string(vertices.size()) + " vertices");
+    glBindVertexArray(vao_);  // its element buffer is ebo_
+    glBindBuffer(GL_ARRAY_BUFFER, vbo_);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(MeshVertex)), vertices.data(), GL_STATIC_DRAW);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(count * sizeof(uint32_t)), indices.data(), GL_STATIC_DRAW);
+    glBindVertexArray(0);
+    index_count_ = count;
+    check_gl("GlMesh::upload");
+}
+
 GlTexture::GlTexture() {
     require_context("GlTexture");
     GLuint id = 0;
@@ -592,6 +637,34 @@ void Renderer::draw_mesh(const Camera& cam, const std::vector<MeshVertex>& verti
     glDrawElements(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT, nullptr);
     glBindVertexArray(0);
     check_gl("Renderer::draw_mesh");
+}
+
+void Renderer::draw_mesh_ranges(const Camera& cam, const GlMesh& mesh, const std::vector<IndexRange>& ranges) {
+    impl_->issue_pending_clear();
+    std::vector<GLsizei> counts;
+    std::vector<const void*> offsets;
+    counts.reserve(ranges.size());
+    offsets.reserve(ranges.size());
+    for (size_t i = 0; i < ranges.size(); ++i) {
+        const IndexRange& r = ranges[i];
+        if (r.count % 3 != 0 || size_t(r.first) + r.count > mesh.index_count())
+            throw std::out_of_range("Renderer::draw_mesh_ranges: range " + std::to_string(i) + " (first " +
+                                    std::to_string(r.first) + ", count " + std::to_string(r.count) +
+                                    ") is not whole triangles within the mesh's " +
+                                    std::to_string(mesh.index_count()) + " indices");
+        if (r.count == 0) continue;
+        counts.push_back(GLsizei(r.count));
+        offsets.push_back(reinterpret_cast<const void*>(size_t(r.first) * sizeof(uint32_t)));
+    }
+    if (counts.empty()) return;
+    const glm::mat4 mvp = mvp_of(cam);
+    Impl& m = *impl_;
+    glUseProgram(m.mesh_program);
+    glUniformMatrix4fv(m.mesh_mvp, 1, GL_FALSE, glm::value_ptr(mvp));
+    glBindVertexArray(mesh.vertex_array());
+    glMultiDrawElements(GL_TRIANGLES, counts.data(), GL_UNSIGNED_INT, offsets.data(), GLsizei(counts.size()));
+    glBindVertexArray(0);
+    check_gl("Renderer::draw_mesh_ranges");
 }
 
 void Renderer::finish() {

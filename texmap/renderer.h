@@ -47,6 +47,29 @@ struct MeshVertex {
     glm::u8vec4 color;
 };
 
+// A triangle mesh kept on the GPU: vertices and 32-bit indices uploaded once (upload() validates the indices:
+// std::out_of_range naming the first bad one), then drawn every frame by Renderer::draw_mesh_ranges without
+// crossing the bus again. Only whole triangles are kept (a trailing partial one is dropped, as in draw_mesh).
+class GlMesh {
+public:
+    GlMesh();
+    ~GlMesh();
+    GlMesh(const GlMesh&) = delete;
+    GlMesh& operator=(const GlMesh&) = delete;
+    void upload(const std::vector<MeshVertex>& vertices, const std::vector<uint32_t>& indices);
+    size_t index_count() const { return index_count_; }
+    unsigned vertex_array() const { return vao_; }
+
+private:
+    unsigned vao_ = 0, vbo_ = 0, ebo_ = 0;
+    size_t index_count_ = 0;
+};
+
+// A range of a mesh's indices, in indices (a multiple of 3 for whole triangles).
+struct IndexRange {
+    uint32_t first = 0, count = 0;
+};
+
 // A relief quad with its pre-warped texture, for draw_relief. The texture covers the quad plus margins (samples
 // kept beyond the quad, paper section 4): texel units u in [-margin_left, width + margin_right), v likewise.
 struct ReliefSurface {
@@ -90,6 +113,9 @@ public:
     // texels are (0, 0, 0, 0), so bilinear filtering divided by alpha gives no dark fringe at silhouettes.
     void draw_relief(const Camera& cam, const ReliefSurface& surface, const GlTexture& color);
     void draw_mesh(const Camera& cam, const std::vector<MeshVertex>& vertices, const std::vector<uint32_t>& indices);
+    // Draws these ranges of a mesh on the GPU in one call (glMultiDrawElements), the same fragments as draw_mesh of
+    // the same triangles. A range past the mesh's indices or not of whole triangles is std::out_of_range.
+    void draw_mesh_ranges(const Camera& cam, const GlMesh& mesh, const std::vector<IndexRange>& ranges);
     void finish();  // glFinish, so a timer around draw calls measures them
     // While not timed, finish() returns at once: the stage timers then measure only the CPU's side, and llvmpipe
     // renders a frame's draws without waiting between them. Timed by default; the viewer times 1 frame in 16.

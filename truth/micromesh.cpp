@@ -16,8 +16,9 @@
 
 namespace rtm {
 
-MicroMesh build_micromesh(const ReliefTexture& t) {
+MicroMesh build_micromesh(const ReliefTexture& t, std::vector<uint32_t>* triangle_cells) {
     MicroMesh m;
+    if (triangle_cells) triangle_cells->clear();
     const int w = t.width, h = t.height;
     if (w <= 0 || h <= 0) return m;
     constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
@@ -39,18 +40,23 @@ MicroMesh build_micromesh(const ReliefTexture& t) {
             const uint32_t c00 = index[size_t(row + 1) * size_t(w) + size_t(x)];
             const uint32_t c10 = index[size_t(row + 1) * size_t(w) + size_t(x + 1)];
             if (c00 == kNone || c10 == kNone || c01 == kNone || c11 == kNone) continue;  // a hole
+            const size_t before = m.indices.size();
             if (t.breaks.empty()) {
                 m.indices.insert(m.indices.end(), {c00, c10, c11, c00, c11, c01});
-                continue;
-            }
+            } else {
             // Surface discontinuities (section 4.1.1): the same cut as the pre-warp makes. A triangle is kept
             // only when none of its edges crosses a marked pair; the diagonal is tested against the threshold.
-            auto br = [&](int xx, int rr) { return t.breaks[size_t(rr) * size_t(w) + size_t(xx)]; };
-            const bool diag_ok = std::abs(t.displ(x, row + 1) - t.displ(x + 1, row)) <= t.discontinuity_threshold;
-            const bool lower_ok = diag_ok && !(br(x, row + 1) & kBreakRight) && !(br(x + 1, row + 1) & kBreakUp);
-            const bool upper_ok = diag_ok && !(br(x, row) & kBreakRight) && !(br(x, row + 1) & kBreakUp);
-            if (lower_ok) m.indices.insert(m.indices.end(), {c00, c10, c11});
-            if (upper_ok) m.indices.insert(m.indices.end(), {c00, c11, c01});
+                auto br = [&](int xx, int rr) { return t.breaks[size_t(rr) * size_t(w) + size_t(xx)]; };
+                const bool diag_ok =
+                    std::abs(t.displ(x, row + 1) - t.displ(x + 1, row)) <= t.discontinuity_threshold;
+                const bool lower_ok = diag_ok && !(br(x, row + 1) & kBreakRight) && !(br(x + 1, row + 1) & kBreakUp);
+                const bool upper_ok = diag_ok && !(br(x, row) & kBreakRight) && !(br(x, row + 1) & kBreakUp);
+                if (lower_ok) m.indices.insert(m.indices.end(), {c00, c10, c11});
+                if (upper_ok) m.indices.insert(m.indices.end(), {c00, c11, c01});
+            }
+            if (triangle_cells)
+                triangle_cells->insert(triangle_cells->end(), (m.indices.size() - before) / 3,
+                                       uint32_t(size_t(row) * size_t(w) + size_t(x)));
         }
     return m;
 }

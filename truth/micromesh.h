@@ -15,6 +15,8 @@ struct MicroMesh {
     std::vector<uint32_t> indices;
 };
 
-MicroMesh build_micromesh(const ReliefTexture& t);
+// `triangle_cells`, when given, receives for each triangle (indices[3i..3i+2]) its cell, row * width + x: the
+// triangles of one cell are consecutive, cells in row-major order.
+MicroMesh build_micromesh(const ReliefTexture& t, std::vector<uint32_t>* triangle_cells = nullptr);
 
 }  // namespace rtm

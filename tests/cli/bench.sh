@@ -60,7 +60,7 @@ for t in t1:
     check(abs(t["fps"] - 1000 / t["total_ms"]) <= 1e-9 * t["fps"], name + ": frames/s")
 sc = d["scene"]
 check(sc["quads"] == 2 and sc["path_frames"] == 5 and sc["size"] == [640, 480], "scene: quads, path, size")
-check([r["variant"] for r in sc["rows"]][0] == "skips" and len(sc["rows"]) == 11, "scene: variants")
+check([r["variant"] for r in sc["rows"]][0] == "skips" and len(sc["rows"]) == 12, "scene: variants")
 for r in sc["rows"]:
     name = "scene " + r["variant"]
     check(r["frames"] == len(range(0, 5, r["stride"])), name + ": frames")
