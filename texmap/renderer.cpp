@@ -247,17 +247,17 @@ void GlTexture::upload_as_float(const ImageRGBA8& img) {
     check_gl("GlTexture::upload_as_float");
 }
 
-GlMesh::GlMesh() {
-    require_context("GlMesh");
-    GLuint vao = 0, buffers[2] = {0, 0};
+namespace {
+
+// A vertex array of MeshVertex (position, normalized colour) with its vertex and element buffers, the element
+// buffer recorded in the array.
+void make_mesh_vertex_array(GLuint& vao, GLuint& vbo, GLuint& ebo) {
     glGenVertexArrays(1, &vao);
-    glGenBuffers(2, buffers);
-    vao_ = vao;
-    vbo_ = buffers[0];
-    ebo_ = buffers[1];
+    glGenBuffers(1, &vbo);
+    glGenBuffers(1, &ebo);
     glBindVertexArray(vao);
-    glBindBuffer(GL_ARRAY_BUFFER, vbo_);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);  // recorded in the VAO
+    glBindBuffer(GL_ARRAY_BUFFER, vbo);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo);
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(MeshVertex),
                           reinterpret_cast<void*>(offsetof(MeshVertex, position)));
@@ -265,6 +265,17 @@ GlMesh::GlMesh() {
     glVertexAttribPointer(1, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(MeshVertex),
                           reinterpret_cast<void*>(offsetof(MeshVertex, color)));
     glBindVertexArray(0);
+}
+
+}  // namespace
+
+GlMesh::GlMesh() {
+    require_context("GlMesh");
+    GLuint vao = 0, vbo = 0, ebo = 0;
+    make_mesh_vertex_array(vao, vbo, ebo);
+    vao_ = vao;
+    vbo_ = vbo;
+    ebo_ = ebo;
     check_gl("GlMesh: creating buffers");
 }
 
@@ -427,19 +438,7 @@ Renderer::Renderer() : impl_(new Impl) {
         glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, 5 * sizeof(float), reinterpret_cast<void*>(3 * sizeof(float)));
 
         // Mesh: MeshVertex array and 32-bit indices, re-specified per draw.
-        glGenVertexArrays(1, &m.mesh_vao);
-        glGenBuffers(1, &m.mesh_vbo);
-        glGenBuffers(1, &m.mesh_ebo);
-        glBindVertexArray(m.mesh_vao);
-        glBindBuffer(GL_ARRAY_BUFFER, m.mesh_vbo);
-        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.mesh_ebo);  // recorded in the VAO
-        glEnableVertexAttribArray(0);
-        glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(MeshVertex),
-                              reinterpret_cast<void*>(offsetof(MeshVertex, position)));
-        glEnableVertexAttribArray(1);
-        glVertexAttribPointer(1, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(MeshVertex),
-                              reinterpret_cast<void*>(offsetof(MeshVertex, color)));
-        glBindVertexArray(0);
+        make_mesh_vertex_array(m.mesh_vao, m.mesh_vbo, m.mesh_ebo);
         check_gl("Renderer: creating shaders and buffers");
     } catch (...) {
         m.destroy();
@@ -647,7 +646,7 @@ void Renderer::draw_mesh_ranges(const Camera& cam, const GlMesh& mesh, const std
     offsets.reserve(ranges.size());
     for (size_t i = 0; i < ranges.size(); ++i) {
         const IndexRange& r = ranges[i];
-        if (r.count % 3 != 0 || size_t(r.first) + r.count > mesh.index_count())
+        if (r.first % 3 != 0 || r.count % 3 != 0 || size_t(r.first) + r.count > mesh.index_count())
             throw std::out_of_range("Renderer::draw_mesh_ranges: range " + std::to_string(i) + " (first " +
                                     std::to_string(r.first) + ", count " + std::to_string(r.count) +
                                     ") is not whole triangles within the mesh's " +

@@ -456,6 +456,44 @@ TEST_F(RendererTest, MeshRejectsIndicesOutOfRange) {
     EXPECT_NO_THROW(check_gl("after draw_mesh"));
 }
 
+// A mesh kept on the GPU (GlMesh) drawn by ranges: all of it gives draw_mesh's picture; a range leaves out the
+// other triangles; bad indices and ranges are refused naming them.
+TEST_F(RendererTest, GpuMeshRangesDrawWhatDrawMeshDraws) {
+    Camera cam = front_camera(32);
+    std::vector<MeshVertex> v = {
+        {{-2, -2, 0.5f}, {255, 255, 255, 0}},  {{2, -2, 0.5f}, {255, 255, 255, 0}}, {{0, 2, 0.5f}, {255, 255, 255, 0}},
+        {{-2, -2, -0.5f}, {0, 0, 255, 255}},   {{2, -2, -0.5f}, {0, 0, 255, 255}},  {{0, 2, -0.5f}, {0, 0, 255, 255}},
+        {{0.25f, -2, 0.0f}, {255, 0, 0, 255}}, {{2, -2, 0.0f}, {255, 0, 0, 255}},   {{2, 2, 0.0f}, {255, 0, 0, 255}},
+    };
+    const std::vector<uint32_t> idx = {0, 1, 2, 3, 4, 5, 6, 7, 8};
+    renderer_->begin_frame(cam);
+    renderer_->draw_mesh(cam, v, idx);
+    const ImageRGBA8 whole = renderer_->read_pixels(32, 32);
+    GlMesh mesh;
+    mesh.upload(v, idx);
+    EXPECT_EQ(mesh.index_count(), 9u);
+    renderer_->begin_frame(cam);
+    renderer_->draw_mesh_ranges(cam, mesh, {{0, 3}, {3, 6}});
+    EXPECT_EQ(renderer_->read_pixels(32, 32).pixels, whole.pixels);
+    renderer_->begin_frame(cam);
+    renderer_->draw_mesh_ranges(cam, mesh, {{3, 3}});  // the blue triangle alone
+    const ImageRGBA8 blue = renderer_->read_pixels(32, 32);
+    EXPECT_EQ(blue.at(14, 28), kBlue);
+    EXPECT_EQ(blue.at(29, 28), kBlue);
+    for (const IndexRange& bad : {IndexRange{6, 6}, IndexRange{1, 3}, IndexRange{0, 4}}) {
+        try {
+            renderer_->draw_mesh_ranges(cam, mesh, {bad});
+            ADD_FAILURE() << "range " << bad.first << "+" << bad.count << " accepted";
+        } catch (const std::out_of_range& e) {
+            EXPECT_NE(std::string(e.what()).find("first " + std::to_string(bad.first)), std::string::npos) << e.what();
+        }
+    }
+    GlMesh short_mesh;
+    EXPECT_THROW(short_mesh.upload({v[0], v[1]}, {0, 1, 2}), std::out_of_range);
+    EXPECT_NO_THROW(renderer_->draw_mesh_ranges(cam, mesh, {}));
+    EXPECT_NO_THROW(check_gl("after draw_mesh_ranges"));
+}
+
 TEST_F(RendererTest, UploadUpdatesInPlaceAndUploadRectOnlyItsRectangle) {
     Camera cam = front_camera(64);
     ImageRGBA8 img(4, 4, kRed);
