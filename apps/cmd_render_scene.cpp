@@ -28,6 +28,7 @@ nlohmann::json report_json(const SceneFrameReport& r) {
             {"quads_prewarped", r.prewarped},
             {"quads_skipped", r.skips},
             {"texels_warped", r.texels_warped},
+            {"micromesh_triangles", r.micromesh_triangles},
             {"object_faces_drawn", r.object_faces_drawn},
             {"object_faces_prewarped", r.object_faces_prewarped},
             {"object_faces_skipped", r.object_face_skips},
@@ -135,7 +136,7 @@ void run_render_scene(const SceneRenderArgs& a) {
                             {"frames", frames}};
         if (frames.size() == 1)  // a single frame's counts also at the top level
             for (const char* k :
-                 {"quads", "quads_drawn", "quads_prewarped", "quads_skipped", "texels_warped", "object_faces_drawn",
+                 {"quads", "quads_drawn", "quads_prewarped", "quads_skipped", "texels_warped", "micromesh_triangles", "object_faces_drawn",
                   "object_faces_prewarped", "object_faces_skipped", "object_texels_warped", "quads_by_level"})
                 j[k] = frames[0][k];
         // Stage times over the frames (min, median, ...), as rtm render writes them for a relief.

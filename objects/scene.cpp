@@ -187,6 +187,7 @@ void Scene::draw(Renderer& renderer, const Camera& cam, RenderMethod method, con
         const DrawReport& dr = reps[qi];
         report.quad_skips[qi] = dr.skips;
         report.quad_levels[qi] = dr.level;
+        report.micromesh_triangles += dr.micromesh_triangles;
         bool hidden = false, not_warped = method == RenderMethod::flat;
         for (const std::string& s : dr.skips) {
             ++report.skips[s];

@@ -42,6 +42,7 @@ struct SceneFrameReport {
     int drawn = 0;                                     // relief quads drawn (as relief or as a plain texture)
     int prewarped = 0;                                 // relief quads pre-warped this frame
     long long texels_warped = 0;                       // texels of the levels pre-warped this frame
+    long long micromesh_triangles = 0;  // inside-slab-micromesh: micro-polygons drawn (the tiles in view)
     std::map<std::string, int> skips;                  // skip name -> quads it fired for
     std::vector<std::vector<std::string>> quad_skips;  // per relief quad, in manifest order: the skips that fired
     int object_faces_drawn = 0;                        // faces of six-face objects drawn (objects/scene_items.h)

@@ -53,6 +53,18 @@ assert len(f["frames"]) == 3 and all(x["quads"] == 2 for x in f["frames"])
 PY
 then passes=$((passes + 1)); else echo "FAIL: scene JSON"; fails=$((fails + 1)); fi
 
+# micromesh_triangles: frame 20 of the town's path has the eye inside three quads' slabs; each draws the tiles of its
+# mesh in view, fewer than its 2 * 255 * 255 micro-polygons (the whole mesh of a 256^2 quad) and more than none.
+expect_ok render --scene "$SRC/media/town.scene.json" --camera-path 20 --size 160x120 --out "$T/town20.png" \
+  --json "$T/town20.json"
+if python3 - "$T/town20.json" <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1]))
+n = j["quads_skipped"].get("inside-slab-micromesh", 0)
+assert n >= 1 and 0 < j["micromesh_triangles"] < n * 2 * 255 * 255, (n, j["micromesh_triangles"])
+PY
+then passes=$((passes + 1)); else echo "FAIL: scene JSON micromesh_triangles"; fails=$((fails + 1)); fi
+
 # The shipped room (media/room.scene.json): every method draws it; raycast is refused as for every scene.
 ROOM=$SRC/media/room.scene.json
 for m in flat two-pass pipelined micromesh parallax parallax-offset-limiting steep-parallax parallax-occlusion \
