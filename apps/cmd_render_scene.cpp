@@ -135,9 +135,9 @@ void run_render_scene(const SceneRenderArgs& a) {
                             {"size", {sized.width, sized.height}},
                             {"frames", frames}};
         if (frames.size() == 1)  // a single frame's counts also at the top level
-            for (const char* k :
-                 {"quads", "quads_drawn", "quads_prewarped", "quads_skipped", "texels_warped", "micromesh_triangles", "object_faces_drawn",
-                  "object_faces_prewarped", "object_faces_skipped", "object_texels_warped", "quads_by_level"})
+            for (const char* k : {"quads", "quads_drawn", "quads_prewarped", "quads_skipped", "texels_warped",
+                                  "micromesh_triangles", "object_faces_drawn", "object_faces_prewarped",
+                                  "object_faces_skipped", "object_texels_warped", "quads_by_level"})
                 j[k] = frames[0][k];
         // Stage times over the frames (min, median, ...), as rtm render writes them for a relief.
         j["prewarp_ms"] = timing_json(t_pre);

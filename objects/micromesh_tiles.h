@@ -1,7 +1,8 @@
 // A relief's micro-polygon mesh (truth/micromesh.h) ordered by square tiles of cells, each tile with its bounding
 // box, so that a view draws only the tiles that can be in its frustum. For the eye inside a relief's slab (the
-// inside-slab-micromesh action, objects/frame_plan.h): the mesh stays on the GPU (texmap GlMesh) and each frame draws the index ranges
-// of the tiles not wholly outside the frustum, most of a facade being beside or behind a viewer standing in it.
+// inside-slab-micromesh action, objects/frame_plan.h): the mesh stays on the GPU (texmap GlMesh) and each frame draws
+// the index ranges of the tiles not wholly outside the frustum, most of a facade being beside or behind a viewer
+// standing in it.
 //
 // The triangles are those of build_micromesh, each tile's in the same (row-major) order as there; only the order of
 // the tiles differs. Drawing every tile draws the whole mesh; a culled tile has no fragment in the view.

@@ -114,7 +114,7 @@ private:
     int flat_level_ = -1;
     std::unique_ptr<MicroMesh> micromesh_;
     std::unique_ptr<TiledMicroMesh> tiled_micromesh_;
-    std::unique_ptr<GlMesh> micromesh_gl_;  // tiled_micromesh_ on the GPU, uploaded on first use
+    std::unique_ptr<GlMesh> micromesh_gl_;    // tiled_micromesh_ on the GPU, uploaded on first use
     LastPrewarp last_prewarp_;                // what prewarped_ was made for (reuse when the eye barely moved)
     UploadedTexture uploaded_;                // what texture_ holds (partial upload)
     std::unique_ptr<PerPixelQuad> perpixel_;  // the per-pixel methods' textures and programs, made on first use

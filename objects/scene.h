@@ -38,12 +38,12 @@ struct ScenePolygon {
 
 // What one frame of a scene did, for --json and the benchmarks.
 struct SceneFrameReport {
-    int quads = 0;                                     // relief quads in the scene
-    int drawn = 0;                                     // relief quads drawn (as relief or as a plain texture)
-    int prewarped = 0;                                 // relief quads pre-warped this frame
-    long long texels_warped = 0;                       // texels of the levels pre-warped this frame
+    int quads = 0;                      // relief quads in the scene
+    int drawn = 0;                      // relief quads drawn (as relief or as a plain texture)
+    int prewarped = 0;                  // relief quads pre-warped this frame
+    long long texels_warped = 0;        // texels of the levels pre-warped this frame
     long long micromesh_triangles = 0;  // inside-slab-micromesh: micro-polygons drawn (the tiles in view)
-    std::map<std::string, int> skips;                  // skip name -> quads it fired for
+    std::map<std::string, int> skips;   // skip name -> quads it fired for
     std::vector<std::vector<std::string>> quad_skips;  // per relief quad, in manifest order: the skips that fired
     int object_faces_drawn = 0;                        // faces of six-face objects drawn (objects/scene_items.h)
     // Of those, the faces pre-warped this frame (not reused, not flat), the texels their pre-warps visited (each

@@ -291,9 +291,8 @@ void GlMesh::upload(const std::vector<MeshVertex>& vertices, const std::vector<u
     const size_t count = indices.size() - indices.size() % 3;  // whole triangles only
     for (size_t i = 0; i < count; ++i)
         if (indices[i] >= vertices.size())
-            throw std::out_of_range("GlMesh::upload: index " + std::to_string(i) + " is " +
-                                    std::to_string(indices[i]) + " but there are only " +
-                                    std::to_string(vertices.size()) + " vertices");
+            throw std::out_of_range("GlMesh::upload: index " + std::to_string(i) + " is " + std::to_string(indices[i]) +
+                                    " but there are only " + std::to_string(vertices.size()) + " vertices");
     glBindVertexArray(vao_);  // its element buffer is ebo_
     glBindBuffer(GL_ARRAY_BUFFER, vbo_);
     glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(MeshVertex)), vertices.data(), GL_STATIC_DRAW);
@@ -649,8 +648,8 @@ void Renderer::draw_mesh_ranges(const Camera& cam, const GlMesh& mesh, const std
         if (r.first % 3 != 0 || r.count % 3 != 0 || size_t(r.first) + r.count > mesh.index_count())
             throw std::out_of_range("Renderer::draw_mesh_ranges: range " + std::to_string(i) + " (first " +
                                     std::to_string(r.first) + ", count " + std::to_string(r.count) +
-                                    ") is not whole triangles within the mesh's " +
-                                    std::to_string(mesh.index_count()) + " indices");
+                                    ") is not whole triangles within the mesh's " + std::to_string(mesh.index_count()) +
+                                    " indices");
         if (r.count == 0) continue;
         counts.push_back(GLsizei(r.count));
         offsets.push_back(reinterpret_cast<const void*>(size_t(r.first) * sizeof(uint32_t)));

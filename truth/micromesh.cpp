@@ -44,11 +44,10 @@ MicroMesh build_micromesh(const ReliefTexture& t, std::vector<uint32_t>* triangl
             if (t.breaks.empty()) {
                 m.indices.insert(m.indices.end(), {c00, c10, c11, c00, c11, c01});
             } else {
-            // Surface discontinuities (section 4.1.1): the same cut as the pre-warp makes. A triangle is kept
-            // only when none of its edges crosses a marked pair; the diagonal is tested against the threshold.
+                // Surface discontinuities (section 4.1.1): the same cut as the pre-warp makes. A triangle is kept
+                // only when none of its edges crosses a marked pair; the diagonal is tested against the threshold.
                 auto br = [&](int xx, int rr) { return t.breaks[size_t(rr) * size_t(w) + size_t(xx)]; };
-                const bool diag_ok =
-                    std::abs(t.displ(x, row + 1) - t.displ(x + 1, row)) <= t.discontinuity_threshold;
+                const bool diag_ok = std::abs(t.displ(x, row + 1) - t.displ(x + 1, row)) <= t.discontinuity_threshold;
                 const bool lower_ok = diag_ok && !(br(x, row + 1) & kBreakRight) && !(br(x + 1, row + 1) & kBreakUp);
                 const bool upper_ok = diag_ok && !(br(x, row) & kBreakRight) && !(br(x, row + 1) & kBreakUp);
                 if (lower_ok) m.indices.insert(m.indices.end(), {c00, c10, c11});

@@ -36,7 +36,8 @@ ReliefTexture facade() { return load_relief(std::string(RTM_SOURCE_DIR) + "/medi
 // Bumps with a few empty texels (holes in the mesh) and an odd size (partial tiles at the right and bottom).
 ReliefTexture bumps_with_holes() {
     ReliefTexture t = to_relief(make_bumps(45));
-    for (auto [x, r] : {std::pair{3, 4}, {20, 17}, {44, 44}, {0, 30}}) t.texels[size_t(r) * 45 + size_t(x)].q = kEmptyIndex;
+    for (auto [x, r] : {std::pair{3, 4}, {20, 17}, {44, 44}, {0, 30}})
+        t.texels[size_t(r) * 45 + size_t(x)].q = kEmptyIndex;
     return t;
 }
 
@@ -121,9 +122,11 @@ TEST(MicromeshTiles, CullingKeepsEveryTriangleInView) {
         for (size_t tri = 0; tri < in_range.size(); ++tri) {
             if (in_range[tri]) continue;
             for (int k = 0; k < 3; ++k) {
-                const glm::dvec4 c = clip * glm::dvec4(glm::dvec3(m.mesh.vertices[m.mesh.indices[3 * tri + k]].position), 1.0);
+                const glm::dvec4 c = clip *
+                                     glm::dvec4(glm::dvec3(m.mesh.vertices[m.mesh.indices[3 * tri + k]].position), 1.0);
                 const bool inside = std::abs(c.x) < c.w && std::abs(c.y) < c.w && std::abs(c.z) < c.w;
-                ASSERT_FALSE(inside) << "view " << view << ": triangle " << tri << " has a vertex in view but was culled";
+                ASSERT_FALSE(inside) << "view " << view << ": triangle " << tri
+                                     << " has a vertex in view but was culled";
             }
         }
     }
