@@ -19,6 +19,7 @@ namespace {
 struct BenchArgs {
     std::string json, sizes, reliefs, threads, methods, isa;
     bool full = false, no_exact = false, no_reference = false, no_table1 = false, no_objects = false;
+    bool adjacent_whole = false;
     std::string scene = "media/town.scene.json";
     bool scene_given = false, no_scene = false, scene_only = false, scene_sequential = false;
     std::string scene_variants;
@@ -72,6 +73,7 @@ void run_bench_command(const BenchArgs& a) {
     c.reference = !a.no_reference;
     c.table1 = !a.no_table1;
     c.objects = !a.no_objects;
+    c.object_adjacent_holes_only = !a.adjacent_whole;
     c.progress = [](const std::string& line) { std::fprintf(stderr, "bench: %s\n", line.c_str()); };
     if (a.no_scene && (a.scene_only || a.scene_given))
         throw UsageError("--no-scene contradicts --scene and --scene-only");
@@ -124,6 +126,9 @@ void add_bench_command(CLI::App& app) {
     sub->add_flag("--no-reference", a->no_reference, "Skip the generic reference kernels");
     sub->add_flag("--no-table1", a->no_table1, "Skip the OpenGL frame (Table 1) and the objects beside it");
     sub->add_flag("--no-objects", a->no_objects, "Skip the six-face objects' frames beside Table 1");
+    sub->add_flag("--adjacent-whole", a->adjacent_whole,
+                  "Objects: warp the adjacent faces whole, not only where the face leaves holes (the same image; "
+                  "to measure what that saves)");
     sub->add_option("--scene", a->scene,
                     "Scene whose camera path is timed at 640x480 (default media/town.scene.json, when present)")
         ->each([a](const std::string&) { a->scene_given = true; });

@@ -205,6 +205,7 @@ void bench_objects(const BenchConfig& c, Renderer& renderer, int threads, BenchR
             o.threads = threads;
             DrawOptions dr;
             dr.skips = false;
+            dr.adjacent_holes_only = c.object_adjacent_holes_only;
             std::vector<double> pre, adj, up, map, total;
             std::vector<std::vector<double>> per_face(kFaceCount);
             std::vector<int> drawn;

@@ -37,6 +37,7 @@ struct BenchConfig {
     bool table1 = true;
     int table1_size = 256;
     bool objects = true;  // with table1: six-face objects of table1_size^2 faces from one-, two- and three-face views
+    bool object_adjacent_holes_only = true;  // DrawOptions::adjacent_holes_only of the objects' frames
     int view_width = 512, view_height = 512;
     std::function<void(const std::string&)> progress;  // one line per finished measurement; may be empty
 };

@@ -10,7 +10,12 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 #include <type_traits>
 
 #include "warp/line_warp.h"
@@ -34,14 +39,23 @@ inline ColAttr attr_lerp(const ColAttr& a, const ColAttr& b, double t) {
     return {a.d * (1 - t) + b.d * t, a.g * (1 - t) + b.g * t};
 }
 
+// One task arena per thread count, made once: an object warps four to six adjacent faces a frame.
+tbb::task_arena& arena_for(int threads) {
+    static std::mutex m;
+    static std::map<int, std::unique_ptr<tbb::task_arena>> arenas;
+    const std::lock_guard<std::mutex> lock(m);
+    std::unique_ptr<tbb::task_arena>& a = arenas[threads];
+    if (!a) a = std::make_unique<tbb::task_arena>(threads);
+    return *a;
+}
+
 template <class Body>
 void run_parallel(int n, int threads, const Body& body) {
     auto loop = [&] {
         tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const auto& r) { body(r.begin(), r.end()); });
     };
     if (threads > 0) {
-        tbb::task_arena arena(threads);
-        arena.execute(loop);
+        arena_for(threads).execute(loop);
     } else {
         loop();
     }
@@ -92,6 +106,48 @@ void AdjacentBuffer::reset(int width, int height) {
     }
     std::fill(color.pixels.begin(), color.pixels.end(), Rgba8{});
     std::fill(depth.pixels.begin(), depth.pixels.end(), -std::numeric_limits<float>::infinity());
+}
+
+void AdjacentNeed::assign(const Image2D<uint8_t>& needed) {
+    width = needed.width;
+    height = needed.height;
+    count = 0;
+    for (int o = 0; o < 2; ++o) {
+        Lines& l = lines[size_t(o)];
+        l.n1 = o == 0 ? width : height;
+        l.n2 = o == 0 ? height : width;
+        l.mask.assign(size_t(l.n1) * size_t(l.n2), 0);
+        l.prefix.assign(size_t(l.n1) * size_t(l.n2 + 1), 0);
+        l.lo.assign(size_t(l.n1), l.n2);
+        l.hi.assign(size_t(l.n1), -1);
+    }
+    for (int row = 0; row < height; ++row) {
+        const int j = height - 1 - row;  // F's row from the bottom
+        for (int x = 0; x < width; ++x) {
+            if (!needed.at(x, row)) continue;
+            ++count;
+            lines[0].mask[size_t(x) * size_t(height) + size_t(j)] = 1;
+            lines[1].mask[size_t(j) * size_t(width) + size_t(x)] = 1;
+        }
+    }
+    for (Lines& l : lines)
+        for (int c = 0; c < l.n1; ++c) {
+            const uint8_t* m = &l.mask[size_t(c) * size_t(l.n2)];
+            int* p = &l.prefix[size_t(c) * size_t(l.n2 + 1)];
+            for (int k = 0; k < l.n2; ++k) {
+                p[k + 1] = p[k] + m[k];
+                if (m[k]) {
+                    l.lo[size_t(c)] = std::min(l.lo[size_t(c)], k);
+                    l.hi[size_t(c)] = k;
+                }
+            }
+        }
+}
+
+void AdjacentNeed::assign_holes(const ImageRGBA8& own) {
+    Image2D<uint8_t> m(own.width, own.height);
+    for (size_t i = 0; i < m.pixels.size(); ++i) m.pixels[i] = own.pixels[i].a < 128;
+    assign(m);
 }
 
 int first_pass_coordinate(const FaceSwap& s) {
@@ -241,104 +297,308 @@ struct AdjacentJob {
     double offset_d = 0, scale_d = 0;  // the term of G's displacement: offset_d + scale_d * d
     double offset_v = 0, scale_v = 0;  // the term of G's row coordinate
     const double *col_term = nullptr, *level_term = nullptr, *level_d = nullptr;
-    double threshold = 0;  // pass 2's discontinuity threshold on G's displacement (0: none)
-    int c_lo = 0;          // pass 2's first column
+    double threshold = 0;                       // pass 2's discontinuity threshold on G's displacement (0: none)
+    int c_lo = 0;                               // pass 2's first column
+    const AdjacentNeed::Lines* need = nullptr;  // the needed pixels in the passes' orientation, or null: all
     AdjacentWorkspace* ws = nullptr;
     AdjacentBuffer* out = nullptr;
     long long* dropped_rows = nullptr;
 };
 
-// Pass 1 over rows r0 .. r1 - 1 of G: as the reference's, into one array of intermediate samples. The coordinates
-// of a row are computed first, all of them and without branches (the loop vectorizes), then the row is warped; a
-// texel that is empty or cannot be pre-warped is invalid, so what its lanes computed is never read.
+// One row's inputs to the line warp, per thread.
+struct RowScratch {
+    std::vector<double> row_v, dt_v, d_v, pos, other;
+    std::vector<uint8_t> nonempty, valid, lines;
+    std::vector<SwapAttr> attr;
+    std::vector<Rgba8> color;
+    explicit RowScratch(int gw, int n1)
+        : row_v(size_t(gw)),
+          dt_v(size_t(gw)),
+          d_v(size_t(gw)),
+          pos(size_t(gw)),
+          other(size_t(gw)),
+          nonempty(size_t(gw)),
+          valid(size_t(gw)),
+          lines(size_t(n1)),
+          attr(size_t(gw)),
+          color(size_t(gw)) {}
+};
+
+// Row r's coordinates, all of them and without branches (the loop vectorizes), into s: pos (F's coordinate the row
+// pass computes), other (F's other coordinate), valid, colour, and the d' and G's displacement the attributes carry.
+// A texel that is empty or cannot be pre-warped is invalid, so what its lanes computed is never read. Returns the
+// number of valid texels; dropped_rows[r] gets the texels that could not be pre-warped.
+inline int row_coordinates(const AdjacentJob& j, int r, RowScratch& s) {
+    const ReliefTexture& g = *j.g;
+    const int gw = g.width, gh = g.height;
+    const double k1 = j.k1, k2 = j.k2, k3 = j.k3;
+    const double row_term = j.offset_v + j.scale_v * ((gh - 1 - r) + 0.5);
+    const ReliefTexel* tr = &g.texels[size_t(r) * size_t(gw)];
+    double* __restrict dt = s.dt_v.data();
+    double* __restrict dd = s.d_v.data();
+    uint8_t* __restrict ne = s.nonempty.data();
+    Rgba8* __restrict cl = s.color.data();
+    if (j.exact) {
+        const float* dr = &g.displacement[size_t(r) * size_t(gw)];
+        for (int x = 0; x < gw; ++x) {
+            dd[x] = double(dr[x]);
+            dt[x] = j.offset_d + j.scale_d * dd[x];
+        }
+    } else {
+        for (int x = 0; x < gw; ++x) {
+            dd[x] = j.level_d[tr[x].q];
+            dt[x] = j.level_term[tr[x].q];
+        }
+    }
+    for (int x = 0; x < gw; ++x) {
+        const ReliefTexel& t = tr[x];
+        cl[x] = {t.r, t.g, t.b, 255};
+        ne[x] = t.q != kEmptyIndex;
+    }
+    std::fill(s.row_v.begin(), s.row_v.end(), row_term);
+    const double* srcs[3];
+    srcs[j.by_u] = j.col_term;
+    srcs[j.by_v] = s.row_v.data();
+    srcs[j.by_d] = dt;
+    const double* __restrict px = srcs[0];
+    const double* __restrict py = srcs[1];
+    const double* __restrict pz = srcs[2];
+    double* __restrict ps = s.pos.data();
+    double* __restrict ot = s.other.data();
+    uint8_t* __restrict va = s.valid.data();
+    long long nd = 0;
+    int n_ok = 0;
+    // The reference's operations in its order: den = 1 + k3 d', u_i = (u' + k1 d') / den, v_i likewise.
+    auto coordinates = [&](auto first_is_u) {
+        for (int x = 0; x < gw; ++x) {
+            const double den = 1.0 + k3 * pz[x];
+            const double ui = (px[x] + k1 * pz[x]) / den, vi = (py[x] + k2 * pz[x]) / den;
+            const bool ok = den > 0.0;
+            ps[x] = first_is_u ? ui : vi;
+            ot[x] = first_is_u ? vi : ui;
+            va[x] = uint8_t(ok & (ne[x] != 0));
+            nd += ne[x] & !ok;
+            n_ok += va[x];
+        }
+    };
+    if (j.first == 0)
+        coordinates(std::true_type{});
+    else
+        coordinates(std::false_type{});
+    j.dropped_rows[r] = nd;
+    if (n_ok > 0)
+        for (int x = 0; x < gw; ++x) s.attr[size_t(x)] = {ot[x], pz[x], dd[x]};
+    return n_ok;
+}
+
+// The line warp of warp/line_warp.h (warp_line_to) drawing only the pixels clip_lo .. clip_hi of the output (within
+// 0 .. n_out - 1): the same runs, spans and points in the same order, each pixel's value from raster_span_pixels as
+// there (a pixel's value depends on its index alone), the others left out.
+template <class A, class Put, class Connected>
+void warp_line_clipped(const LineInput<double, A>& in, int split, int clip_lo, int clip_hi, Put&& put,
+                       Connected&& connected) {
+    const double lo_clip = clip_lo, hi_clip = clip_hi;
+    auto point = [&](int k) {
+        const double p = in.pos[k];
+        if (!(p >= lo_clip && p < hi_clip + 1.0)) return;
+        Rgba8 c = in.color[k];
+        c.a = 255;
+        put(int(p), c, in.attr[k]);
+    };
+    auto span = [&](int a, int b) {
+        const double pa = in.pos[a], pb = in.pos[b];
+        if (pa == pb) return;
+        double lo, hi;
+        if (pb > pa) {
+            lo = std::floor(pa - 0.5) + 1.0;
+            hi = std::floor(pb - 0.5);
+        } else {
+            lo = std::ceil(pb - 0.5);
+            hi = std::ceil(pa - 0.5) - 1.0;
+        }
+        lo = std::max(lo, lo_clip);
+        hi = std::min(hi, hi_clip);
+        if (!(lo <= hi)) return;
+        raster_span_pixels(pa, in.color[a], in.attr[a], pb, in.color[b], in.attr[b], int(lo), int(hi), put);
+    };
+    auto part = [&](int first, int last, int step) {
+        int prev = -1;
+        for (int k = first; k != last; k += step) {
+            if (!in.valid[k] || !std::isfinite(in.pos[k])) {
+                prev = -1;
+                continue;
+            }
+            if (prev < 0 || !connected(prev, k))
+                point(k);
+            else
+                span(prev, k);
+            prev = k;
+        }
+        return prev;
+    };
+    const int left_last = part(0, split, +1);
+    const int right_last = part(in.n - 1, split - 1, -1);
+    if (left_last >= 0 && right_last >= 0 && left_last == split - 1 && right_last == split &&
+        connected(left_last, right_last))
+        span(left_last, right_last);
+}
+
+// With a need: bounds of each row's two coordinates over its valid texels (warp_adjacent_face in face_swap.h), from
+// the extremes of the terms the row's non-empty texels combine, without a division per texel. Each coordinate is
+// (P + k Z) / (1 + k3 Z), P and Z two different terms (G's column, row or displacement term); with 1 + k3 Z > 0 over
+// the box [P] x [Z] it is increasing in P and monotone in Z, so its extremes are at the box's corners. Otherwise (the
+// box reaches behind the eye's plane; never for a box seen from outside) the row is bounded texel by texel.
+inline void adjacent_row_ranges(const AdjacentJob& j, int r0, int r1) {
+    const ReliefTexture& g = *j.g;
+    const int gw = g.width, gh = g.height;
+    AdjacentWorkspace& ws = *j.ws;
+    const double inf = std::numeric_limits<double>::infinity();
+    std::unique_ptr<RowScratch> scratch;
+    for (int r = r0; r < r1; ++r) {
+        const ReliefTexel* tr = &g.texels[size_t(r) * size_t(gw)];
+        // The extremes of the column and displacement terms over the row's non-empty texels.
+        double cmin = inf, cmax = -inf, dmin = inf, dmax = -inf;
+        const double* ct = j.col_term;
+        if (j.exact) {
+            const float* dr = &g.displacement[size_t(r) * size_t(gw)];
+            for (int x = 0; x < gw; ++x) {
+                const bool ne = tr[x].q != kEmptyIndex;
+                const double dt = j.offset_d + j.scale_d * double(dr[x]);
+                cmin = std::min(cmin, ne ? ct[x] : inf), cmax = std::max(cmax, ne ? ct[x] : -inf);
+                dmin = std::min(dmin, ne ? dt : inf), dmax = std::max(dmax, ne ? dt : -inf);
+            }
+        } else {
+            for (int x = 0; x < gw; ++x) {
+                const bool ne = tr[x].q != kEmptyIndex;
+                const double dt = j.level_term[tr[x].q];
+                cmin = std::min(cmin, ne ? ct[x] : inf), cmax = std::max(cmax, ne ? ct[x] : -inf);
+                dmin = std::min(dmin, ne ? dt : inf), dmax = std::max(dmax, ne ? dt : -inf);
+            }
+        }
+        double& umin = ws.row_umin[size_t(r)];
+        double& umax = ws.row_umax[size_t(r)];
+        double& vmin = ws.row_vmin[size_t(r)];
+        double& vmax = ws.row_vmax[size_t(r)];
+        umin = vmin = inf, umax = vmax = -inf;
+        j.dropped_rows[r] = 0;
+        if (!(cmin <= cmax)) continue;  // no non-empty texel
+        const double row_term = j.offset_v + j.scale_v * ((gh - 1 - r) + 0.5);
+        double lo[3], hi[3];  // per component of p = (u', v', d')
+        lo[j.by_u] = cmin, hi[j.by_u] = cmax;
+        lo[j.by_v] = hi[j.by_v] = row_term;
+        lo[j.by_d] = dmin, hi[j.by_d] = dmax;
+        const double den_lo = 1.0 + j.k3 * lo[2], den_hi = 1.0 + j.k3 * hi[2];
+        if (den_lo > 0.0 && den_hi > 0.0 && std::isfinite(den_lo) && std::isfinite(den_hi)) {
+            // Coordinate i of F (0: u with k1, 1: v with k2) at the four corners.
+            auto bound = [&](int i, double k, double& mn, double& mx) {
+                mn = inf, mx = -inf;
+                for (double pz : {lo[2], hi[2]})
+                    for (double pp : {lo[i], hi[i]}) {
+                        const double val = (pp + k * pz) / (1.0 + j.k3 * pz);
+                        mn = std::min(mn, val), mx = std::max(mx, val);
+                    }
+                if (!std::isfinite(mn) || !std::isfinite(mx)) mn = -inf, mx = inf;
+            };
+            double u0, u1, v0, v1;
+            bound(0, j.k1, u0, u1);
+            bound(1, j.k2, v0, v1);
+            if (j.first == 0)
+                umin = u0, umax = u1, vmin = v0, vmax = v1;
+            else
+                umin = v0, umax = v1, vmin = u0, vmax = u1;
+            continue;
+        }
+        // Texel by texel: the coordinates themselves.
+        if (!scratch) scratch = std::make_unique<RowScratch>(gw, j.n1);
+        RowScratch& s = *scratch;
+        if (row_coordinates(j, r, s) == 0) continue;
+        bool finite = true;
+        for (int x = 0; x < gw; ++x) {
+            if (!s.valid[size_t(x)]) continue;
+            finite = finite && std::isfinite(s.pos[size_t(x)]) && std::isfinite(s.other[size_t(x)]);
+            umin = std::min(umin, s.pos[size_t(x)]), umax = std::max(umax, s.pos[size_t(x)]);
+            vmin = std::min(vmin, s.other[size_t(x)]), vmax = std::max(vmax, s.other[size_t(x)]);
+        }
+        if (!finite) umin = vmin = -inf, umax = vmax = inf;
+    }
+}
+
+// The pixels a coordinate range [lo, hi] can reach on a line: a span's pixels have their centres in it, a point's
+// pixel holds it, so floor(lo) .. floor(hi); widened by 1e-7 of a pixel plus 1e-9 of the value, far more than the
+// rounding that separates the bounds from the samples' computed values. Clamped to +-1e9 (beyond any line).
+inline int first_pixel(double lo) {
+    const double w = lo - (1e-7 + 1e-9 * std::abs(lo));
+    return int(std::floor(std::clamp(w, -1e9, 1e9)));
+}
+inline int last_pixel(double hi) {
+    const double w = hi + (1e-7 + 1e-9 * std::abs(hi));
+    return int(std::floor(std::clamp(w, -1e9, 1e9)));
+}
+
+// Pass 1 over rows r0 .. r1 - 1 of G: as the reference's, into one array of intermediate samples. With a need, a row
+// draws only the intermediate lines its samples can carry to a needed pixel (face_swap.h, warp_adjacent_face).
 inline void adjacent_row_pass(const AdjacentJob& j, int r0, int r1) {
     const ReliefTexture& g = *j.g;
     const int gw = g.width, gh = g.height;
     AdjacentWorkspace& ws = *j.ws;
-    std::vector<double> row_v(static_cast<size_t>(gw)), dt_v(static_cast<size_t>(gw)), d_v(static_cast<size_t>(gw));
-    std::vector<double> pos(static_cast<size_t>(gw)), other(static_cast<size_t>(gw));
-    std::vector<uint8_t> nonempty(static_cast<size_t>(gw)), valid(static_cast<size_t>(gw));
-    std::vector<SwapAttr> attr(static_cast<size_t>(gw));
-    std::vector<Rgba8> color(static_cast<size_t>(gw));
-    const double k1 = j.k1, k2 = j.k2, k3 = j.k3;
+    RowScratch s(gw, j.n1);
+    uint8_t* lines = s.lines.data();
     for (int r = r0; r < r1; ++r) {
         AdjacentSample* o = ws.mid.row(r);
         int& lo = ws.mid_lo[size_t(r)];
         int& hi = ws.mid_hi[size_t(r)];
         if (hi >= lo) std::fill(o + lo, o + hi + 1, AdjacentSample{});
         lo = 0, hi = -1;
-        const double row_term = j.offset_v + j.scale_v * ((gh - 1 - r) + 0.5);
-        const ReliefTexel* tr = &g.texels[size_t(r) * size_t(gw)];
-        double* __restrict dt = dt_v.data();
-        double* __restrict dd = d_v.data();
-        uint8_t* __restrict ne = nonempty.data();
-        Rgba8* __restrict cl = color.data();
-        if (j.exact) {
-            const float* dr = &g.displacement[size_t(r) * size_t(gw)];
-            for (int x = 0; x < gw; ++x) {
-                dd[x] = double(dr[x]);
-                dt[x] = j.offset_d + j.scale_d * dd[x];
+        int cl = 0, ch = j.n1 - 1;
+        if (j.need) {
+            // The lines this row writes (its range of the row pass's coordinate) that hold a needed pixel within the
+            // range of the other coordinate its samples can reach through the column pass (its own row's and its
+            // neighbours'). None: the row is not warped (dropped_rows is the bounds' count).
+            double vlo = ws.row_vmin[size_t(r)], vhi = ws.row_vmax[size_t(r)];
+            if (!(vlo <= vhi)) continue;
+            for (int n : {r - 1, r + 1})
+                if (n >= 0 && n < gh && ws.row_vmin[size_t(n)] <= ws.row_vmax[size_t(n)]) {
+                    vlo = std::min(vlo, ws.row_vmin[size_t(n)]);
+                    vhi = std::max(vhi, ws.row_vmax[size_t(n)]);
+                }
+            const int k0 = first_pixel(vlo), k1 = last_pixel(vhi);
+            const int c0 = std::max(first_pixel(ws.row_umin[size_t(r)]), 0);
+            const int c1 = std::min(last_pixel(ws.row_umax[size_t(r)]), j.n1 - 1);
+            cl = j.n1, ch = -1;
+            for (int c = c0; c <= c1; ++c) {
+                lines[c] = j.need->any(c, k0, k1);
+                if (lines[c]) cl = std::min(cl, c), ch = c;
             }
-        } else {
-            for (int x = 0; x < gw; ++x) {
-                dd[x] = j.level_d[tr[x].q];
-                dt[x] = j.level_term[tr[x].q];
-            }
+            if (ch < cl) continue;
         }
-        for (int x = 0; x < gw; ++x) {
-            const ReliefTexel& t = tr[x];
-            cl[x] = {t.r, t.g, t.b, 255};
-            ne[x] = t.q != kEmptyIndex;
-        }
-        std::fill(row_v.begin(), row_v.end(), row_term);
-        const double* srcs[3];
-        srcs[j.by_u] = j.col_term;
-        srcs[j.by_v] = row_v.data();
-        srcs[j.by_d] = dt;
-        const double* __restrict px = srcs[0];
-        const double* __restrict py = srcs[1];
-        const double* __restrict pz = srcs[2];
-        double* __restrict ps = pos.data();
-        double* __restrict ot = other.data();
-        uint8_t* __restrict va = valid.data();
-        long long nd = 0;
-        int n_ok = 0;
-        // The reference's operations in its order: den = 1 + k3 d', u_i = (u' + k1 d') / den, v_i likewise.
-        auto coordinates = [&](auto first_is_u) {
-            for (int x = 0; x < gw; ++x) {
-                const double den = 1.0 + k3 * pz[x];
-                const double ui = (px[x] + k1 * pz[x]) / den, vi = (py[x] + k2 * pz[x]) / den;
-                const bool ok = den > 0.0;
-                ps[x] = first_is_u ? ui : vi;
-                ot[x] = first_is_u ? vi : ui;
-                va[x] = uint8_t(ok & (ne[x] != 0));
-                nd += ne[x] & !ok;
-                n_ok += va[x];
-            }
-        };
-        if (j.first == 0)
-            coordinates(std::true_type{});
-        else
-            coordinates(std::false_type{});
-        j.dropped_rows[r] = nd;
-        if (n_ok == 0) continue;
-        for (int x = 0; x < gw; ++x) attr[size_t(x)] = {ot[x], pz[x], dd[x]};
+        if (row_coordinates(j, r, s) == 0) continue;
         const uint8_t* brk = g.breaks.empty() ? nullptr : &g.breaks[size_t(r) * size_t(gw)];
         auto connected = [&](int a, int b) { return !brk || !(brk[std::min(a, b)] & kBreakRight); };
         int wlo = j.n1, whi = -1;
-        auto put = [&](int x, Rgba8 c, const SwapAttr& a) {
-            o[x] = {a.v, a.d, a.g, c};
-            wlo = std::min(wlo, x);
-            whi = std::max(whi, x);
-        };
-        LineInput<double, SwapAttr> in{gw, pos.data(), color.data(), attr.data(), valid.data()};
-        warp_line_to(in, j.split_u, j.n1, put, connected);
+        LineInput<double, SwapAttr> in{gw, s.pos.data(), s.color.data(), s.attr.data(), s.valid.data()};
+        if (!j.need) {
+            auto put = [&](int x, Rgba8 c, const SwapAttr& a) {
+                o[x] = {a.v, a.d, a.g, c};
+                wlo = std::min(wlo, x);
+                whi = std::max(whi, x);
+            };
+            warp_line_to(in, j.split_u, j.n1, put, connected);
+        } else {
+            auto put = [&](int x, Rgba8 c, const SwapAttr& a) {
+                if (!lines[x]) return;
+                o[x] = {a.v, a.d, a.g, c};
+                wlo = std::min(wlo, x);
+                whi = std::max(whi, x);
+            };
+            warp_line_clipped(in, j.split_u, cl, ch, put, connected);
+        }
         lo = wlo, hi = whi;
     }
 }
 
 // Pass 2 over intermediate columns c_lo + i0 .. c_lo + i1 - 1: as the reference's, gathering each column from the
 // one array, only from the rows whose extent holds it (the others hold the empty sample there), z-tested into out.
+// With a need, only the needed pixels.
 inline void adjacent_column_pass(const AdjacentJob& j, int i0, int i1) {
     const int gh = j.g->height;
     const AdjacentWorkspace& ws = *j.ws;
@@ -349,6 +609,7 @@ inline void adjacent_column_pass(const AdjacentJob& j, int i0, int i1) {
     std::vector<uint8_t> valid(static_cast<size_t>(gh));
     const double threshold = j.threshold;
     for (int c = j.c_lo + i0; c < j.c_lo + i1; ++c) {
+        if (j.need && j.need->hi[size_t(c)] < j.need->lo[size_t(c)]) continue;
         bool any = false;
         for (int k = 0; k < gh; ++k) {
             const int r = gh - 1 - k;
@@ -378,7 +639,15 @@ inline void adjacent_column_pass(const AdjacentJob& j, int i0, int i1) {
             }
         };
         LineInput<double, ColAttr> in{gh, pos.data(), color.data(), attr.data(), valid.data()};
-        warp_line_to(in, j.split_v, j.n2, put, connected);
+        if (!j.need) {
+            warp_line_to(in, j.split_v, j.n2, put, connected);
+        } else {
+            const uint8_t* m = &j.need->mask[size_t(c) * size_t(j.n2)];
+            auto put_needed = [&](int k, Rgba8 col, const ColAttr& a) {
+                if (m[k]) put(k, col, a);
+            };
+            warp_line_clipped(in, j.split_v, j.need->lo[size_t(c)], j.need->hi[size_t(c)], put_needed, connected);
+        }
     }
 }
 
@@ -394,11 +663,17 @@ inline void adjacent_column_pass(const AdjacentJob& j, int i0, int i1) {
 __attribute__((target("avx2"), flatten)) void row_pass_avx2(const AdjacentJob& j, int r0, int r1) {
     adjacent_row_pass(j, r0, r1);
 }
+__attribute__((target("avx2"), flatten)) void row_ranges_avx2(const AdjacentJob& j, int r0, int r1) {
+    adjacent_row_ranges(j, r0, r1);
+}
 __attribute__((target("avx2"), flatten)) void column_pass_avx2(const AdjacentJob& j, int i0, int i1) {
     adjacent_column_pass(j, i0, i1);
 }
 __attribute__((target("sse4.2"), flatten)) void row_pass_sse4(const AdjacentJob& j, int r0, int r1) {
     adjacent_row_pass(j, r0, r1);
+}
+__attribute__((target("sse4.2"), flatten)) void row_ranges_sse4(const AdjacentJob& j, int r0, int r1) {
+    adjacent_row_ranges(j, r0, r1);
 }
 __attribute__((target("sse4.2"), flatten)) void column_pass_sse4(const AdjacentJob& j, int i0, int i1) {
     adjacent_column_pass(j, i0, i1);
@@ -410,31 +685,32 @@ __attribute__((target("sse4.2"), flatten)) void column_pass_sse4(const AdjacentJ
 #define RTM_FLATTEN
 #endif
 RTM_FLATTEN void row_pass_baseline(const AdjacentJob& j, int r0, int r1) { adjacent_row_pass(j, r0, r1); }
+RTM_FLATTEN void row_ranges_baseline(const AdjacentJob& j, int r0, int r1) { adjacent_row_ranges(j, r0, r1); }
 RTM_FLATTEN void column_pass_baseline(const AdjacentJob& j, int i0, int i1) { adjacent_column_pass(j, i0, i1); }
 
 using PassFn = void (*)(const AdjacentJob&, int, int);
-void choose_passes(Isa isa, PassFn& rows, PassFn& columns) {
-    rows = row_pass_baseline;
-    columns = column_pass_baseline;
+struct Passes {
+    PassFn ranges = row_ranges_baseline, rows = row_pass_baseline, columns = column_pass_baseline;
+};
+Passes choose_passes(Isa isa) {
+    Passes p;
 #ifdef RTM_ADJACENT_VARIANTS
     const Isa target = resolve_isa(isa);
-    if (target == Isa::avx512 || target == Isa::avx2) {
-        rows = row_pass_avx2;
-        columns = column_pass_avx2;
-    } else if (target == Isa::sse4) {
-        rows = row_pass_sse4;
-        columns = column_pass_sse4;
-    }
+    if (target == Isa::avx512 || target == Isa::avx2)
+        p = {row_ranges_avx2, row_pass_avx2, column_pass_avx2};
+    else if (target == Isa::sse4)
+        p = {row_ranges_sse4, row_pass_sse4, column_pass_sse4};
 #else
     (void)isa;
 #endif
+    return p;
 }
 
 }  // namespace
 
 long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geom, int width, int height,
                              const PrewarpCoefficients& kf, bool exact, AdjacentWorkspace& ws, AdjacentBuffer& out,
-                             int threads, Isa isa) {
+                             int threads, Isa isa, const AdjacentNeed* need) {
     const FaceSwap swap = make_face_swap(g.geometry, f_geom);
     std::array<int, 3> src{};
     if (!single_source_terms(swap, src))
@@ -484,12 +760,21 @@ long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geo
     j.out = &out;
     std::vector<long long> dropped_rows(size_t(gh), 0);
     j.dropped_rows = dropped_rows.data();
+    if (need) {
+        if (need->width != width || need->height != height)
+            throw std::invalid_argument("warp_adjacent_face: the need is " + std::to_string(need->width) + "x" +
+                                        std::to_string(need->height) + ", the face " + std::to_string(width) + "x" +
+                                        std::to_string(height));
+        j.need = &need->lines[size_t(j.first)];
+        ws.row_umin.resize(size_t(gh));
+        ws.row_umax.resize(size_t(gh));
+        ws.row_vmin.resize(size_t(gh));
+        ws.row_vmax.resize(size_t(gh));
+    }
 
-    PassFn row_pass = nullptr, column_pass = nullptr;
-    choose_passes(isa, row_pass, column_pass);
+    const Passes fn = choose_passes(isa);
     j.threshold = g.breaks.empty() ? 0.0 : g.discontinuity_threshold;
-    // Both passes in one task arena (one thread: none): an object pre-warps four to six adjacent faces a frame, and
-    // each arena wakes its threads afresh.
+    // Both passes (with a need, the three) in one task arena (one thread: none), kept per thread count (arena_for).
     auto passes = [&] {
         auto over = [&](int n, PassFn pass) {
             if (threads == 1)
@@ -497,7 +782,8 @@ long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geo
             else
                 tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const auto& r) { pass(j, r.begin(), r.end()); });
         };
-        over(gh, row_pass);
+        if (j.need) over(gh, fn.ranges);
+        over(gh, fn.rows);
         // The columns any row wrote to; the others hold nothing.
         int c_lo = j.n1, c_hi = -1;
         for (int r = 0; r < gh; ++r)
@@ -506,11 +792,10 @@ long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geo
                 c_hi = std::max(c_hi, ws.mid_hi[size_t(r)]);
             }
         j.c_lo = c_lo;
-        if (c_hi >= c_lo) over(c_hi - c_lo + 1, column_pass);
+        if (c_hi >= c_lo) over(c_hi - c_lo + 1, fn.columns);
     };
     if (threads > 1) {
-        tbb::task_arena arena(threads);
-        arena.execute(passes);
+        arena_for(threads).execute(passes);
     } else {
         passes();
     }

@@ -15,12 +15,14 @@
 // can hide the farther one, never the reverse, whichever side of G's plane the eye is on; the lines are warped from the
 // borders towards that foot. Spans are not drawn across G's marked discontinuities (section 4.1.1). The output is
 // z-tested on d' (along F's normal; for a viewer in front of F a larger d' is nearer on the same ray), so several
-// adjacent faces accumulate into one buffer whatever their order. Two-pass reconstruction with point sampling.
+// adjacent faces accumulate into one buffer whatever their order. Two-pass reconstruction with point sampling. Given
+// the pixels the object needs (AdjacentNeed: the holes of F's own pre-warp), the passes draw only what can reach them.
 #pragma once
 
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -60,6 +62,38 @@ struct AdjacentSample {
     Rgba8 c{};
 };
 
+// The pixels of F an object reads from its adjacent faces: where F's own pre-warp left a hole (the composite of
+// ReliefObject::prewarp_face keeps an adjacent sample nowhere else). warp_adjacent_face given one computes the adjacent
+// buffer exactly at these pixels and skips the work that can only reach the others (see there).
+struct AdjacentNeed {
+    int width = 0, height = 0;
+    long long count = 0;  // pixels needed
+    // The mask as the two passes of warp_adjacent_face see it, for either pass order: lines[0] has a line per column
+    // of F (n1 = width), its positions F's rows from the bottom (n2 = height); lines[1] a line per row of F from the
+    // bottom (n1 = height), its positions F's columns (n2 = width). Per line c: mask[c * n2 + k], prefix[c * (n2 + 1)
+    // + k] = needed positions below k, lo[c] .. hi[c] the needed extent (hi < lo: none).
+    struct Lines {
+        int n1 = 0, n2 = 0;
+        std::vector<uint8_t> mask;
+        std::vector<int> prefix, lo, hi;
+        // Whether line c needs any position in k0 .. k1 (clamped to the line).
+        bool any(int c, int k0, int k1) const {
+            k0 = k0 < 0 ? 0 : k0;
+            k1 = k1 >= n2 ? n2 - 1 : k1;
+            if (k0 > k1) return false;
+            const int* p = &prefix[size_t(c) * size_t(n2 + 1)];
+            return p[k1 + 1] > p[k0];
+        }
+    };
+    std::array<Lines, 2> lines;
+    // F's pixel (x, row), row 0 at the top, is needed where `needed` is non-zero.
+    void assign(const Image2D<uint8_t>& needed);
+    // The holes of F's own pre-warped texture: pixels with alpha < 128 (less than half covered: the texture-mapping
+    // stage discards them, so the composite takes an adjacent sample there).
+    void assign_holes(const ImageRGBA8& own);
+    bool needed(int x, int row) const { return lines[0].mask[size_t(x) * size_t(height) + size_t(height - 1 - row)]; }
+};
+
 // Scratch for warp_adjacent_face, reused across calls.
 struct AdjacentWorkspace {
     ImageRGBA8 mid_color;  // the reference's row-pass output
@@ -68,6 +102,9 @@ struct AdjacentWorkspace {
     // Per row of `mid`: the extent the last row pass wrote (mid_hi < mid_lo: none). Everything outside it is the
     // empty sample, so a row pass clears only the previous extent and the column pass reads only inside it.
     std::vector<int> mid_lo, mid_hi;
+    // With an AdjacentNeed: bounds of each row's two coordinates over its valid texels (the row pass's and the
+    // other); an empty range (min > max) when the row has none.
+    std::vector<double> row_umin, row_umax, row_vmin, row_vmax;
 };
 
 // Pre-warps relief `g` (an adjacent face) onto the plane of `f_geom` (width x height texels) for the eye in `kf`
@@ -83,9 +120,24 @@ struct AdjacentWorkspace {
 // output is the reference's, value for value (tests/objects/face_swap_test.cpp compares them over a random sweep),
 // on every instruction set `isa` names (warp/isa.h; automatic: RTM_ISA or the fastest; throws std::invalid_argument
 // for one this CPU lacks).
+//
+// With `need` (F's size), `out` is the whole warp's at every needed pixel, value for value, and anything elsewhere
+// (fewer samples, or others): the passes draw only what can reach a needed pixel. A sample of the row pass in
+// intermediate line c lies within its row's range of the other coordinate [vmin, vmax] (a span interpolates between
+// two of the row's texels), and the column pass joins only samples of adjacent rows: so a row's samples reach pixels
+// of line c only within the range of its own row and its two neighbours, and the row pass draws line c only if that
+// range holds a needed pixel of line c (a span's pixels have their centres in it, a point's pixel holds it: pixels
+// floor(lo) .. floor(hi)). Every span or point of the column pass that touches a needed pixel then has both its
+// samples drawn as in the whole warp, and no sample left out can start a run (a point) at a needed pixel; the column
+// pass draws only the needed pixels. The ranges are bounded per row without dividing per texel: each coordinate is
+// (P + k Z) / (1 + k3 Z) with P and Z two of G's column, row and displacement terms, monotone in each on a box where
+// the denominator is positive, so its extremes over the row are at the corners of the box of the row's P and Z
+// (widened by far more than the rounding; a row whose box reaches a denominator <= 0 is bounded texel by texel).
+// tests/objects/face_swap_test.cpp checks it with random masks, and tests/objects/object_render_test.cpp the objects'
+// faces with and without.
 long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geom, int width, int height,
                              const PrewarpCoefficients& kf, bool exact, AdjacentWorkspace& ws, AdjacentBuffer& out,
-                             int threads = 0, Isa isa = Isa::automatic);
+                             int threads = 0, Isa isa = Isa::automatic, const AdjacentNeed* need = nullptr);
 
 // The reference: the swap applied to every texel as a matrix, the generic schedule; any two frames.
 long long warp_adjacent_face_reference(const ReliefTexture& g, const ReliefGeometry& f_geom, int width, int height,

@@ -35,6 +35,9 @@ struct DrawOptions {
     // inside-slab-micromesh draws the relief's micro-polygons from a copy kept on the GPU, only the 16x16-cell tiles
     // not wholly outside the frustum (objects/micromesh_tiles.h); off: the whole mesh, uploaded every frame.
     bool micromesh_tiles = true;
+    // Objects: warp the adjacent faces only where the face's own pre-warp left holes (the same image; off: whole, to
+    // measure what it saves).
+    bool adjacent_holes_only = true;
 };
 
 // Skip names, reported in --json "skips".

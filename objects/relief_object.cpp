@@ -70,7 +70,7 @@ long long ReliefObject::texels() const {
 }
 
 void ReliefObject::prewarp_face(int face, const glm::dvec3& eye, int level, const PrewarpOptions& options,
-                                bool with_displ, ObjectFacePrewarp& out) {
+                                bool with_displ, ObjectFacePrewarp& out, bool adjacent_holes_only) {
     const ObjectRegion region = classify_region(box_, eye);
     if (!region.visible(face))
         throw std::invalid_argument(std::string("ReliefObject::prewarp_face: face ") + kFaceKeys[size_t(face)] +
@@ -87,19 +87,26 @@ void ReliefObject::prewarp_face(int face, const glm::dvec3& eye, int level, cons
     out.adjacent = faces_warped_onto(region, face);
     out.texels = (long long)w * h;
 
-    // The adjacent faces first, onto F's plane, z-tested among themselves.
-    adjacent_.reset(w, h);
-    for (int g : out.adjacent) {
-        const ReliefTexture& gt = quads_[size_t(g)].level(level);
-        warp_adjacent_face(gt, ft.geometry, w, h, k, options.exact, adjacent_ws_, adjacent_, options.threads,
-                           options.isa);
-        out.texels += (long long)gt.width * gt.height;
-    }
-    out.adjacent_ms = ms_since(t0);
-    // Then the face itself over them, keeping the adjacent samples only where it left a hole.
+    // The face itself (its own samples win wherever it has any) ...
     PrewarpOptions o = options;
     o.keep_outliers = false;
     prewarp(ft, k, o, workspace_, out.image, with_displ ? &own_displ_ : nullptr);
+    // ... and the adjacent faces onto F's plane, z-tested among themselves, where F left holes (or whole).
+    const auto t_adjacent = Clock::now();
+    const AdjacentNeed* need = nullptr;
+    if (adjacent_holes_only && !out.adjacent.empty()) {
+        need_.assign_holes(out.image);
+        need = &need_;
+    }
+    adjacent_.reset(w, h);
+    for (int g : out.adjacent) {
+        const ReliefTexture& gt = quads_[size_t(g)].level(level);
+        if (!need || need->count > 0)
+            warp_adjacent_face(gt, ft.geometry, w, h, k, options.exact, adjacent_ws_, adjacent_, options.threads,
+                               options.isa, need);
+        out.texels += (long long)gt.width * gt.height;
+    }
+    out.adjacent_ms = ms_since(t_adjacent);
     const double depth = box_.extent()[face_axis(face)];
     out.depth_quant = Quantizer::from_range(-depth, 0.0);
     if (with_displ) out.displ = Image2D<uint8_t>(w, h);
@@ -195,7 +202,7 @@ void ReliefObject::draw(Renderer& renderer, const Camera& cam, RenderMethod meth
             content = {TextureContent::Source::flat, plan.level};
         } else {
             if (plan.action == FrameAction::prewarp) {
-                prewarp_face(f, cam.eye, plan.level, plan.prewarp, d.depth_correction, warped);
+                prewarp_face(f, cam.eye, plan.level, plan.prewarp, d.depth_correction, warped, d.adjacent_holes_only);
                 last_[size_t(f)] = {true, plan.setup, plan.k};
                 ++versions_[size_t(f)];
                 fr.prewarp_ms = warped.prewarp_ms;

@@ -2,8 +2,10 @@
 //
 // For a view, classify_region (objects/object_region.h) says which faces are visible (one, two or three). For each
 // visible face F: the adjacent faces whose samples can land on F (faces_warped_onto) are pre-warped onto F's plane
-// with their axes swapped (objects/face_swap.h, Figure 15), then F itself is pre-warped over them with the single
-// relief's kernels (warp/prewarp.h), keeping the adjacent samples only where F left a hole (the paper's order). The
+// with their axes swapped (objects/face_swap.h, Figure 15), and F itself with the single relief's kernels
+// (warp/prewarp.h); F's samples win, the adjacent samples are kept only where F left a hole (the paper's order:
+// adjacent faces first, F over them). F is pre-warped first, so that the adjacent faces are warped only where it left
+// holes (AdjacentNeed; the same texture as warping them whole, DrawOptions::adjacent_holes_only). The
 // result is texture-mapped onto F's quad, after closing the cracks one pixel wide that the line warp leaves where a
 // surface seen by F meets one seen by an adjacent face (half a texel is missing on each side of a discontinuity).
 // Samples of F that leave its quad are not lost: they land on the neighbouring visible face when that face pre-warps F,
@@ -21,8 +23,8 @@
 // each other and other geometry.
 //
 // Limitations: the adjacent faces are reconstructed two-pass with point sampling whatever the face's own method and
-// filter, in double precision (objects/face_swap.h); they and the face's own pre-warp, which runs on the generic
-// kernels when the face carries discontinuity marks, are most of an object's pre-warp time (docs/BENCHMARKS.md).
+// filter, in double precision (objects/face_swap.h); they are most of an object's pre-warp time
+// (docs/BENCHMARKS.md, docs/OBJECTS.md).
 #pragma once
 
 #include <array>
@@ -88,11 +90,14 @@ public:
     // Texels at level 0 over the six faces.
     long long texels() const;
 
-    // Pre-warps visible face `face` for `eye` at pyramid `level` (clamped): adjacent faces first, then the face
-    // over them. options.keep_outliers is ignored (no side polygons). Throws std::invalid_argument if the face is
-    // not visible from `eye`.
+    // Pre-warps visible face `face` for `eye` at pyramid `level` (clamped): the face itself and its adjacent faces,
+    // keeping the adjacent samples where the face left holes (the paper's order: adjacent faces first, the face over
+    // them). With `adjacent_holes_only` the face is pre-warped first and the adjacent faces only where it left holes
+    // (AdjacentNeed, objects/face_swap.h): the same result, value for value, as warping them whole (false).
+    // options.keep_outliers is ignored (no side polygons). Throws std::invalid_argument if the face is not visible
+    // from `eye`.
     void prewarp_face(int face, const glm::dvec3& eye, int level, const PrewarpOptions& options, bool with_displ,
-                      ObjectFacePrewarp& out);
+                      ObjectFacePrewarp& out, bool adjacent_holes_only = true);
 
     // Draws with `method` (flat, two_pass or pipelined) into the current frame; requires a current GL context.
     void draw(Renderer& renderer, const Camera& cam, RenderMethod method, const PrewarpOptions& options,
@@ -112,6 +117,7 @@ private:
     PrewarpWorkspace workspace_;
     AdjacentWorkspace adjacent_ws_;
     AdjacentBuffer adjacent_;
+    AdjacentNeed need_;
     Image2D<uint8_t> own_displ_;
     std::array<ObjectFacePrewarp, kFaceCount> warped_;
     std::array<std::unique_ptr<GlTexture>, kFaceCount> textures_, displ_textures_;

@@ -16,6 +16,7 @@
 #include "common/seed.h"
 #include "procedural/synthetic_object.h"
 #include "warp/isa.h"
+#include "warp/prewarp.h"
 
 namespace rtm {
 namespace {
@@ -195,6 +196,123 @@ TEST(FaceSwap, FastScheduleMatchesTheReference) {
     }
     EXPECT_GT(landed, 1000);                                         // the comparison saw real samples
     for (Isa isa : isas) EXPECT_GT(runs[isa], 10) << isa_name(isa);  // and every variant this CPU runs
+}
+
+// A random need of F's size: scattered pixels, rectangles, or the holes of F's own pre-warp, or nothing at all.
+Image2D<uint8_t> random_need(std::mt19937& rng, const ReliefTexture& ft, const PrewarpCoefficients& k, int kind) {
+    Image2D<uint8_t> m(ft.width, ft.height);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    if (kind == 0) {
+        const double p = U(rng) * 0.2;
+        for (uint8_t& v : m.pixels) v = U(rng) < p;
+    } else if (kind == 1) {
+        for (int n = 0; n < 3; ++n) {
+            const int x0 = int(U(rng) * ft.width), r0 = int(U(rng) * ft.height);
+            const int x1 = std::min(ft.width, x0 + 1 + int(U(rng) * 6)),
+                      r1 = std::min(ft.height, r0 + 1 + int(U(rng) * 6));
+            for (int r = r0; r < r1; ++r)
+                for (int x = x0; x < x1; ++x) m.at(x, r) = 1;
+        }
+    } else if (kind == 2) {
+        PrewarpWorkspace pws;
+        ImageRGBA8 own;
+        PrewarpOptions o;
+        o.keep_outliers = false;
+        prewarp(ft, k, o, pws, own);
+        for (size_t i = 0; i < m.pixels.size(); ++i) m.pixels[i] = own.pixels[i].a < 128;
+    }
+    return m;
+}
+
+// With a need, warp_adjacent_face's buffer holds at every needed pixel what the whole warp puts there, value for value
+// (colour and depth, an empty pixel included), and counts the same texels that cannot be pre-warped: random needs
+// (scattered pixels, small rectangles, the holes of F's own pre-warp, none), both objects, every pair of
+// perpendicular faces, random eyes in front of F, quantized and exact, one and two threads, every instruction-set
+// variant, two adjacent faces accumulated into one buffer as the object does, the workspace reused throughout.
+TEST(FaceSwap, NeededPixelsMatchTheWholeWarp) {
+    const uint64_t seed = test::test_seed(20261203u);
+    SCOPED_TRACE("RTM_SEED=" + std::to_string(seed));
+    std::printf("RTM_SEED=%llu\n", (unsigned long long)seed);
+    std::mt19937 rng{static_cast<unsigned>(seed)};
+    std::uniform_int_distribution<int> size(6, 48);
+    const std::vector<Isa> isas = supported_isas();
+    AdjacentWorkspace ws_need, ws_whole;
+    long long needed = 0, landed = 0, differ_elsewhere = 0;
+    for (int trial = 0; trial < 10; ++trial) {
+        const SyntheticShape shape = trial % 2 ? SyntheticShape::cross_box : SyntheticShape::sphere;
+        const SixFaceObject obj = make_synthetic_object(shape, size(rng));
+        for (int f = 0; f < kFaceCount; ++f) {
+            const glm::dvec3 eye = eye_in_front(rng, obj.box, f);
+            const ReliefTexture& ft = obj.faces[size_t(f)];
+            const PrewarpCoefficients k = compute_coefficients(ft.geometry, eye);
+            for (int kind = 0; kind < 4; ++kind) {
+                AdjacentNeed need;
+                need.assign(random_need(rng, ft, k, kind));
+                const bool exact = (trial + kind) % 2 == 1;
+                const int threads = 1 + (f + kind) % 2;
+                const Isa isa = isas[size_t(trial * 7 + f * 3 + kind) % isas.size()];
+                SCOPED_TRACE("trial " + std::to_string(trial) + " face " + kFaceKeys[size_t(f)] + " need kind " +
+                             std::to_string(kind) + (exact ? " exact" : "") + " threads " + std::to_string(threads) +
+                             " isa " + isa_name(isa));
+                AdjacentBuffer part, whole;
+                part.reset(ft.width, ft.height);
+                whole.reset(ft.width, ft.height);
+                for (int g = 0; g < kFaceCount; ++g) {
+                    if (face_axis(g) == face_axis(f)) continue;
+                    const ReliefTexture& gt = obj.faces[size_t(g)];
+                    const long long a = warp_adjacent_face(gt, ft.geometry, ft.width, ft.height, k, exact, ws_need,
+                                                           part, threads, isa, &need);
+                    const long long b = warp_adjacent_face(gt, ft.geometry, ft.width, ft.height, k, exact, ws_whole,
+                                                           whole, threads, isa);
+                    ASSERT_EQ(a, b) << kFaceKeys[size_t(g)];
+                    for (int row = 0; row < ft.height; ++row)
+                        for (int x = 0; x < ft.width; ++x) {
+                            if (!need.needed(x, row)) {
+                                differ_elsewhere += !(part.color.at(x, row) == whole.color.at(x, row));
+                                continue;
+                            }
+                            ASSERT_TRUE(part.color.at(x, row) == whole.color.at(x, row))
+                                << "pixel " << x << "," << row << " after " << kFaceKeys[size_t(g)] << ": "
+                                << to_string(part.color.at(x, row)) << " against " << to_string(whole.color.at(x, row));
+                            ASSERT_EQ(part.depth.at(x, row), whole.depth.at(x, row)) << "pixel " << x << "," << row;
+                        }
+                }
+                for (int row = 0; row < ft.height; ++row)
+                    for (int x = 0; x < ft.width; ++x)
+                        if (need.needed(x, row)) ++needed, landed += whole.color.at(x, row).a != 0;
+            }
+        }
+    }
+    std::printf("needed pixels %lld, of which adjacent samples landed on %lld; %lld pixels not needed differ\n", needed,
+                landed, differ_elsewhere);
+    EXPECT_GT(landed, 500);            // the comparison saw real samples at needed pixels
+    EXPECT_GT(differ_elsewhere, 100);  // and the need did leave work out
+}
+
+TEST(FaceSwap, AdjacentNeedLinesMatchTheMask) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    Image2D<uint8_t> m(13, 7);
+    for (uint8_t& v : m.pixels) v = U(rng) < 0.3;
+    AdjacentNeed need;
+    need.assign(m);
+    long long n = 0;
+    for (int row = 0; row < m.height; ++row)
+        for (int x = 0; x < m.width; ++x) {
+            ASSERT_EQ(need.needed(x, row), m.at(x, row) != 0);
+            ASSERT_EQ(need.lines[1].mask[size_t(m.height - 1 - row) * 13 + size_t(x)], m.at(x, row));
+            n += m.at(x, row);
+        }
+    EXPECT_EQ(need.count, n);
+    for (const AdjacentNeed::Lines& l : need.lines)
+        for (int c = 0; c < l.n1; ++c)
+            for (int k0 = -2; k0 < l.n2 + 2; ++k0)
+                for (int k1 = k0 - 1; k1 < l.n2 + 2; ++k1) {
+                    bool any = false;
+                    for (int k = std::max(k0, 0); k <= std::min(k1, l.n2 - 1); ++k)
+                        any |= l.mask[size_t(c * l.n2 + k)] != 0;
+                    ASSERT_EQ(l.any(c, k0, k1), any) << "line " << c << " " << k0 << ".." << k1;
+                }
 }
 
 }  // namespace
