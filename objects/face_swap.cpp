@@ -117,31 +117,43 @@ void AdjacentNeed::assign(const Image2D<uint8_t>& needed) {
         l.n1 = o == 0 ? width : height;
         l.n2 = o == 0 ? height : width;
         l.mask.assign(size_t(l.n1) * size_t(l.n2), 0);
-        l.prefix.assign(size_t(l.n1) * size_t(l.n2 + 1), 0);
+        l.prefix.resize(size_t(l.n1) * size_t(l.n2 + 1));
+        std::fill(l.prefix.begin(), l.prefix.begin() + l.n1, 0);
         l.lo.assign(size_t(l.n1), l.n2);
         l.hi.assign(size_t(l.n1), -1);
     }
-    for (int row = 0; row < height; ++row) {
-        const int j = height - 1 - row;  // F's row from the bottom
+    Lines& l0 = lines[0];  // line x, position j = height - 1 - row
+    Lines& l1 = lines[1];  // line j, position x
+    for (int j = 0; j < height; ++j) {
+        const uint8_t* src = needed.row(height - 1 - j);
+        const int* below = &l0.prefix[size_t(j) * size_t(width)];
+        int* p0 = &l0.prefix[size_t(j + 1) * size_t(width)];
+        uint8_t* m1 = &l1.mask[size_t(j) * size_t(width)];
+        int n = 0, first = width, last = -1;
         for (int x = 0; x < width; ++x) {
-            if (!needed.at(x, row)) continue;
-            ++count;
-            lines[0].mask[size_t(x) * size_t(height) + size_t(j)] = 1;
-            lines[1].mask[size_t(j) * size_t(width) + size_t(x)] = 1;
+            const uint8_t v = src[x] != 0;
+            p0[x] = below[x] + v;
+            m1[x] = v;
+            n += v;
         }
-    }
-    for (Lines& l : lines)
-        for (int c = 0; c < l.n1; ++c) {
-            const uint8_t* m = &l.mask[size_t(c) * size_t(l.n2)];
-            int* p = &l.prefix[size_t(c) * size_t(l.n2 + 1)];
-            for (int k = 0; k < l.n2; ++k) {
-                p[k + 1] = p[k] + m[k];
-                if (m[k]) {
-                    l.lo[size_t(c)] = std::min(l.lo[size_t(c)], k);
-                    l.hi[size_t(c)] = k;
-                }
+        count += n;
+        if (n == 0) continue;
+        for (int x = 0; x < width; ++x)
+            if (m1[x]) {
+                first = std::min(first, x), last = x;
+                l0.mask[size_t(x) * size_t(height) + size_t(j)] = 1;
+                l0.lo[size_t(x)] = std::min(l0.lo[size_t(x)], j);
+                l0.hi[size_t(x)] = j;
             }
-        }
+        l1.lo[size_t(j)] = first;
+        l1.hi[size_t(j)] = last;
+    }
+    // lines[1]'s prefix: position x, line j.
+    for (int x = 0; x < width; ++x) {
+        const int* below = &l1.prefix[size_t(x) * size_t(height)];
+        int* p1 = &l1.prefix[size_t(x + 1) * size_t(height)];
+        for (int j = 0; j < height; ++j) p1[j] = below[j] + l1.mask[size_t(j) * size_t(width) + size_t(x)];
+    }
 }
 
 void AdjacentNeed::assign_holes(const ImageRGBA8& own) {
@@ -393,10 +405,12 @@ inline int row_coordinates(const AdjacentJob& j, int r, RowScratch& s) {
 
 // The line warp of warp/line_warp.h (warp_line_to) drawing only the pixels clip_lo .. clip_hi of the output (within
 // 0 .. n_out - 1): the same runs, spans and points in the same order, each pixel's value from raster_span_pixels as
-// there (a pixel's value depends on its index alone), the others left out.
+// there (a pixel's value depends on its index alone), the others left out. With k_lo .. k_hi, the samples outside are
+// taken as invalid (and not read).
 template <class A, class Put, class Connected>
 void warp_line_clipped(const LineInput<double, A>& in, int split, int clip_lo, int clip_hi, Put&& put,
-                       Connected&& connected) {
+                       Connected&& connected, int k_lo = 0, int k_hi = -1) {
+    if (k_hi < 0) k_hi = in.n - 1;
     const double lo_clip = clip_lo, hi_clip = clip_hi;
     auto point = [&](int k) {
         const double p = in.pos[k];
@@ -436,8 +450,9 @@ void warp_line_clipped(const LineInput<double, A>& in, int split, int clip_lo, i
         }
         return prev;
     };
-    const int left_last = part(0, split, +1);
-    const int right_last = part(in.n - 1, split - 1, -1);
+    // Samples outside k_lo .. k_hi are invalid: the parts start and end within.
+    const int left_last = k_lo < split ? part(k_lo, std::min(split, k_hi + 1), +1) : -1;
+    const int right_last = k_hi >= split ? part(k_hi, std::max(split, k_lo) - 1, -1) : -1;
     if (left_last >= 0 && right_last >= 0 && left_last == split - 1 && right_last == split &&
         connected(left_last, right_last))
         span(left_last, right_last);
@@ -565,10 +580,21 @@ inline void adjacent_row_pass(const AdjacentJob& j, int r0, int r1) {
             const int c0 = std::max(first_pixel(ws.row_umin[size_t(r)]), 0);
             const int c1 = std::min(last_pixel(ws.row_umax[size_t(r)]), j.n1 - 1);
             cl = j.n1, ch = -1;
-            for (int c = c0; c <= c1; ++c) {
-                lines[c] = j.need->any(c, k0, k1);
-                if (lines[c]) cl = std::min(cl, c), ch = c;
-            }
+            const int kk0 = std::max(k0, 0), kk1 = std::min(k1, j.n2 - 1);
+            if (kk0 > kk1) continue;
+            const int* below = &j.need->prefix[size_t(kk0) * size_t(j.n1)];
+            const int* upto = &j.need->prefix[size_t(kk1 + 1) * size_t(j.n1)];
+            for (int c = c0; c <= c1; ++c) lines[c] = upto[c] > below[c];
+            for (int c = c0; c <= c1; ++c)
+                if (lines[c]) {
+                    cl = c;
+                    break;
+                }
+            for (int c = c1; c >= c0; --c)
+                if (lines[c]) {
+                    ch = c;
+                    break;
+                }
             if (ch < cl) continue;
         }
         if (row_coordinates(j, r, s) == 0) continue;
@@ -609,9 +635,17 @@ inline void adjacent_column_pass(const AdjacentJob& j, int i0, int i1) {
     std::vector<uint8_t> valid(static_cast<size_t>(gh));
     const double threshold = j.threshold;
     for (int c = j.c_lo + i0; c < j.c_lo + i1; ++c) {
-        if (j.need && j.need->hi[size_t(c)] < j.need->lo[size_t(c)]) continue;
+        // With a need: only the column's needed pixels, and only the rows that wrote to it (the others hold
+        // nothing there, as samples outside k_lo .. k_hi would).
+        int k_lo = 0, k_hi = gh - 1;
+        if (j.need) {
+            if (j.need->hi[size_t(c)] < j.need->lo[size_t(c)]) continue;
+            const int r_lo = ws.col_rows[2 * size_t(c)], r_hi = ws.col_rows[2 * size_t(c) + 1];
+            if (r_hi < r_lo) continue;
+            k_lo = gh - 1 - r_hi, k_hi = gh - 1 - r_lo;
+        }
         bool any = false;
-        for (int k = 0; k < gh; ++k) {
+        for (int k = k_lo; k <= k_hi; ++k) {
             const int r = gh - 1 - k;
             if (c < ws.mid_lo[size_t(r)] || c > ws.mid_hi[size_t(r)]) {
                 color[size_t(k)] = Rgba8{};
@@ -646,7 +680,8 @@ inline void adjacent_column_pass(const AdjacentJob& j, int i0, int i1) {
             auto put_needed = [&](int k, Rgba8 col, const ColAttr& a) {
                 if (m[k]) put(k, col, a);
             };
-            warp_line_clipped(in, j.split_v, j.need->lo[size_t(c)], j.need->hi[size_t(c)], put_needed, connected);
+            warp_line_clipped(in, j.split_v, j.need->lo[size_t(c)], j.need->hi[size_t(c)], put_needed, connected, k_lo,
+                              k_hi);
         }
     }
 }
@@ -792,6 +827,17 @@ long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geo
                 c_hi = std::max(c_hi, ws.mid_hi[size_t(r)]);
             }
         j.c_lo = c_lo;
+        if (j.need) {
+            // Per intermediate line, the rows that wrote to it.
+            ws.col_rows.resize(2 * size_t(j.n1));
+            for (int c = 0; c < j.n1; ++c) ws.col_rows[2 * size_t(c)] = gh, ws.col_rows[2 * size_t(c) + 1] = -1;
+            for (int r = 0; r < gh; ++r)
+                for (int c = ws.mid_lo[size_t(r)]; c <= ws.mid_hi[size_t(r)]; ++c) {
+                    int& a = ws.col_rows[2 * size_t(c)];
+                    int& b = ws.col_rows[2 * size_t(c) + 1];
+                    a = std::min(a, r), b = std::max(b, r);
+                }
+        }
         if (c_hi >= c_lo) over(c_hi - c_lo + 1, fn.columns);
     };
     if (threads > 1) {

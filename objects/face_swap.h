@@ -70,8 +70,9 @@ struct AdjacentNeed {
     long long count = 0;  // pixels needed
     // The mask as the two passes of warp_adjacent_face see it, for either pass order: lines[0] has a line per column
     // of F (n1 = width), its positions F's rows from the bottom (n2 = height); lines[1] a line per row of F from the
-    // bottom (n1 = height), its positions F's columns (n2 = width). Per line c: mask[c * n2 + k], prefix[c * (n2 + 1)
-    // + k] = needed positions below k, lo[c] .. hi[c] the needed extent (hi < lo: none).
+    // bottom (n1 = height), its positions F's columns (n2 = width). Per line c: mask[c * n2 + k], lo[c] .. hi[c] the
+    // needed extent (hi < lo: none), and prefix[k * n1 + c] the needed positions of line c below k (k = 0 .. n2;
+    // position-major, so that one row of the adjacent face tests consecutive lines in consecutive entries).
     struct Lines {
         int n1 = 0, n2 = 0;
         std::vector<uint8_t> mask;
@@ -81,8 +82,7 @@ struct AdjacentNeed {
             k0 = k0 < 0 ? 0 : k0;
             k1 = k1 >= n2 ? n2 - 1 : k1;
             if (k0 > k1) return false;
-            const int* p = &prefix[size_t(c) * size_t(n2 + 1)];
-            return p[k1 + 1] > p[k0];
+            return prefix[size_t(k1 + 1) * size_t(n1) + size_t(c)] > prefix[size_t(k0) * size_t(n1) + size_t(c)];
         }
     };
     std::array<Lines, 2> lines;
@@ -105,6 +105,7 @@ struct AdjacentWorkspace {
     // With an AdjacentNeed: bounds of each row's two coordinates over its valid texels (the row pass's and the
     // other); an empty range (min > max) when the row has none.
     std::vector<double> row_umin, row_umax, row_vmin, row_vmax;
+    std::vector<int> col_rows;  // per intermediate line, the first and last row that wrote to it
 };
 
 // Pre-warps relief `g` (an adjacent face) onto the plane of `f_geom` (width x height texels) for the eye in `kf`
@@ -133,8 +134,8 @@ struct AdjacentWorkspace {
 // (P + k Z) / (1 + k3 Z) with P and Z two of G's column, row and displacement terms, monotone in each on a box where
 // the denominator is positive, so its extremes over the row are at the corners of the box of the row's P and Z
 // (widened by far more than the rounding; a row whose box reaches a denominator <= 0 is bounded texel by texel).
-// tests/objects/face_swap_test.cpp checks it with random masks, and tests/objects/object_render_test.cpp the objects'
-// faces with and without.
+// tests/objects/face_swap_test.cpp checks it with random masks, and tests/objects/adjacent_holes_test.cpp the
+// objects' faces with and without.
 long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geom, int width, int height,
                              const PrewarpCoefficients& kf, bool exact, AdjacentWorkspace& ws, AdjacentBuffer& out,
                              int threads = 0, Isa isa = Isa::automatic, const AdjacentNeed* need = nullptr);
