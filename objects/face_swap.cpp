@@ -111,55 +111,62 @@ void AdjacentBuffer::reset(int width, int height) {
 void AdjacentNeed::assign(const Image2D<uint8_t>& needed) {
     width = needed.width;
     height = needed.height;
+    pixels.resize(needed.pixels.size());
+    for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = needed.pixels[i] != 0;
+    index();
+}
+
+void AdjacentNeed::assign_holes(const ImageRGBA8& own) {
+    width = own.width;
+    height = own.height;
+    pixels.resize(own.pixels.size());
+    for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = own.pixels[i].a < 128;
+    index();
+}
+
+void AdjacentNeed::index() {
     count = 0;
+    const uint8_t* bottom = pixels.data() + size_t(std::max(height - 1, 0)) * size_t(width);  // F's row j = 0
     for (int o = 0; o < 2; ++o) {
         Lines& l = lines[size_t(o)];
         l.n1 = o == 0 ? width : height;
         l.n2 = o == 0 ? height : width;
-        l.mask.assign(size_t(l.n1) * size_t(l.n2), 0);
+        l.at = bottom;
+        l.step_line = o == 0 ? 1 : -std::ptrdiff_t(width);
+        l.step_pos = o == 0 ? -std::ptrdiff_t(width) : 1;
         l.prefix.resize(size_t(l.n1) * size_t(l.n2 + 1));
-        std::fill(l.prefix.begin(), l.prefix.begin() + l.n1, 0);
         l.lo.assign(size_t(l.n1), l.n2);
         l.hi.assign(size_t(l.n1), -1);
     }
     Lines& l0 = lines[0];  // line x, position j = height - 1 - row
     Lines& l1 = lines[1];  // line j, position x
+    std::fill(l0.prefix.begin(), l0.prefix.begin() + width, 0);
     for (int j = 0; j < height; ++j) {
-        const uint8_t* src = needed.row(height - 1 - j);
+        const uint8_t* v = bottom - std::ptrdiff_t(j) * width;
         const int* below = &l0.prefix[size_t(j) * size_t(width)];
         int* p0 = &l0.prefix[size_t(j + 1) * size_t(width)];
-        uint8_t* m1 = &l1.mask[size_t(j) * size_t(width)];
-        int n = 0, first = width, last = -1;
+        int* lo0 = l0.lo.data();
+        int* hi0 = l0.hi.data();
+        int n = 0;
         for (int x = 0; x < width; ++x) {
-            const uint8_t v = src[x] != 0;
-            p0[x] = below[x] + v;
-            m1[x] = v;
-            n += v;
+            p0[x] = below[x] + v[x];
+            n += v[x];
+            lo0[x] = v[x] && lo0[x] > j ? j : lo0[x];
+            hi0[x] = v[x] ? j : hi0[x];
         }
         count += n;
-        if (n == 0) continue;
-        for (int x = 0; x < width; ++x)
-            if (m1[x]) {
-                first = std::min(first, x), last = x;
-                l0.mask[size_t(x) * size_t(height) + size_t(j)] = 1;
-                l0.lo[size_t(x)] = std::min(l0.lo[size_t(x)], j);
-                l0.hi[size_t(x)] = j;
-            }
+        // lines[1]: line j's running count along x, stored position-major.
+        int* p1 = l1.prefix.data() + j;
+        int run = 0, first = width, last = -1;
+        p1[0] = 0;
+        for (int x = 0; x < width; ++x) {
+            run += v[x];
+            p1[size_t(x + 1) * size_t(height)] = run;
+            if (v[x]) first = std::min(first, x), last = x;
+        }
         l1.lo[size_t(j)] = first;
         l1.hi[size_t(j)] = last;
     }
-    // lines[1]'s prefix: position x, line j.
-    for (int x = 0; x < width; ++x) {
-        const int* below = &l1.prefix[size_t(x) * size_t(height)];
-        int* p1 = &l1.prefix[size_t(x + 1) * size_t(height)];
-        for (int j = 0; j < height; ++j) p1[j] = below[j] + l1.mask[size_t(j) * size_t(width) + size_t(x)];
-    }
-}
-
-void AdjacentNeed::assign_holes(const ImageRGBA8& own) {
-    Image2D<uint8_t> m(own.width, own.height);
-    for (size_t i = 0; i < m.pixels.size(); ++i) m.pixels[i] = own.pixels[i].a < 128;
-    assign(m);
 }
 
 int first_pass_coordinate(const FaceSwap& s) {
@@ -676,9 +683,10 @@ inline void adjacent_column_pass(const AdjacentJob& j, int i0, int i1) {
         if (!j.need) {
             warp_line_to(in, j.split_v, j.n2, put, connected);
         } else {
-            const uint8_t* m = &j.need->mask[size_t(c) * size_t(j.n2)];
+            const uint8_t* m = j.need->at + c * j.need->step_line;
+            const std::ptrdiff_t step = j.need->step_pos;
             auto put_needed = [&](int k, Rgba8 col, const ColAttr& a) {
-                if (m[k]) put(k, col, a);
+                if (m[k * step]) put(k, col, a);
             };
             warp_line_clipped(in, j.split_v, j.need->lo[size_t(c)], j.need->hi[size_t(c)], put_needed, connected, k_lo,
                               k_hi);

@@ -23,6 +23,7 @@
 #include <glm/vec3.hpp>
 
 #include <array>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -67,16 +68,20 @@ struct AdjacentSample {
 // buffer exactly at these pixels and skips the work that can only reach the others (see there).
 struct AdjacentNeed {
     int width = 0, height = 0;
-    long long count = 0;  // pixels needed
+    long long count = 0;          // pixels needed
+    std::vector<uint8_t> pixels;  // 1 where F's pixel (x, row), row 0 at the top, is needed, at row * width + x
     // The mask as the two passes of warp_adjacent_face see it, for either pass order: lines[0] has a line per column
     // of F (n1 = width), its positions F's rows from the bottom (n2 = height); lines[1] a line per row of F from the
-    // bottom (n1 = height), its positions F's columns (n2 = width). Per line c: mask[c * n2 + k], lo[c] .. hi[c] the
-    // needed extent (hi < lo: none), and prefix[k * n1 + c] the needed positions of line c below k (k = 0 .. n2;
-    // position-major, so that one row of the adjacent face tests consecutive lines in consecutive entries).
+    // bottom (n1 = height), its positions F's columns (n2 = width). Per line c: position k needed where
+    // at[c * step_line + k * step_pos] (into pixels), lo[c] .. hi[c] the needed extent (hi < lo: none), and
+    // prefix[k * n1 + c] the needed positions of line c below k (k = 0 .. n2; position-major, so that one row of the
+    // adjacent face tests consecutive lines in consecutive entries).
     struct Lines {
         int n1 = 0, n2 = 0;
-        std::vector<uint8_t> mask;
+        const uint8_t* at = nullptr;
+        std::ptrdiff_t step_line = 0, step_pos = 0;
         std::vector<int> prefix, lo, hi;
+        bool needed(int c, int k) const { return at[c * step_line + k * step_pos] != 0; }
         // Whether line c needs any position in k0 .. k1 (clamped to the line).
         bool any(int c, int k0, int k1) const {
             k0 = k0 < 0 ? 0 : k0;
@@ -91,7 +96,10 @@ struct AdjacentNeed {
     // The holes of F's own pre-warped texture: pixels with alpha < 128 (less than half covered: the texture-mapping
     // stage discards them, so the composite takes an adjacent sample there).
     void assign_holes(const ImageRGBA8& own);
-    bool needed(int x, int row) const { return lines[0].mask[size_t(x) * size_t(height) + size_t(height - 1 - row)]; }
+    bool needed(int x, int row) const { return pixels[size_t(row) * size_t(width) + size_t(x)] != 0; }
+
+private:
+    void index();  // lines from pixels
 };
 
 // Scratch for warp_adjacent_face, reused across calls.

@@ -300,19 +300,26 @@ TEST(FaceSwap, AdjacentNeedLinesMatchTheMask) {
     for (int row = 0; row < m.height; ++row)
         for (int x = 0; x < m.width; ++x) {
             ASSERT_EQ(need.needed(x, row), m.at(x, row) != 0);
-            ASSERT_EQ(need.lines[1].mask[size_t(m.height - 1 - row) * 13 + size_t(x)], m.at(x, row));
+            ASSERT_EQ(need.lines[0].needed(x, m.height - 1 - row), m.at(x, row) != 0);
+            ASSERT_EQ(need.lines[1].needed(m.height - 1 - row, x), m.at(x, row) != 0);
             n += m.at(x, row);
         }
     EXPECT_EQ(need.count, n);
+    // Per line: the extent and the counts over every range of positions (clamped to the line), both orientations.
     for (const AdjacentNeed::Lines& l : need.lines)
-        for (int c = 0; c < l.n1; ++c)
+        for (int c = 0; c < l.n1; ++c) {
+            int lo = l.n2, hi = -1;
+            for (int k = 0; k < l.n2; ++k)
+                if (l.needed(c, k)) lo = std::min(lo, k), hi = k;
+            ASSERT_EQ(l.lo[size_t(c)], lo) << "line " << c;
+            ASSERT_EQ(l.hi[size_t(c)], hi) << "line " << c;
             for (int k0 = -2; k0 < l.n2 + 2; ++k0)
                 for (int k1 = k0 - 1; k1 < l.n2 + 2; ++k1) {
                     bool any = false;
-                    for (int k = std::max(k0, 0); k <= std::min(k1, l.n2 - 1); ++k)
-                        any |= l.mask[size_t(c * l.n2 + k)] != 0;
+                    for (int k = std::max(k0, 0); k <= std::min(k1, l.n2 - 1); ++k) any |= l.needed(c, k);
                     ASSERT_EQ(l.any(c, k0, k1), any) << "line " << c << " " << k0 << ".." << k1;
                 }
+        }
 }
 
 }  // namespace
