@@ -155,17 +155,30 @@ void AdjacentNeed::index() {
             hi0[x] = v[x] ? j : hi0[x];
         }
         count += n;
-        // lines[1]: line j's running count along x, stored position-major.
-        int* p1 = l1.prefix.data() + j;
-        int run = 0, first = width, last = -1;
-        p1[0] = 0;
-        for (int x = 0; x < width; ++x) {
-            run += v[x];
-            p1[size_t(x + 1) * size_t(height)] = run;
+        // lines[1]'s extent of line j.
+        int first = width, last = -1;
+        for (int x = 0; x < width; ++x)
             if (v[x]) first = std::min(first, x), last = x;
-        }
         l1.lo[size_t(j)] = first;
         l1.hi[size_t(j)] = last;
+    }
+    // lines[1]'s counts, position-major: 16 lines at a time, so that each position writes one cache line of counts
+    // (one line at a time wrote one count per cache line, a store that missed the cache for each pixel).
+    constexpr int kBlock = 16;
+    for (int j0 = 0; j0 < height; j0 += kBlock) {
+        const int nb = std::min(kBlock, height - j0);
+        int run[kBlock] = {};
+        const uint8_t* v[kBlock];
+        for (int b = 0; b < nb; ++b) v[b] = bottom - std::ptrdiff_t(j0 + b) * width;
+        int* p1 = l1.prefix.data() + j0;
+        for (int b = 0; b < nb; ++b) p1[b] = 0;
+        for (int x = 0; x < width; ++x) {
+            int* out = p1 + size_t(x + 1) * size_t(height);
+            for (int b = 0; b < nb; ++b) {
+                run[b] += v[b][x];
+                out[b] = run[b];
+            }
+        }
     }
 }
 
