@@ -67,6 +67,13 @@ struct AdjacentSample {
 // ReliefObject::prewarp_face keeps an adjacent sample nowhere else). warp_adjacent_face given one computes the adjacent
 // buffer exactly at these pixels and skips the work that can only reach the others (see there).
 struct AdjacentNeed {
+    // Its lines point into `pixels`: movable (the buffer moves along), not copyable.
+    AdjacentNeed() = default;
+    AdjacentNeed(const AdjacentNeed&) = delete;
+    AdjacentNeed& operator=(const AdjacentNeed&) = delete;
+    AdjacentNeed(AdjacentNeed&&) noexcept = default;
+    AdjacentNeed& operator=(AdjacentNeed&&) noexcept = default;
+
     int width = 0, height = 0;
     long long count = 0;          // pixels needed
     std::vector<uint8_t> pixels;  // 1 where F's pixel (x, row), row 0 at the top, is needed, at row * width + x
