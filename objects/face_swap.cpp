@@ -4,6 +4,7 @@
 #include <glm/matrix.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -108,24 +109,26 @@ void AdjacentBuffer::reset(int width, int height) {
     std::fill(depth.pixels.begin(), depth.pixels.end(), -std::numeric_limits<float>::infinity());
 }
 
-void AdjacentNeed::assign(const Image2D<uint8_t>& needed) {
+void AdjacentNeed::assign(const Image2D<uint8_t>& needed, int threads) {
     width = needed.width;
     height = needed.height;
     pixels.resize(needed.pixels.size());
     for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = needed.pixels[i] != 0;
-    index();
+    index(threads);
 }
 
-void AdjacentNeed::assign_holes(const ImageRGBA8& own) {
+void AdjacentNeed::assign_holes(const ImageRGBA8& own, int threads) {
     width = own.width;
     height = own.height;
     pixels.resize(own.pixels.size());
     for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = own.pixels[i].a < 128;
-    index();
+    index(threads);
 }
 
-void AdjacentNeed::index() {
-    count = 0;
+void AdjacentNeed::index(int threads) {
+    if (width > 65535 || height > 65535)
+        throw std::invalid_argument("AdjacentNeed: " + std::to_string(width) + "x" + std::to_string(height) +
+                                    " pixels, more than 65535 a side");
     const uint8_t* bottom = pixels.data() + size_t(std::max(height - 1, 0)) * size_t(width);  // F's row j = 0
     for (int o = 0; o < 2; ++o) {
         Lines& l = lines[size_t(o)];
@@ -140,46 +143,65 @@ void AdjacentNeed::index() {
     }
     Lines& l0 = lines[0];  // line x, position j = height - 1 - row
     Lines& l1 = lines[1];  // line j, position x
-    std::fill(l0.prefix.begin(), l0.prefix.begin() + width, 0);
-    for (int j = 0; j < height; ++j) {
-        const uint8_t* v = bottom - std::ptrdiff_t(j) * width;
-        const int* below = &l0.prefix[size_t(j) * size_t(width)];
-        int* p0 = &l0.prefix[size_t(j + 1) * size_t(width)];
+    long long n0 = 0;
+    // lines[0]: F's rows from the bottom, each adding to the columns' counts.
+    auto columns = [&] {
+        std::fill(l0.prefix.begin(), l0.prefix.begin() + width, uint16_t(0));
         int* lo0 = l0.lo.data();
         int* hi0 = l0.hi.data();
-        int n = 0;
-        for (int x = 0; x < width; ++x) {
-            p0[x] = below[x] + v[x];
-            n += v[x];
-            lo0[x] = v[x] && lo0[x] > j ? j : lo0[x];
-            hi0[x] = v[x] ? j : hi0[x];
+        for (int j = 0; j < height; ++j) {
+            const uint8_t* v = bottom - std::ptrdiff_t(j) * width;
+            const uint16_t* below = &l0.prefix[size_t(j) * size_t(width)];
+            uint16_t* p0 = &l0.prefix[size_t(j + 1) * size_t(width)];
+            int n = 0;
+            for (int x = 0; x < width; ++x) {
+                p0[x] = uint16_t(below[x] + v[x]);
+                n += v[x];
+                lo0[x] = v[x] && lo0[x] > j ? j : lo0[x];
+                hi0[x] = v[x] ? j : hi0[x];
+            }
+            n0 += n;
         }
-        count += n;
-        // lines[1]'s extent of line j.
-        int first = width, last = -1;
-        for (int x = 0; x < width; ++x)
-            if (v[x]) first = std::min(first, x), last = x;
-        l1.lo[size_t(j)] = first;
-        l1.hi[size_t(j)] = last;
-    }
-    // lines[1]'s counts, position-major: 16 lines at a time, so that each position writes one cache line of counts
-    // (one line at a time wrote one count per cache line, a store that missed the cache for each pixel).
-    constexpr int kBlock = 16;
-    for (int j0 = 0; j0 < height; j0 += kBlock) {
-        const int nb = std::min(kBlock, height - j0);
-        int run[kBlock] = {};
-        const uint8_t* v[kBlock];
-        for (int b = 0; b < nb; ++b) v[b] = bottom - std::ptrdiff_t(j0 + b) * width;
-        int* p1 = l1.prefix.data() + j0;
-        for (int b = 0; b < nb; ++b) p1[b] = 0;
-        for (int x = 0; x < width; ++x) {
-            int* out = p1 + size_t(x + 1) * size_t(height);
+    };
+    // lines[1]: running counts along F's rows, position-major, 16 lines at a time so that each position writes one
+    // cache line of counts (one line at a time wrote one count per cache line, a store that missed the cache for each
+    // pixel).
+    auto rows = [&] {
+        constexpr int kBlock = 16;
+        for (int j0 = 0; j0 < height; j0 += kBlock) {
+            const int nb = std::min(kBlock, height - j0);
+            int run[kBlock] = {};
+            const uint8_t* v[kBlock];
+            for (int b = 0; b < nb; ++b) v[b] = bottom - std::ptrdiff_t(j0 + b) * width;
+            uint16_t* p1 = l1.prefix.data() + j0;
+            for (int b = 0; b < nb; ++b) p1[b] = 0;
+            for (int x = 0; x < width; ++x) {
+                uint16_t* out = p1 + size_t(x + 1) * size_t(height);
+                for (int b = 0; b < nb; ++b) {
+                    run[b] += v[b][x];
+                    out[b] = uint16_t(run[b]);
+                }
+            }
             for (int b = 0; b < nb; ++b) {
-                run[b] += v[b][x];
-                out[b] = run[b];
+                int first = width, last = -1;
+                for (int x = 0; x < width; ++x)
+                    if (v[b][x]) first = std::min(first, x), last = x;
+                l1.lo[size_t(j0 + b)] = first;
+                l1.hi[size_t(j0 + b)] = last;
             }
         }
+    };
+    if (threads == 1) {
+        columns();
+        rows();
+    } else {
+        auto both = [&] { tbb::parallel_invoke(columns, rows); };
+        if (threads > 1)
+            arena_for(threads).execute(both);
+        else
+            both();
     }
+    count = n0;
 }
 
 int first_pass_coordinate(const FaceSwap& s) {
@@ -602,8 +624,8 @@ inline void adjacent_row_pass(const AdjacentJob& j, int r0, int r1) {
             cl = j.n1, ch = -1;
             const int kk0 = std::max(k0, 0), kk1 = std::min(k1, j.n2 - 1);
             if (kk0 > kk1) continue;
-            const int* below = &j.need->prefix[size_t(kk0) * size_t(j.n1)];
-            const int* upto = &j.need->prefix[size_t(kk1 + 1) * size_t(j.n1)];
+            const uint16_t* below = &j.need->prefix[size_t(kk0) * size_t(j.n1)];
+            const uint16_t* upto = &j.need->prefix[size_t(kk1 + 1) * size_t(j.n1)];
             for (int c = c0; c <= c1; ++c) lines[c] = upto[c] > below[c];
             for (int c = c0; c <= c1; ++c)
                 if (lines[c]) {

@@ -87,7 +87,8 @@ struct AdjacentNeed {
         int n1 = 0, n2 = 0;
         const uint8_t* at = nullptr;
         std::ptrdiff_t step_line = 0, step_pos = 0;
-        std::vector<int> prefix, lo, hi;
+        std::vector<uint16_t> prefix;  // 16 bits: a face has at most 65535 texels a side (assign checks)
+        std::vector<int> lo, hi;
         bool needed(int c, int k) const { return at[c * step_line + k * step_pos] != 0; }
         // Whether line c needs any position in k0 .. k1 (clamped to the line).
         bool any(int c, int k0, int k1) const {
@@ -98,15 +99,16 @@ struct AdjacentNeed {
         }
     };
     std::array<Lines, 2> lines;
-    // F's pixel (x, row), row 0 at the top, is needed where `needed` is non-zero.
-    void assign(const Image2D<uint8_t>& needed);
+    // F's pixel (x, row), row 0 at the top, is needed where `needed` is non-zero. The two orientations are built on
+    // `threads` threads (0: oneTBB's default). Throws std::invalid_argument for a side over 65535 pixels.
+    void assign(const Image2D<uint8_t>& needed, int threads = 0);
     // The holes of F's own pre-warped texture: pixels with alpha < 128 (less than half covered: the texture-mapping
     // stage discards them, so the composite takes an adjacent sample there).
-    void assign_holes(const ImageRGBA8& own);
+    void assign_holes(const ImageRGBA8& own, int threads = 0);
     bool needed(int x, int row) const { return pixels[size_t(row) * size_t(width) + size_t(x)] != 0; }
 
 private:
-    void index();  // lines from pixels
+    void index(int threads);  // lines from pixels
 };
 
 // Scratch for warp_adjacent_face, reused across calls.

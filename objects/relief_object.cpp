@@ -95,7 +95,7 @@ void ReliefObject::prewarp_face(int face, const glm::dvec3& eye, int level, cons
     const auto t_adjacent = Clock::now();
     const AdjacentNeed* need = nullptr;
     if (adjacent_holes_only && !out.adjacent.empty()) {
-        need_.assign_holes(out.image);
+        need_.assign_holes(out.image, options.threads);
         need = &need_;
     }
     adjacent_.reset(w, h);
