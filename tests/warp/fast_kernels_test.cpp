@@ -778,6 +778,32 @@ TEST_P(PipelinedReverseFastKernels, FoldoversStillTexelsAndGapsMatchTheReference
     }
 }
 
+// The Highway pipelined kernel's reverse-mode buffers belong to the thread and are shared by the targets, whose
+// vectors differ in length: a target with longer vectors after one with shorter ones must not write past the log
+// the shorter ones grew (it did: heap corruption in `rtm bench --isa avx2,sse4`, caught by valgrind; under the
+// sanitizer build this test catches it). The targets by vector length, short first, each in reverse mode on one
+// thread, against the reference.
+TEST(FastKernelsReverseBuffers, SharedByTargetsOfEveryVectorLength) {
+    const ReliefTexture t = steady_state_relief();
+    const PrewarpCoefficients k = compute_coefficients(t.geometry, {1.2, 0.3, 0.4});
+    PrewarpOptions o;
+    o.method = Reconstruction::pipelined;
+    o.keep_outliers = true;
+    o.isa = Isa::generic;
+    o.threads = 1;
+    PrewarpWorkspace ws_ref, ws;
+    ImageRGBA8 ref, fast;
+    prewarp(t, k, o, ws_ref, ref);
+    const simd::testing::ScopedKernelPolicy scope(pipelined_policy(KernelChoice::always));
+    std::vector<Isa> isas = supported_isas();
+    std::reverse(isas.begin(), isas.end());  // generic, then the slowest (shortest vectors) first
+    for (Isa isa : isas) {
+        o.isa = isa;
+        prewarp(t, k, o, ws, fast);
+        EXPECT_EQ(first_difference(ref, fast), "") << isa_name(isa);
+    }
+}
+
 // Row chunks (warp/simd/schedule.cpp, FastKernelPolicy::pipelined_row_chunks always: every part split into chunks of
 // consecutive rows, one per thread, each starting from the row before it warped without drawing, composited in row
 // order) against the reference, 2 to 4 threads, reverse mode off, forced and automatic: the random cases above (one

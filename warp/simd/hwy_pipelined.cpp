@@ -188,8 +188,9 @@ struct Logger {
         xa = std::max(xa, x0);
         xb = std::min(xb, x1 - 1);
         if (xa > xb) return;
+        // Entries of N lanes: the buffers are the thread's, shared by the targets, whose N differ.
         const size_t want = log.n + size_t((xb - xa) / N + 1);
-        if (want > log.x.size()) [[unlikely]] {
+        if (want > log.x.size() || want * size_t(N) > log.v.size()) [[unlikely]] {
             const size_t cap = std::max(want, 2 * log.x.size());
             log.x.resize(cap);
             log.v.resize(cap * size_t(N));
