@@ -201,18 +201,29 @@ constexpr int kMinGroup = 3;
 // part (0 when fewer than kMinGroup), and whether that is pb >= pa (up) or pb <= pa.
 template <class DF>
 HWY_INLINE int GroupPrefix(DF df, const float* pa_ptr, const float* pb_ptr, bool from_low, bool& up) {
-    auto pa = hn::LoadU(df, pa_ptr), pb = hn::LoadU(df, pb_ptr);
-    if (!from_low) {
-        pa = hn::Reverse(df, pa);
-        pb = hn::Reverse(df, pb);
-    }
+    const auto pa = hn::LoadU(df, pa_ptr), pb = hn::LoadU(df, pb_ptr);
     const auto fin = hn::And(hn::IsFinite(pa), hn::IsFinite(pb));
     const int N = int(hn::Lanes(df));
+    // The whole vector one way (bumps: every group): no prefix to find.
+    auto ge = hn::And(fin, hn::Ge(pb, pa));
+    if (hn::AllTrue(df, ge)) {
+        up = true;
+        return N;
+    }
+    auto le = hn::And(fin, hn::Le(pb, pa));
+    if (hn::AllTrue(df, le)) {
+        up = false;
+        return N;
+    }
+    if (!from_low) {
+        ge = hn::MaskFromVec(hn::Reverse(df, hn::VecFromMask(df, ge)));
+        le = hn::MaskFromVec(hn::Reverse(df, hn::VecFromMask(df, le)));
+    }
     auto lead = [&](auto m) {
         const intptr_t f = hn::FindFirstTrue(df, hn::Not(m));
         return f < 0 ? N : int(f);
     };
-    const int mu = lead(hn::And(fin, hn::Ge(pb, pa))), md = lead(hn::And(fin, hn::Le(pb, pa)));
+    const int mu = lead(ge), md = lead(le);
     up = mu >= md;
     const int m = std::max(mu, md);
     return m >= kMinGroup ? m : 0;
@@ -327,26 +338,28 @@ constexpr int kFoldShare = 16;
 inline bool RowFoldsOver(const float* pos, int n, int split, bool any_row) {
     if (n < 1) return false;
     const hn::ScalableTag<float> df;
-    const hn::RebindToSigned<decltype(df)> di;
     const int N = int(hn::Lanes(df));
     // Pairs (k - 1, k), k = 1 .. n - 1, but the seam's (k == split): without foldovers the positions never go down
     // along the row, on either side of the split (the left part's span keyed k joins k - 1 -> k, the right part's
     // keyed k - 1 joins k -> k - 1); a span folds over where they do, pos[k] < pos[k - 1].
-    int folds = 0;
-    bool all = std::isfinite(pos[0]);
-    const auto vsplit = hn::Set(di, split);
+    // Counted in the lanes (a lane's count goes down by one for each: VecFromMask is -1), the seam's pair taken out
+    // at the end.
+    const hn::RebindToSigned<decltype(df)> di;
+    auto count = hn::Zero(di);
+    auto finite = hn::IsFinite(hn::Set(df, pos[0]));
     int k = 1;
     for (; k + N <= n; k += N) {
         const auto a = hn::LoadU(df, pos + k - 1), b = hn::LoadU(df, pos + k);
-        all = all && hn::AllTrue(df, hn::IsFinite(b));
-        const auto key = hn::Add(hn::Set(di, k), hn::Iota(di, 0));
-        const auto seam = hn::RebindMask(df, hn::Eq(key, vsplit));
-        folds += int(hn::CountTrue(df, hn::AndNot(seam, hn::Lt(b, a))));
+        finite = hn::And(finite, hn::IsFinite(b));
+        count = hn::Add(count, hn::VecFromMask(di, hn::RebindMask(di, hn::Lt(b, a))));
     }
+    bool all = hn::AllTrue(df, finite);
+    int folds = -int(hn::GetLane(hn::SumOfLanes(di, count)));
     for (; k < n; ++k) {
         all = all && std::isfinite(pos[k]);
-        folds += k != split && pos[k] < pos[k - 1];
+        folds += pos[k] < pos[k - 1];
     }
+    if (split >= 1 && split < n && pos[split] < pos[split - 1]) --folds;
     if (!all) return false;
     if (any_row) return true;
     return folds > 0 && folds * kFoldShare >= n;
