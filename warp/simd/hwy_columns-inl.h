@@ -275,9 +275,8 @@ struct ColumnsWritten {
 // at a time.
 template <class DF, class MI>
 HWY_NOINLINE void ColumnBits(DF df, const ColumnTarget& o, const ColumnsWritten& cw, int x, MI fb, MI spani,
-                             hn::Vec<hn::RebindToSigned<DF>> ylo, hn::Vec<hn::RebindToSigned<DF>> yhi,
-                             hn::Vec<DF> pv, hn::Vec<hn::RebindToSigned<DF>> pc, hn::Vec<DF> v,
-                             hn::Vec<hn::RebindToSigned<DF>> c) {
+                             hn::Vec<hn::RebindToSigned<DF>> ylo, hn::Vec<hn::RebindToSigned<DF>> yhi, hn::Vec<DF> pv,
+                             hn::Vec<hn::RebindToSigned<DF>> pc, hn::Vec<DF> v, hn::Vec<hn::RebindToSigned<DF>> c) {
     const hn::RebindToSigned<DF> di;
     const hn::RebindToUnsigned<DF> du;
     const size_t N = hn::Lanes(df);
@@ -313,9 +312,10 @@ HWY_NOINLINE void ColumnBits(DF df, const ColumnTarget& o, const ColumnsWritten&
                     if (sp[i]) {
                         raster_span_pixels(fpv[i], rgba(fpc[i]), 0.0f, fv[i], rgba(fc[i]), 0.0f, ya, yb,
                                            [&](int y, Rgba8 cc, float) {
-                                               px[size_t(o.oh - 1 - y) * size_t(o.ow)] =
-                                                   uint32_t(cc.r) | uint32_t(cc.g) << 8 | uint32_t(cc.b) << 16 |
-                                                   0xFF000000u;
+                                               px[size_t(o.oh - 1 - y) * size_t(o.ow)] = uint32_t(cc.r) |
+                                                                                         uint32_t(cc.g) << 8 |
+                                                                                         uint32_t(cc.b) << 16 |
+                                                                                         0xFF000000u;
                                            });
                     } else {
                         px[size_t(o.oh - 1 - ya) * size_t(o.ow)] = fc[i] | 0xFF000000u;

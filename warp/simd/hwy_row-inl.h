@@ -51,13 +51,12 @@ struct RowOut {
 
 // The spans of lanes `span` (pa != pb, from sample a to sample b) into row `out`: each lane's pixels lo .. hi as
 // raster_span computes them (centres in (pa, pb] or [pb, pa), clamped to [0, n_out)), only those in [cl, ch] (the
-// caller's clip range, within [0, n_out); the backward rows draw only the pixels no later span covers), colour by lerp8's integer
-// formula and the carried row coordinate by attr_lerp at each centre. The lanes are consecutive spans of one
-// orientation whose pixels follow the lane order (DrawGroup reverses the lanes where they run the other way): their
-// pixels are disjoint, in lane order, and together one run xa .. xb, handed to before(xa, xb) before any of them is
-// written.
-// Where the run is at most 4 vectors long (spans of a pixel or two, the usual case), each pixel of it looks up its
-// lane (the lane whose pixels contain it) and the run is computed and stored a vector of pixels at a time;
+// caller's clip range, within [0, n_out); the backward rows draw only the pixels no later span covers), colour by
+// lerp8's integer formula and the carried row coordinate by attr_lerp at each centre. The lanes are consecutive spans
+// of one orientation whose pixels follow the lane order (DrawGroup reverses the lanes where they run the other way):
+// their pixels are disjoint, in lane order, and together one run xa .. xb, handed to before(xa, xb) before any of them
+// is written. Where the run is at most 4 vectors long (spans of a pixel or two, the usual case), each pixel of it looks
+// up its lane (the lane whose pixels contain it) and the run is computed and stored a vector of pixels at a time;
 // otherwise the first pixel of every lane, then the second of those that have one, ..., stored lane by lane.
 template <class DF, class DI, class MF, class Before>
 HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb, hn::Vec<DI> ca, hn::Vec<DI> cb,

@@ -18,8 +18,8 @@ HWY_BEFORE_NAMESPACE();
 namespace rtm::simd::HWY_NAMESPACE {
 
 // The horizontal pass of steps [s0, s1): for each, the reference's row_samples (lookup-table path) and
-// warp_line_to (WarpRow, or WarpRowBackward for rows that fold over) into one band row (colour with alpha 255 where written, 0 elsewhere; the final row
-// coordinate).
+// warp_line_to (WarpRow, or WarpRowBackward for rows that fold over) into one band row (colour with alpha 255 where
+// written, 0 elsewhere; the final row coordinate).
 void HorizontalSteps(const fast::TwoPassJob& job, int s0, int s1, uint32_t* band_c, float* band_v, size_t stride,
                      float* scratch) {
     const ReliefTexture& t = *job.relief;
