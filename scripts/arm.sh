@@ -8,8 +8,8 @@
 # minutes: the tests run are RTM_ARM_TESTS (a GoogleTest filter; default the SIMD kernels' and the target choice's
 # tests, '*' for all of tests/warp, which takes far longer emulated), and the random sweeps of
 # tests/warp/fast_kernels_test.cpp are cut to their first RTM_SWEEP_CASES cases (default 200 here, of 2000 and 3000
-# natively; the 8 large reliefs to 1). Under qemu every instruction is emulated: the times it prints are not
-# measurements of ARM speed.
+# natively; the 8 large reliefs to 1; the kernel-policy sweeps to a tenth of it, their large reliefs to a
+# fortieth). Under qemu every instruction is emulated: the times it prints are not measurements of ARM speed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 

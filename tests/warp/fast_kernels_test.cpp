@@ -8,6 +8,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -614,8 +615,9 @@ TEST(Lerp8, FixedPointWithinOneLevelOfTheFloatFormula) {
     EXPECT_LT(differ, total / 50);
 }
 
-// The pipelined kernel's reverse mode (warp/simd/avx512_pipelined.cpp, reverse_rows: each pixel written once, by the
-// last emission of the forward order) forced on for whole parts, and off, against the reference: the random cases
+// The pipelined kernel's reverse mode (warp/simd/avx512_pipelined.cpp, reverse_rows, and warp/simd/hwy_pipelined.cpp,
+// RunRows: each pixel written once, by the last emission of the forward order) forced on for whole parts, and off,
+// against the reference, on every SIMD target (PipelinedReverseFastKernels): the random cases
 // above, and foldover-heavy reliefs (noise and steep ridges seen at grazing angles: spans far longer than a pixel,
 // columns whose written rows are not one interval), still texels (samples on pixel centres, spans on both sides
 // of one), empty texels (columns whose runs restart with points), one to three threads (column ranges).
@@ -635,6 +637,30 @@ protected:
         if (!fast_prewarp_available()) GTEST_SKIP() << "no AVX-512 on this CPU: the fast kernels are not used";
     }
 };
+
+// The suites of the scheduling policies run on every SIMD target this machine supports, each chosen in turn (the
+// hand-written AVX-512 kernels and the Highway ones have the same policies: warp/simd/kernel_policy.h).
+class PipelinedReverseFastKernels : public ::testing::TestWithParam<Isa> {
+protected:
+    Isa isa() const { return GetParam(); }
+};
+class TwoPassReverseFastKernels : public ::testing::TestWithParam<Isa> {
+protected:
+    Isa isa() const { return GetParam(); }
+};
+
+// The policy sweeps run every case once per policy: where RTM_SWEEP_CASES shortens the sweeps (the qemu runs of
+// scripts/arm.sh, which must stay a few minutes), a tenth of its cases, at most `full`.
+int policy_cases(int full) {
+    const int shortened = test::sweep_cases(1 << 30);
+    return shortened < (1 << 30) ? std::clamp(shortened / 10, 1, full) : full;
+}
+// The same for the loops over large foldover-heavy reliefs (tens of times a random case's work each): a fortieth.
+int large_cases(int full) {
+    const int shortened = test::sweep_cases(1 << 30);
+    return shortened < (1 << 30) ? std::clamp(shortened / 40, 1, full) : full;
+}
+bool sweeps_shortened() { return test::sweep_cases(1 << 30) < (1 << 30); }
 
 const char* choice_name(KernelChoice c) {
     return c == KernelChoice::always ? "always" : c == KernelChoice::never ? "never" : "automatic";
@@ -669,7 +695,7 @@ const NamedPolicy kTwoPassReverse[] = {{"backward rows always", two_pass_policy(
 // The random cases above against the reference, the fast kernel run with each of `policies`, on one and two
 // threads, copies of still runs alternating; the dropped counts must agree too.
 template <size_t N>
-void random_cases_with_policies(Reconstruction method, const NamedPolicy (&policies)[N], int cases,
+void random_cases_with_policies(Isa isa, Reconstruction method, const NamedPolicy (&policies)[N], int cases,
                                 uint64_t seed_fallback) {
     const uint64_t seed = test::test_seed(seed_fallback);
     std::mt19937_64 rng(seed);
@@ -684,7 +710,7 @@ void random_cases_with_policies(Reconstruction method, const NamedPolicy (&polic
         o.isa = Isa::generic;
         o.threads = 1;
         const PrewarpStats sr = prewarp(c.relief, k, o, ws_ref, ref);
-        o.isa = Isa::avx512;
+        o.isa = isa;
         for (const NamedPolicy& policy : policies) {
             const simd::testing::ScopedKernelPolicy scope(policy.policy);
             for (int threads : {1, 2}) {
@@ -698,17 +724,17 @@ void random_cases_with_policies(Reconstruction method, const NamedPolicy (&polic
     }
 }
 
-TEST_F(ReverseModeFixture, PipelinedReverseModeMatchesTheReference) {
-    random_cases_with_policies(Reconstruction::pipelined, kPipelinedReverse, 1500, 80011);
+TEST_P(PipelinedReverseFastKernels, RandomCasesMatchTheReference) {
+    random_cases_with_policies(isa(), Reconstruction::pipelined, kPipelinedReverse, policy_cases(1500), 80011);
 }
 
-TEST_F(ReverseModeFixture, PipelinedReverseModeFoldoversStillTexelsAndGaps) {
+TEST_P(PipelinedReverseFastKernels, FoldoversStillTexelsAndGapsMatchTheReference) {
     const uint64_t seed = test::test_seed(80012);
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> U(0.0, 1.0);
     PrewarpWorkspace ws_ref, ws_fast;
     ImageRGBA8 ref, fast;
-    for (int i = 0; i < 60; ++i) {
+    for (int i = 0, n = large_cases(60); i < n; ++i) {
         const int w = 40 + int(rng() % 200), h = 40 + int(rng() % 200);
         const ReliefGeometry g = unit_width_geometry(w);
         const uint32_t salt = uint32_t(rng());
@@ -742,7 +768,7 @@ TEST_F(ReverseModeFixture, PipelinedReverseModeFoldoversStillTexelsAndGaps) {
         SCOPED_TRACE("seed " + std::to_string(seed) + " case " + std::to_string(i) + " kind " + std::to_string(kind) +
                      " " + std::to_string(w) + "x" + std::to_string(h) + " " + k.to_string());
         prewarp(t, k, o, ws_ref, ref);
-        o.isa = Isa::avx512;
+        o.isa = isa();
         for (KernelChoice reverse : {KernelChoice::always, KernelChoice::automatic}) {
             const simd::testing::ScopedKernelPolicy scope(pipelined_policy(reverse));
             for (int threads : {1, 3}) {
@@ -755,6 +781,32 @@ TEST_F(ReverseModeFixture, PipelinedReverseModeFoldoversStillTexelsAndGaps) {
                 }
             }
         }
+    }
+}
+
+// The Highway pipelined kernel's reverse-mode buffers belong to the thread and are shared by the targets, whose
+// vectors differ in length: a target with longer vectors after one with shorter ones must not write past the log
+// the shorter ones grew (it did: heap corruption in `rtm bench --isa avx2,sse4`, caught by valgrind; under the
+// sanitizer build this test catches it). The targets by vector length, short first, each in reverse mode on one
+// thread, against the reference.
+TEST(FastKernelsReverseBuffers, SharedByTargetsOfEveryVectorLength) {
+    const ReliefTexture t = steady_state_relief();
+    const PrewarpCoefficients k = compute_coefficients(t.geometry, {1.2, 0.3, 0.4});
+    PrewarpOptions o;
+    o.method = Reconstruction::pipelined;
+    o.isa = Isa::generic;
+    o.threads = 1;
+    PrewarpWorkspace ws_ref, ws;
+    ImageRGBA8 ref, fast;
+    prewarp(t, k, o, ws_ref, ref);
+    const simd::testing::ScopedKernelPolicy scope(pipelined_policy(KernelChoice::always));
+    std::vector<Isa> isas = supported_isas();
+    std::reverse(isas.begin(), isas.end());  // the slowest (shortest vectors) first
+    for (Isa isa : isas) {
+        if (isa == Isa::generic) continue;
+        o.isa = isa;
+        prewarp(t, k, o, ws, fast);
+        EXPECT_EQ(first_difference(ref, fast), "") << isa_name(isa);
     }
 }
 
@@ -821,7 +873,7 @@ TEST(BalanceRowChunks, ConvergesToEqualTimes) {
     }
 }
 
-TEST_F(ReverseModeFixture, PipelinedRowChunksMatchTheReference) {
+TEST_P(PipelinedReverseFastKernels, RowChunksMatchTheReference) {
     const uint64_t seed = test::test_seed(80013);
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> U(0.0, 1.0);
@@ -834,7 +886,7 @@ TEST_F(ReverseModeFixture, PipelinedRowChunksMatchTheReference) {
         o.isa = Isa::generic;
         o.threads = 1;
         const PrewarpStats sr = prewarp(t, k, o, ws_ref, ref);
-        o.isa = Isa::avx512;
+        o.isa = isa();
         for (const NamedPolicy& policy : kPipelinedReverse) {
             FastKernelPolicy chunks = policy.policy;
             chunks.pipelined_row_chunks = KernelChoice::always;
@@ -858,14 +910,14 @@ TEST_F(ReverseModeFixture, PipelinedRowChunksMatchTheReference) {
             }
         }
     };
-    for (int i = 0; i < 400; ++i) {
+    for (int i = 0, n = policy_cases(400); i < n; ++i) {
         const Case c = random_case(rng);
         SCOPED_TRACE("seed " + std::to_string(seed) + " case " + std::to_string(i) + ": " + c.describe);
         compare(c.relief, c.eye, c.options);
         if (HasFatalFailure()) return;
     }
     for (int h : {1, 2, 3}) {
-        for (int i = 0; i < 20; ++i) {
+        for (int i = 0, n = policy_cases(20); i < n; ++i) {
             const int w = 1 + int(rng() % 100);
             const ReliefGeometry g = unit_width_geometry(w);
             const uint32_t salt = uint32_t(rng());
@@ -885,7 +937,7 @@ TEST_F(ReverseModeFixture, PipelinedRowChunksMatchTheReference) {
             if (HasFatalFailure()) return;
         }
     }
-    for (int i = 0; i < 12; ++i) {
+    for (int i = 0, n = large_cases(12); i < n; ++i) {
         const int w = 60 + int(rng() % 120), h = 60 + int(rng() % 120);
         const ReliefGeometry g = unit_width_geometry(w);
         const double f = 0.2 + U(rng);
@@ -903,7 +955,7 @@ TEST_F(ReverseModeFixture, PipelinedRowChunksMatchTheReference) {
     }
 }
 
-TEST_F(ReverseModeFixture, PipelinedRowChunksRecoverFromAnInterruptedPrewarp) {
+TEST_P(PipelinedReverseFastKernels, RowChunksRecoverFromAnInterruptedPrewarp) {
     // The scratch images of the row chunks are all 0 between pre-warps (the composite clears what it copies); one
     // left with pixels by a pre-warp interrupted between its chunks and its composite is cleared before use.
     const ReliefGeometry g = unit_width_geometry(200);
@@ -918,7 +970,7 @@ TEST_F(ReverseModeFixture, PipelinedRowChunksRecoverFromAnInterruptedPrewarp) {
     PrewarpWorkspace ws_ref, ws;
     ImageRGBA8 ref, fast;
     prewarp(t, k, o, ws_ref, ref);
-    o.isa = Isa::avx512;
+    o.isa = isa();
     o.threads = 2;
     FastKernelPolicy chunks;
     chunks.pipelined_row_chunks = KernelChoice::always;
@@ -934,10 +986,11 @@ TEST_F(ReverseModeFixture, PipelinedRowChunksRecoverFromAnInterruptedPrewarp) {
     EXPECT_FALSE(ws.chunk_scratch_dirty);
 }
 
-TEST_F(ReverseModeFixture, PipelinedReverseModeAllocatesNothingInSteadyState) {
+TEST_P(PipelinedReverseFastKernels, AllocatesNothingInSteadyState) {
     const ReliefTexture t = steady_state_relief();
     const ReliefGeometry& g = t.geometry;
     PrewarpOptions o;
+    o.isa = isa();
     o.method = Reconstruction::pipelined;
     o.threads = 1;
     o.keep_outliers = true;
@@ -953,30 +1006,26 @@ TEST_F(ReverseModeFixture, PipelinedReverseModeAllocatesNothingInSteadyState) {
                 const PrewarpCoefficients k = compute_coefficients(g, {1.2, ey, 0.4});
                 prewarp(t, k, o, ws, out);  // warm-up: buffers grow to size
                 const long long before = g_allocations.load();
-                for (int i = 0; i < 3; ++i) prewarp(t, compute_coefficients(g, {1.2 + 0.01 * i, ey, 0.4}), o, ws, out);
+                // Three pre-warps, one where the sweeps are shortened (qemu: each takes seconds emulated).
+                for (int i = 0, n = sweeps_shortened() ? 1 : 3; i < n; ++i)
+                    prewarp(t, compute_coefficients(g, {1.2 + 0.01 * i, ey, 0.4}), o, ws, out);
                 EXPECT_EQ(g_allocations.load() - before, 0)
                     << "reverse mode " << choice_name(reverse) << " threads " << threads << " eye y " << ey;
             }
 }
 
-// The two-pass kernel's backward rows (warp/simd/avx512_line.h, warp_line_reverse: a row's items in the reverse of the
-// forward order, each pixel shaded once) against the reference, with each FastKernelPolicy::two_pass_reverse:
+// The two-pass kernel's backward rows (warp/simd/avx512_line.h, warp_line_reverse, and warp/simd/hwy_row-inl.h,
+// WarpRowBackward: a row's items in the reverse of the forward order, each pixel shaded once) against the reference,
+// on every SIMD target (TwoPassReverseFastKernels), with each FastKernelPolicy::two_pass_reverse:
 // always takes every row whose samples all take part backwards (also rows without foldovers: copies, spans of one,
 // two and more pixels, clipped on either side of the pixels already written), with two_pass_redo_forwards then
 // redoes the row forwards (the fallback), automatic takes only rows that fold over, never none. Rows with empty texels
 // or texels that cannot be pre-warped always go forwards.
-class TwoPassReverseRows : public ::testing::Test {
-protected:
-    void SetUp() override {
-        if (!fast_prewarp_available()) GTEST_SKIP() << "no AVX-512 on this CPU: the fast kernels are not used";
-    }
-};
-
-TEST_F(TwoPassReverseRows, RandomCasesMatchTheReference) {
-    random_cases_with_policies(Reconstruction::two_pass, kTwoPassReverse, 1200, 80021);
+TEST_P(TwoPassReverseFastKernels, RandomCasesMatchTheReference) {
+    random_cases_with_policies(isa(), Reconstruction::two_pass, kTwoPassReverse, policy_cases(1200), 80021);
 }
 
-TEST_F(TwoPassReverseRows, FoldoversEmptyRowsAndMarksMatchTheReference) {
+TEST_P(TwoPassReverseFastKernels, FoldoversEmptyRowsAndMarksMatchTheReference) {
     // Foldover-heavy reliefs (steep ridges across and along the rows, noise, steps onto still texels) seen from
     // grazing angles, near, from above and from below the highest texels (texels that cannot be pre-warped), the
     // epipole inside the rows, on a texel boundary, on a texel centre and outside; empty texels in some rows only,
@@ -987,7 +1036,7 @@ TEST_F(TwoPassReverseRows, FoldoversEmptyRowsAndMarksMatchTheReference) {
     std::uniform_real_distribution<double> U(0.0, 1.0);
     PrewarpWorkspace ws_ref, ws_fast;
     ImageRGBA8 ref, fast;
-    for (int i = 0; i < 80; ++i) {
+    for (int i = 0, n = large_cases(80); i < n; ++i) {
         const int w = i % 8 == 0 ? 16 * (1 + int(rng() % 12)) : 20 + int(rng() % 220), h = 30 + int(rng() % 120);
         const ReliefGeometry g = unit_width_geometry(w);
         const uint32_t salt = uint32_t(rng());
@@ -1037,7 +1086,7 @@ TEST_F(TwoPassReverseRows, FoldoversEmptyRowsAndMarksMatchTheReference) {
                      " empty rows " + std::to_string(empty_rows) + " " + std::to_string(w) + "x" + std::to_string(h) +
                      " " + k.to_string());
         const PrewarpStats sr = prewarp(t, k, o, ws_ref, ref);
-        o.isa = Isa::avx512;
+        o.isa = isa();
         for (const NamedPolicy& policy : kTwoPassReverse) {
             const simd::testing::ScopedKernelPolicy scope(policy.policy);
             for (int threads : {1, 3}) {
@@ -1051,7 +1100,9 @@ TEST_F(TwoPassReverseRows, FoldoversEmptyRowsAndMarksMatchTheReference) {
                 }
             }
         }
-        // Discontinuity marks: the fast kernels, marked rows forwards whatever the policy says.
+        // Discontinuity marks: the avx512 kernels (the only ones that take them), marked rows forwards whatever the
+        // policy says.
+        if (isa() != Isa::avx512) continue;
         mark_discontinuities(t, 0.05);
         o.isa = Isa::generic;
         o.threads = 1;
@@ -1070,10 +1121,11 @@ TEST_F(TwoPassReverseRows, FoldoversEmptyRowsAndMarksMatchTheReference) {
     }
 }
 
-TEST_F(TwoPassReverseRows, AllocatesNothingInSteadyState) {
+TEST_P(TwoPassReverseFastKernels, AllocatesNothingInSteadyState) {
     const ReliefTexture t = steady_state_relief();
     const ReliefGeometry& g = t.geometry;
     PrewarpOptions o;
+    o.isa = isa();
     o.method = Reconstruction::two_pass;
     o.threads = 1;
     o.keep_outliers = true;
@@ -1266,6 +1318,19 @@ INSTANTIATE_TEST_SUITE_P(Targets, FastKernels, ::testing::ValuesIn(method_target
     return std::string(info.param.method == Reconstruction::two_pass ? "TwoPass_" : "Pipelined_") +
            isa_name(info.param.isa);
 });
+
+// Every SIMD target this machine supports.
+std::vector<Isa> simd_targets() {
+    std::vector<Isa> v;
+    for (Isa isa : supported_isas())
+        if (isa != Isa::generic) v.push_back(isa);
+    return v;
+}
+
+INSTANTIATE_TEST_SUITE_P(Targets, PipelinedReverseFastKernels, ::testing::ValuesIn(simd_targets()),
+                         [](const auto& info) { return std::string(isa_name(info.param)); });
+INSTANTIATE_TEST_SUITE_P(Targets, TwoPassReverseFastKernels, ::testing::ValuesIn(simd_targets()),
+                         [](const auto& info) { return std::string(isa_name(info.param)); });
 
 }  // namespace
 }  // namespace rtm

@@ -182,37 +182,20 @@ HWY_NOINLINE void ColumnLongSpans(DF df, const ColumnTarget& o, int x, MI lng, h
     }
 }
 
-// Columns x .. x + N - 1 (`full`: all of them in the caller's columns): in lanes `fin` a new sample (final row
-// coordinate v, packed colour c) arrives; in lanes `pok` (a subset) the column's previous sample (pv, pc) is
-// connected to it, raster_span(pv, pc, v, c) along the column; in the other lanes of `fin` the new sample starts a
-// run, raster_point(v, c). Only pixels in v-rows [y0, y1) are written.
-template <class DF, class MF>
-HWY_INLINE void ColumnDraw(DF df, const ColumnTarget& o, int x, bool full, MF fin, MF pok, hn::Vec<DF> pv,
-                           hn::Vec<hn::RebindToSigned<DF>> pc, hn::Vec<DF> v, hn::Vec<hn::RebindToSigned<DF>> c) {
+// Pixels ylo .. yhi of lanes `act` of columns x .. x + N - 1 (`full`: all of them in the caller's columns): in lanes
+// `spani` of the span from (pv, pc) to (v, c) with inv = 1 / (v - pv) (raster_span_pixels), in the others the point
+// (v, c) (one pixel, ylo == yhi). Any rows of a span may be asked for: a pixel's colour depends on its row alone.
+template <class DF, class MI>
+HWY_INLINE void ColumnPixels(DF df, const ColumnTarget& o, int x, bool full, MI act, MI spani, MI pointi,
+                             hn::Vec<hn::RebindToSigned<DF>> ylo, hn::Vec<hn::RebindToSigned<DF>> yhi, hn::Vec<DF> pv,
+                             hn::Vec<DF> inv, hn::Vec<hn::RebindToSigned<DF>> pc, hn::Vec<DF> v,
+                             hn::Vec<hn::RebindToSigned<DF>> c) {
     const hn::RebindToSigned<DF> di;
     using VF = hn::Vec<DF>;
     using VI = hn::Vec<decltype(di)>;
     const VF half = hn::Set(df, 0.5f), one = hn::Set(df, 1.0f);
-    const VF first = hn::Set(df, float(o.y0)), last = hn::Set(df, float(o.y1 - 1)), end = hn::Set(df, float(o.y1));
-    // raster_span's rows in float: lo .. hi, clamped to [0, oh - 1] and to [y0, y1 - 1].
-    const auto inc = hn::And(pok, hn::Gt(v, pv)), dec = hn::And(pok, hn::Lt(v, pv));
-    const VF pvh = hn::Sub(pv, half), vh = hn::Sub(v, half);
-    VF lo = hn::IfThenElse(inc, hn::Add(hn::Floor(pvh), one), hn::Ceil(vh));
-    VF hi = hn::IfThenElse(inc, hn::Floor(vh), hn::Sub(hn::Ceil(pvh), one));
-    lo = hn::IfThenElse(hn::Lt(lo, first), first, lo);
-    hi = hn::IfThenElse(hn::Lt(last, hi), last, hi);
-    const auto span = hn::And(hn::Or(inc, dec), hn::Le(lo, hi));
-    // raster_point: row int(v) where 0 <= v < oh, and y0 <= int(v) < y1.
-    const auto point = hn::AndNot(pok, hn::And(fin, hn::And(hn::Ge(v, first), hn::Lt(v, end))));
-    const auto todo = hn::RebindMask(di, hn::Or(span, point));
-    if (hn::AllFalse(di, todo)) return;
-    const auto pointi = hn::RebindMask(di, point), spani = hn::RebindMask(di, span);
-    const VI ylo = hn::ConvertTo(di, hn::IfThenElse(point, v, lo));
-    const VI yhi = hn::IfThenElse(pointi, ylo, hn::ConvertTo(di, hi));
-    const VF inv = hn::Div(one, hn::Sub(v, pv));
-    auto act = todo;
     if (full) {
-        const auto lng = hn::And(spani, hn::Gt(hn::Sub(yhi, ylo), hn::Set(di, kLongSpan - 1)));
+        const auto lng = hn::And(hn::And(act, spani), hn::Gt(hn::Sub(yhi, ylo), hn::Set(di, kLongSpan - 1)));
         if (!hn::AllFalse(di, lng)) {
             ColumnLongSpans(df, o, x, lng, ylo, yhi, pv, inv, pc, c, v);
             act = hn::AndNot(lng, act);
@@ -232,6 +215,164 @@ HWY_INLINE void ColumnDraw(DF df, const ColumnTarget& o, int x, bool full, MF fi
         StoreRows(di, o, x, full, act, y, SpanColour(df, yc, pv, inv, pc, c));
         act = hn::And(act, hn::Lt(y, yhi));
     }
+}
+
+// The rows raster_span(pv, v) / raster_point(v) write in columns x .. x + N - 1, for ColumnDraw and ColumnDrawRev
+// (see there): lanes `span` and `point` (as masks of DI), rows ylo .. yhi clamped to [y0, y1 - 1].
+template <class DF, class MF, class MI>
+HWY_INLINE void ColumnRows(DF df, const ColumnTarget& o, MF fin, MF pok, hn::Vec<DF> pv, hn::Vec<DF> v, MI& spani,
+                           MI& pointi, hn::Vec<hn::RebindToSigned<DF>>& ylo, hn::Vec<hn::RebindToSigned<DF>>& yhi) {
+    const hn::RebindToSigned<DF> di;
+    using VF = hn::Vec<DF>;
+    const VF half = hn::Set(df, 0.5f), one = hn::Set(df, 1.0f);
+    const VF first = hn::Set(df, float(o.y0)), last = hn::Set(df, float(o.y1 - 1)), end = hn::Set(df, float(o.y1));
+    // raster_span's rows in float: lo .. hi, clamped to [0, oh - 1] and to [y0, y1 - 1].
+    const auto inc = hn::And(pok, hn::Gt(v, pv)), dec = hn::And(pok, hn::Lt(v, pv));
+    const VF pvh = hn::Sub(pv, half), vh = hn::Sub(v, half);
+    VF lo = hn::IfThenElse(inc, hn::Add(hn::Floor(pvh), one), hn::Ceil(vh));
+    VF hi = hn::IfThenElse(inc, hn::Floor(vh), hn::Sub(hn::Ceil(pvh), one));
+    lo = hn::IfThenElse(hn::Lt(lo, first), first, lo);
+    hi = hn::IfThenElse(hn::Lt(last, hi), last, hi);
+    const auto span = hn::And(hn::Or(inc, dec), hn::Le(lo, hi));
+    // raster_point: row int(v) where 0 <= v < oh, and y0 <= int(v) < y1.
+    const auto point = hn::AndNot(pok, hn::And(fin, hn::And(hn::Ge(v, first), hn::Lt(v, end))));
+    spani = hn::RebindMask(di, span);
+    pointi = hn::RebindMask(di, point);
+    ylo = hn::ConvertTo(di, hn::IfThenElse(point, v, lo));
+    yhi = hn::IfThenElse(pointi, ylo, hn::ConvertTo(di, hi));
+}
+
+// Columns x .. x + N - 1 (`full`: all of them in the caller's columns): in lanes `fin` a new sample (final row
+// coordinate v, packed colour c) arrives; in lanes `pok` (a subset) the column's previous sample (pv, pc) is
+// connected to it, raster_span(pv, pc, v, c) along the column; in the other lanes of `fin` the new sample starts a
+// run, raster_point(v, c). Only pixels in v-rows [y0, y1) are written.
+template <class DF, class MF>
+HWY_INLINE void ColumnDraw(DF df, const ColumnTarget& o, int x, bool full, MF fin, MF pok, hn::Vec<DF> pv,
+                           hn::Vec<hn::RebindToSigned<DF>> pc, hn::Vec<DF> v, hn::Vec<hn::RebindToSigned<DF>> c) {
+    const hn::RebindToSigned<DF> di;
+    auto spani = hn::FirstN(di, 0), pointi = spani;
+    hn::Vec<decltype(di)> ylo, yhi;
+    ColumnRows(df, o, fin, pok, pv, v, spani, pointi, ylo, yhi);
+    const auto todo = hn::Or(spani, pointi);
+    if (hn::AllFalse(di, todo)) return;
+    ColumnPixels(df, o, x, full, todo, spani, pointi, ylo, yhi, pv, hn::Div(hn::Set(df, 1.0f), hn::Sub(v, pv)), pc, v,
+                 c);
+}
+
+// The pipelined kernel's reverse mode (warp/simd/hwy_pipelined.cpp): per output column, the rows written so far,
+// as one interval [lo, hi] (empty when lo > hi) or, where that is not one interval (bits_on), a bitmask of nw
+// words. Arrays of the output width, readable and writable a whole vector past it.
+struct ColumnsWritten {
+    int32_t* lo;
+    int32_t* hi;
+    int32_t* bits_on;
+    uint64_t* bits;
+    int nw;
+};
+
+// ColumnDrawRev's lanes `fb` (as a mask of DI) whose rows ylo .. yhi are not one interval with the rows their column
+// has: the column's bitmask (made from its interval the first time), and the runs of rows not yet written, one lane
+// at a time.
+template <class DF, class MI>
+HWY_NOINLINE void ColumnBits(DF df, const ColumnTarget& o, const ColumnsWritten& cw, int x, MI fb, MI spani,
+                             hn::Vec<hn::RebindToSigned<DF>> ylo, hn::Vec<hn::RebindToSigned<DF>> yhi, hn::Vec<DF> pv,
+                             hn::Vec<hn::RebindToSigned<DF>> pc, hn::Vec<DF> v, hn::Vec<hn::RebindToSigned<DF>> c) {
+    const hn::RebindToSigned<DF> di;
+    const hn::RebindToUnsigned<DF> du;
+    const size_t N = hn::Lanes(df);
+    HWY_ALIGN int32_t lo[HWY_MAX_BYTES / 4], hi[HWY_MAX_BYTES / 4], on[HWY_MAX_BYTES / 4], sp[HWY_MAX_BYTES / 4];
+    HWY_ALIGN float fpv[HWY_MAX_BYTES / 4], fv[HWY_MAX_BYTES / 4];
+    HWY_ALIGN uint32_t fpc[HWY_MAX_BYTES / 4], fc[HWY_MAX_BYTES / 4];
+    hn::Store(ylo, di, lo);
+    hn::Store(yhi, di, hi);
+    hn::Store(hn::VecFromMask(di, fb), di, on);
+    hn::Store(hn::VecFromMask(di, spani), di, sp);
+    hn::Store(pv, df, fpv);
+    hn::Store(v, df, fv);
+    hn::Store(hn::BitCast(du, pc), du, fpc);
+    hn::Store(hn::BitCast(du, c), du, fc);
+    auto rgba = [](uint32_t u) { return Rgba8{uint8_t(u), uint8_t(u >> 8), uint8_t(u >> 16), uint8_t(u >> 24)}; };
+    for (size_t i = 0; i < N; ++i) {
+        if (!on[i]) continue;
+        const size_t col = size_t(x) + i;
+        uint64_t* w = cw.bits + col * size_t(cw.nw);
+        uint32_t* px = o.pixels + col;
+        // Rows a .. b (a <= b) marked written; with `draw`, those that were not are drawn.
+        auto set_range = [&](int a, int b, bool draw) {
+            for (int q = a >> 6; q <= b >> 6; ++q) {
+                const int s = std::max(a, q * 64) - q * 64, e = std::min(b, q * 64 + 63) - q * 64;
+                const uint64_t rm = (~uint64_t(0) >> (63 - e)) & (~uint64_t(0) << s);
+                uint64_t todo = draw ? rm & ~w[q] : 0;
+                w[q] |= rm;
+                while (todo) {
+                    const int r0 = int(hwy::Num0BitsBelowLS1Bit_Nonzero64(todo));
+                    const uint64_t rest = ~(todo >> r0);
+                    const int len = rest ? int(hwy::Num0BitsBelowLS1Bit_Nonzero64(rest)) : 64 - r0;
+                    const int ya = q * 64 + r0, yb = ya + len - 1;
+                    if (sp[i]) {
+                        raster_span_pixels(fpv[i], rgba(fpc[i]), 0.0f, fv[i], rgba(fc[i]), 0.0f, ya, yb,
+                                           [&](int y, Rgba8 cc, float) {
+                                               px[size_t(o.oh - 1 - y) * size_t(o.ow)] = uint32_t(cc.r) |
+                                                                                         uint32_t(cc.g) << 8 |
+                                                                                         uint32_t(cc.b) << 16 |
+                                                                                         0xFF000000u;
+                                           });
+                    } else {
+                        px[size_t(o.oh - 1 - ya) * size_t(o.ow)] = fc[i] | 0xFF000000u;
+                    }
+                    todo &= len == 64 ? 0 : ~(((uint64_t(1) << len) - 1) << r0);
+                }
+            }
+        };
+        if (!cw.bits_on[col]) {
+            cw.bits_on[col] = 1;
+            std::fill(w, w + cw.nw, uint64_t(0));
+            if (cw.lo[col] <= cw.hi[col]) set_range(cw.lo[col], cw.hi[col], false);
+        }
+        set_range(lo[i], hi[i], true);
+    }
+}
+
+// ColumnDraw in reverse mode (the emissions replayed from the last to the first): writes only the rows no emission
+// replayed before wrote in its column, and records them. Where the rows extend the column's interval (below it,
+// above it, or both), the lanes go together (ColumnPixels); elsewhere (rows apart from the interval, or a column
+// already on a bitmask) ColumnBits.
+template <class DF, class MF>
+HWY_INLINE void ColumnDrawRev(DF df, const ColumnTarget& o, const ColumnsWritten& cw, int x, bool full, MF fin, MF pok,
+                              hn::Vec<DF> pv, hn::Vec<hn::RebindToSigned<DF>> pc, hn::Vec<DF> v,
+                              hn::Vec<hn::RebindToSigned<DF>> c) {
+    const hn::RebindToSigned<DF> di;
+    using VI = hn::Vec<decltype(di)>;
+    auto spani = hn::FirstN(di, 0), pointi = spani;
+    VI ylo, yhi;
+    ColumnRows(df, o, fin, pok, pv, v, spani, pointi, ylo, yhi);
+    const auto todo = hn::Or(spani, pointi);
+    if (hn::AllFalse(di, todo)) return;
+    const VI one = hn::Set(di, 1);
+    const VI clo = hn::LoadU(di, cw.lo + x), chi = hn::LoadU(di, cw.hi + x);
+    const auto emp = hn::Gt(clo, chi);
+    // (Highway 1.0.3 has no Ge / Le for integers.) Lanes whose rows reach outside the interval, or with none.
+    const auto outside = hn::Or(emp, hn::Or(hn::Lt(ylo, clo), hn::Gt(yhi, chi)));
+    const auto apart = hn::AndNot(emp, hn::Or(hn::Lt(yhi, hn::Sub(clo, one)), hn::Gt(ylo, hn::Add(chi, one))));
+    const auto fb = hn::And(todo, hn::Or(hn::Ne(hn::LoadU(di, cw.bits_on + x), hn::Zero(di)), apart));
+    const auto go = hn::And(outside, hn::AndNot(fb, todo));
+    const auto inv = hn::Div(hn::Set(df, 1.0f), hn::Sub(v, pv));
+    if (!hn::AllFalse(di, go)) {
+        // cw.lo / hi are the task's own, padded: a whole-vector store (SSE4, NEON) touches no one else's.
+        hn::BlendedStore(hn::IfThenElse(emp, ylo, hn::Min(ylo, clo)), go, di, cw.lo + x);
+        hn::BlendedStore(hn::IfThenElse(emp, yhi, hn::Max(yhi, chi)), go, di, cw.hi + x);
+        // Below the interval (everything where the column has none), above it, or both.
+        const auto low = hn::And(go, hn::Or(emp, hn::Lt(ylo, clo)));
+        const auto high = hn::And(go, hn::AndNot(emp, hn::Gt(yhi, chi)));
+        if (!hn::AllFalse(di, low))
+            ColumnPixels(df, o, x, full, low, hn::And(spani, low), hn::And(pointi, low), ylo,
+                         hn::IfThenElse(emp, yhi, hn::Min(yhi, hn::Sub(clo, one))), pv, inv, pc, v, c);
+        if (!hn::AllFalse(di, high))
+            ColumnPixels(df, o, x, full, high, hn::And(spani, high), hn::And(pointi, high),
+                         hn::Max(ylo, hn::Add(chi, one)), yhi, pv, inv, pc, v, c);
+    }
+    if (!hn::AllFalse(di, fb)) [[unlikely]]
+        ColumnBits(df, o, cw, x, fb, spani, ylo, yhi, pv, pc, v, c);
 }
 
 }  // namespace rtm::simd::HWY_NAMESPACE

@@ -71,6 +71,43 @@ PipeBuffers task_buffers(const fast::PipelinedJob& job) {
     return b;
 }
 
+// Reverse mode's buffers (see RunRows), per thread: they grow to the largest output seen and never shrink (steady
+// state allocates nothing). The emissions of a row are logged in the order of the row warp, a vector of adjacent
+// columns an entry (x, then N row coordinates, NaN where the lane received nothing, and N packed colours).
+struct EmitLog {
+    std::vector<int32_t> x;
+    std::vector<float> v;
+    std::vector<uint32_t> c;
+    size_t n = 0;  // entries
+};
+
+struct ReverseBuffers {
+    // The final samples of the row warped last (fin_ok: -1 where the column has one), and the rows written per column
+    // (ColumnsWritten).
+    std::vector<float> fin_v;
+    std::vector<uint32_t> fin_c;
+    std::vector<int32_t> fin_ok, lo, hi, bits_on;
+    std::vector<uint64_t> bits;
+    int nw = 0;
+    EmitLog log[2];
+
+    void reserve(int ow, int oh) {
+        // Padded as the task buffers are (a whole vector of up to 64 lanes past the width), rounded up to 64 columns.
+        const size_t n = (size_t(ow) + 63) / 64 * 64 + 64;
+        auto grow = [&](auto& vec, size_t want) {
+            if (vec.size() < want) vec.resize(want);
+        };
+        grow(fin_v, n), grow(fin_c, n), grow(fin_ok, n), grow(lo, n), grow(hi, n), grow(bits_on, n);
+        nw = (oh + 63) / 64;
+        grow(bits, n * size_t(nw));
+    }
+};
+
+ReverseBuffers& reverse_buffers() {
+    static thread_local ReverseBuffers b;
+    return b;
+}
+
 void clear_part(const fast::PipelinedJob& job, int part, int x0, int x1) {
     const int ow = job.out->width, oh = job.out->height;
     const PartRows p = part_rows(job, part);
@@ -96,11 +133,12 @@ struct RowRange {
 // (raster_span along the column) or start a run with it (raster_point), drawing only the output rows of `o`, and
 // make the new sample the column's current one. A column that receives several pixels from a row (a foldover along
 // the row) is handed each of them in the row warp's order, each drawn from the previous row's sample, as the
-// reference draws them.
+// reference draws them. With `drawn`, adds the rows each span covers (at most oh a column) to it.
 struct Emitter {
     PipeBuffers& b;
     ColumnTarget o;
     int x0, x1;
+    float* drawn = nullptr;
 
     void operator()(int xa, int xb) const {
         const hn::ScalableTag<float> df;
@@ -125,18 +163,68 @@ struct Emitter {
             hn::BlendedStore(c, fini, di, reinterpret_cast<int32_t*>(b.cur_c + x));
             hn::BlendedStore(hn::Set(di, -1), fini, di, b.cur_ok + x);
             ColumnDraw(df, o, x, x + N <= x1, fin, pok, pv, pc, v, c);
+            if (drawn) [[unlikely]] {
+                const VF d = hn::Min(hn::Abs(hn::Sub(v, pv)), hn::Set(df, float(o.oh)));
+                *drawn += hn::GetLane(hn::SumOfLanes(df, hn::IfThenElseZero(pok, d)));
+            }
         }
     }
 };
 
-// WarpRow's range for the pipelined kernel: the groups of pixels of a row go to the Emitter in runs as long as
-// possible. A group that extends the pending run (adjacent to it) joins it; any other (apart from it, or writing
-// over its pixels: a foldover along the row) hands the pending run to the Emitter first, before the group's pixels
-// are written. Each column of a run was written once since its run began, and the runs reach the Emitter in the
-// row warp's order, so every pixel is drawn as the reference draws it, with one Emitter call for most rows in
+// Reverse mode: the emissions of a row, as the Emitter receives them (columns [x0, x1)), into a log, and each
+// column's last one into the reverse buffers' fin_*.
+struct Logger {
+    PipeBuffers& b;
+    ReverseBuffers& r;
+    EmitLog& log;
+    int x0, x1;
+
+    void operator()(int xa, int xb) const {
+        const hn::ScalableTag<float> df;
+        const hn::RebindToSigned<decltype(df)> di;
+        using VF = hn::Vec<decltype(df)>;
+        using VI = hn::Vec<decltype(di)>;
+        const int N = int(hn::Lanes(df));
+        xa = std::max(xa, x0);
+        xb = std::min(xb, x1 - 1);
+        if (xa > xb) return;
+        // Entries of N lanes: the buffers are the thread's, shared by the targets, whose N differ.
+        const size_t want = log.n + size_t((xb - xa) / N + 1);
+        if (want > log.x.size() || want * size_t(N) > log.v.size()) [[unlikely]] {
+            const size_t cap = std::max(want, 2 * log.x.size());
+            log.x.resize(cap);
+            log.v.resize(cap * size_t(N));
+            log.c.resize(cap * size_t(N));
+        }
+        const VF nan = hn::Set(df, std::numeric_limits<float>::quiet_NaN());
+        for (int x = xa; x <= xb; x += N) {
+            const auto m = hn::FirstN(df, size_t(xb - x + 1));
+            const auto mi = hn::RebindMask(di, m);
+            const VF v = hn::IfThenElseZero(m, hn::LoadU(df, b.rv + x));
+            const auto fin = hn::And(m, hn::IsFinite(v));
+            if (hn::AllFalse(df, fin)) continue;
+            const auto fini = hn::RebindMask(di, fin);
+            const VI c = hn::IfThenElseZero(mi, hn::LoadU(di, reinterpret_cast<const int32_t*>(b.rc + x)));
+            log.x[log.n] = x;
+            hn::StoreU(hn::IfThenElse(fin, v, nan), df, log.v.data() + log.n * size_t(N));
+            hn::StoreU(c, di, reinterpret_cast<int32_t*>(log.c.data() + log.n * size_t(N)));
+            ++log.n;
+            hn::BlendedStore(v, fin, df, r.fin_v.data() + x);
+            hn::BlendedStore(c, fini, di, reinterpret_cast<int32_t*>(r.fin_c.data() + x));
+            hn::BlendedStore(hn::Set(di, -1), fini, di, r.fin_ok.data() + x);
+        }
+    }
+};
+
+// WarpRow's range for the pipelined kernel: the groups of pixels of a row go to the Emitter (or Logger) in runs as
+// long as possible. A group that extends the pending run (adjacent to it) joins it; any other (apart from it, or
+// writing over its pixels: a foldover along the row) hands the pending run to the Emitter first, before the group's
+// pixels are written. Each column of a run was written once since its run began, and the runs reach the Emitter in
+// the row warp's order, so every pixel is drawn as the reference draws it, with one Emitter call for most rows in
 // place of one per group (bumps 256^2 and 1024^2: 0.93 -> 0.80 ms and 16.8 -> 14.1 ms of CPU on avx2).
+template <class E>
 struct Coalescer {
-    const Emitter& emit;
+    const E& emit;
     mutable int pa = 0, pb = -1;  // the pending run (pa > pb: none)
 
     void before(int xa, int xb) const {
@@ -157,10 +245,25 @@ struct Coalescer {
     }
 };
 
+// A row whose spans cover more than this many rows per column switches the rest of the part to reverse mode
+// (RunRows; the AVX-512 kernel's threshold, warp/simd/avx512_pipelined.cpp).
+constexpr float kReverseDrawn = 3.0f;
+
 // Rows [r0, r1) of part `part` (counted in the part's order), columns [x0, x1), drawn into `pixels` (an image of
 // the output's size; only the part's output rows). A task that does not start at its part's first row starts from
 // the row before it, warped without drawing: the column state after it is the one the reference carries into the
-// task's first row. Returns the range of the row coordinates of the samples warped (with `track`).
+// task's first row, forwards or in reverse mode. Returns the range of the row coordinates of the samples warped
+// (with `track`).
+//
+// Reverse mode (the AVX-512 kernel's, warp/simd/avx512_pipelined.cpp, reverse_rows; FastKernelPolicy::
+// pipelined_reverse): the rest of the part's rows with the painter's algorithm run backwards. Row j's emissions are
+// logged, then replayed from the last to the first once row j - step has been warped (its final samples are the
+// ones row j's spans start from), the rows from the part's last back to the first in reverse mode (whose spans
+// start from the samples the forward rows before it left), and each pixel is written only by the first emission
+// that reaches it, the last in the forward order: the same image, each pixel written once where the forward order
+// writes it again and again (ridges: long column spans that later rows overwrite). Each column keeps the interval
+// of rows written so far, or a bitmask where they are not one interval (ColumnDrawRev). Automatic: every 4th row
+// measures the rows its spans cover per column, and more than kReverseDrawn switches.
 RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0, int x1, uint32_t* pixels,
                  bool track) {
     const ReliefTexture& t = *job.relief;
@@ -173,8 +276,8 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
     float* rv = b.rv;
     std::fill(b.prev_ok + x0, b.prev_ok + x1, 0);
     RowRange range{std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
-    // Row j, drawing into v-rows [ya, yb); returns the texels dropped.
-    auto row = [&](int j, int ya, int yb) {
+    // Row j set up; returns the texels dropped.
+    auto prepare = [&](int j) {
         const long long dropped = PrepareRow(t, tab, job.extent, h - 1 - j, s);
         if (track)
             for (int x = 0; x < w; ++x)
@@ -182,26 +285,86 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
                     range.lo = std::min(range.lo, s.v[x]);
                     range.hi = std::max(range.hi, s.v[x]);
                 }
+        return dropped;
+    };
+    // Row j, drawing into v-rows [ya, yb); returns the texels dropped.
+    auto row = [&](int j, int ya, int yb, float* drawn) {
+        const long long dropped = prepare(j);
         std::fill(b.cur_ok + x0, b.cur_ok + x1, 0);
-        const Emitter emit{b, ColumnTarget{pixels, ow, oh, ya, yb}, x0, x1};
-        WarpRow(s.pos, s.color, s.v, w, job.split_u, ow, RowOut{rc, rv}, Coalescer{emit});
+        const Emitter emit{b, ColumnTarget{pixels, ow, oh, ya, yb}, x0, x1, drawn};
+        WarpRow(s.pos, s.color, s.v, w, job.split_u, ow, RowOut{rc, rv}, Coalescer<Emitter>{emit});
         std::swap(b.prev_c, b.cur_c);
         std::swap(b.prev_v, b.cur_v);
         std::swap(b.prev_ok, b.cur_ok);
         return dropped;
     };
     const int ja = p.first + p.step * r0, jb = p.first + p.step * r1;
-    if (r0 > 0) row(ja - p.step, p.y0, p.y0);  // the row before: no output rows
+    if (r0 > 0) row(ja - p.step, p.y0, p.y0, nullptr);  // the row before: no output rows
     long long dropped = 0;
-    for (int j = ja; j != jb; j += p.step) {
-        const long long d = row(j, p.y0, p.y1);
+    int from = jb;  // the first row in reverse mode (jb: none)
+    if (job.reverse == KernelChoice::always) from = ja;
+    for (int j = ja; j != from; j += p.step) {
+        float drawn = 0.0f;
+        const bool measure = job.reverse == KernelChoice::automatic && (j & 3) == 0 && j + p.step != jb;
+        const long long d = row(j, p.y0, p.y1, measure ? &drawn : nullptr);
         if (x0 == 0) dropped += d;  // column ranges warp every row: counted once
+        if (measure && drawn > kReverseDrawn * float(x1 - x0)) from = j + p.step;
     }
-    if (r1 == p.count)
+    const bool seam = r1 == p.count;
+    if (from != jb) {
+        ReverseBuffers& r = reverse_buffers();
+        r.reserve(ow, oh);
+        std::fill(r.lo.data() + x0, r.lo.data() + x1, 1 << 30);
+        std::fill(r.hi.data() + x0, r.hi.data() + x1, -(1 << 30));
+        std::fill(r.bits_on.data() + x0, r.bits_on.data() + x1, 0);
+        const ColumnsWritten cw{r.lo.data(), r.hi.data(), r.bits_on.data(), r.bits.data(), r.nw};
+        const ColumnTarget o{pixels, ow, oh, p.y0, p.y1};
+        auto warp = [&](int j, EmitLog& log) {
+            const long long d = prepare(j);
+            if (x0 == 0) dropped += d;
+            std::fill(r.fin_ok.data() + x0, r.fin_ok.data() + x1, 0);
+            log.n = 0;
+            const Logger logger{b, r, log, x0, x1};
+            WarpRow(s.pos, s.color, s.v, w, job.split_u, ow, RowOut{rc, rv}, Coalescer<Logger>{logger});
+        };
+        const hn::ScalableTag<float> df;
+        const hn::RebindToSigned<decltype(df)> di;
+        const size_t N = hn::Lanes(df);
+        const int last = jb - p.step;
+        int cur = 0;
+        warp(last, r.log[0]);
+        if (seam)
+            for (int x = x0; x < x1; ++x) {
+                job.seam_v[part][x] = r.fin_v[size_t(x)];
+                job.seam_c[part][x] = r.fin_ok[size_t(x)] ? (r.fin_c[size_t(x)] | 0xFF000000u) : 0u;
+            }
+        for (int j = last;; j -= p.step) {
+            const float* pv = b.prev_v;
+            const uint32_t* pc = b.prev_c;
+            const int32_t* pok = b.prev_ok;
+            if (j != from) {
+                warp(j - p.step, r.log[cur ^ 1]);
+                pv = r.fin_v.data(), pc = r.fin_c.data(), pok = r.fin_ok.data();
+            }
+            const EmitLog& log = r.log[cur];
+            for (size_t i = log.n; i-- > 0;) {
+                const int x = log.x[i];
+                const auto v = hn::LoadU(df, log.v.data() + i * N);
+                const auto fin = hn::IsFinite(v);
+                const auto ok = hn::And(fin, hn::RebindMask(df, hn::Ne(hn::LoadU(di, pok + x), hn::Zero(di))));
+                ColumnDrawRev(df, o, cw, x, x + int(N) <= x1, fin, ok, hn::LoadU(df, pv + x),
+                              hn::LoadU(di, reinterpret_cast<const int32_t*>(pc + x)), v,
+                              hn::LoadU(di, reinterpret_cast<const int32_t*>(log.c.data() + i * N)));
+            }
+            if (j == from) break;
+            cur ^= 1;
+        }
+    } else if (seam) {
         for (int x = x0; x < x1; ++x) {
             job.seam_v[part][x] = b.prev_v[x];
             job.seam_c[part][x] = b.prev_ok[x] ? (b.prev_c[x] | 0xFF000000u) : 0u;
         }
+    }
     if (dropped) *job.dropped += dropped;
     return range;
 }

@@ -11,8 +11,10 @@
 // only the part's output rows). Groups are handed over in runs: a group that extends the pending run joins it, any
 // other (apart from it, or writing over its pixels: a foldover along the row) hands the pending run over first, so a
 // row without foldovers is one run and a column that receives several pixels from a row (a foldover) draws every
-// one of them, in order. No reverse mode (FastKernelPolicy::pipelined_reverse is the AVX-512 kernel's): on
-// foldover-heavy reliefs the forward painter's long column spans, drawn row by row over the lanes, are the cost.
+// one of them, in order. Reverse mode (FastKernelPolicy::pipelined_reverse, as the AVX-512 kernel's): where rows
+// overdraw much (foldover-heavy reliefs: long column spans that later rows overwrite), the rest of the part runs
+// with the painter's algorithm backwards, each row's emissions logged and replayed from the last, every pixel
+// written once (RunRows, ColumnDrawRev in warp/simd/hwy_columns-inl.h).
 #pragma once
 
 #include "warp/isa.h"

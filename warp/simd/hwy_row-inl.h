@@ -50,26 +50,27 @@ struct RowOut {
 };
 
 // The spans of lanes `span` (pa != pb, from sample a to sample b) into row `out`: each lane's pixels lo .. hi as
-// raster_span computes them (centres in (pa, pb] or [pb, pa), clamped to [0, n_out)), colour by lerp8's integer
-// formula and the carried row coordinate by attr_lerp at each centre. The lanes are consecutive samples whose
-// positions follow the lane order (the caller checks it): their pixels are disjoint, in lane order, and together
-// one run xa .. xb, handed to before(xa, xb) before any of them is written.
-// Where the run is at most 4 vectors long (spans of a pixel or two, the usual case), each pixel of it looks up its
-// lane (the lane whose pixels contain it) and the run is computed and stored a vector of pixels at a time;
+// raster_span computes them (centres in (pa, pb] or [pb, pa), clamped to [0, n_out)), only those in [cl, ch] (the
+// caller's clip range, within [0, n_out); the backward rows draw only the pixels no later span covers), colour by
+// lerp8's integer formula and the carried row coordinate by attr_lerp at each centre. The lanes are consecutive spans
+// of one orientation whose pixels follow the lane order (DrawGroup reverses the lanes where they run the other way):
+// their pixels are disjoint, in lane order, and together one run xa .. xb, handed to before(xa, xb) before any of them
+// is written. Where the run is at most 4 vectors long (spans of a pixel or two, the usual case), each pixel of it looks
+// up its lane (the lane whose pixels contain it) and the run is computed and stored a vector of pixels at a time;
 // otherwise the first pixel of every lane, then the second of those that have one, ..., stored lane by lane.
 template <class DF, class DI, class MF, class Before>
 HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb, hn::Vec<DI> ca, hn::Vec<DI> cb,
-                          hn::Vec<DF> va, hn::Vec<DF> vb, int n_out, bool fwd, RowOut out, const Before& before) {
+                          hn::Vec<DF> va, hn::Vec<DF> vb, bool fwd, RowOut out, const Before& before, int cl, int ch) {
     using VF = hn::Vec<DF>;
     using VI = hn::Vec<DI>;
     const int N = int(hn::Lanes(df));
     const VF half = hn::Set(df, 0.5f), one = hn::Set(df, 1.0f), zero = hn::Zero(df);
-    const VF last = hn::Set(df, float(n_out - 1));
+    const VF first_px = hn::Set(df, float(cl)), last = hn::Set(df, float(ch));
     const auto inc = hn::And(span, hn::Gt(pb, pa));
     const VF pah = hn::Sub(pa, half), pbh = hn::Sub(pb, half);
     VF lo = hn::IfThenElse(inc, hn::Add(hn::Floor(pah), one), hn::Ceil(pbh));
     VF hi = hn::IfThenElse(inc, hn::Floor(pbh), hn::Sub(hn::Ceil(pah), one));
-    lo = hn::IfThenElse(hn::Lt(lo, zero), zero, lo);
+    lo = hn::IfThenElse(hn::Lt(lo, first_px), first_px, lo);
     hi = hn::IfThenElse(hn::Lt(last, hi), last, hi);
     const auto todo = hn::RebindMask(di, hn::And(span, hn::Le(lo, hi)));
     if (hn::AllFalse(di, todo)) return;
@@ -155,9 +156,10 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
 }
 
 // warp_line_to (warp/line_warp.h) of one row into `out`, each pixel written in the reference's order, for samples whose
-// position is NaN where they do not take part. Where a whole vector of consecutive samples are spans of one orientation
-// that follows the processing direction (positions non-decreasing along the row: no foldover), their pixels are
-// disjoint and are drawn together (SpanLanes); everything else goes sample by sample through the reference's
+// position is NaN where they do not take part. Consecutive spans of one orientation (a sub-run: positions
+// non-decreasing along the row, or non-increasing, which folds over what came before) have disjoint pixels, end to
+// end: up to a vector of them at a time (GroupPrefix: at least kMinGroup) are drawn together (DrawGroup, SpanLanes),
+// at their place in the reference's order; everything else goes sample by sample through the reference's
 // raster_point / raster_span, in the reference's order.
 //
 // With a `range` other than NoRange, range.before(xa, xb) precedes each group of pixels written (one sample's, or
@@ -190,11 +192,70 @@ inline void SpanPixels(float pa, float pb, int n, int& xa, int& xb) {
     xa = int(lo), xb = int(hi);
 }
 
+// Sub-runs shorter than this go span by span (the AVX-512 line kernel's kScalarSpans + 1, warp/simd/avx512_line.h).
+constexpr int kMinGroup = 3;
+
+// The spans from sample pa[i] to sample pb[i], i = 0 .. N - 1 (the lanes of one vector, in memory order), taken from
+// the lowest lane up (from_low) or from the highest down: how many lead with one orientation, all samples taking
+// part (0 when fewer than kMinGroup), and whether that is pb >= pa (up) or pb <= pa.
+template <class DF>
+HWY_INLINE int GroupPrefix(DF df, const float* pa_ptr, const float* pb_ptr, bool from_low, bool& up) {
+    const auto pa = hn::LoadU(df, pa_ptr), pb = hn::LoadU(df, pb_ptr);
+    const auto fin = hn::And(hn::IsFinite(pa), hn::IsFinite(pb));
+    const int N = int(hn::Lanes(df));
+    // The whole vector one way (bumps: every group): no prefix to find.
+    auto ge = hn::And(fin, hn::Ge(pb, pa));
+    if (hn::AllTrue(df, ge)) {
+        up = true;
+        return N;
+    }
+    auto le = hn::And(fin, hn::Le(pb, pa));
+    if (hn::AllTrue(df, le)) {
+        up = false;
+        return N;
+    }
+    if (!from_low) {
+        ge = hn::MaskFromVec(hn::Reverse(df, hn::VecFromMask(df, ge)));
+        le = hn::MaskFromVec(hn::Reverse(df, hn::VecFromMask(df, le)));
+    }
+    auto lead = [&](auto m) {
+        const intptr_t f = hn::FindFirstTrue(df, hn::Not(m));
+        return f < 0 ? N : int(f);
+    };
+    const int mu = lead(ge), md = lead(le);
+    up = mu >= md;
+    const int m = std::max(mu, md);
+    return m >= kMinGroup ? m : 0;
+}
+
+// Draws the m spans GroupPrefix found among the spans from sample a0 + i to sample b0 + i (b0 = a0 + 1 in the left
+// part, a0 - 1 in the right part), only pixels in [cl, ch]. SpanLanes wants the lanes' pixels in lane order: the
+// lanes are reversed where the pixels run the other way (left part: spans going down; right part: going up).
+template <class DF, class Before>
+HWY_INLINE void DrawGroup(DF df, const float* pos, const uint32_t* col, const float* attr, int a0, int b0, int m,
+                          bool from_low, bool up, RowOut out, const Before& before, int cl, int ch) {
+    const hn::RebindToSigned<DF> di;
+    const int N = int(hn::Lanes(df));
+    const bool reverse = (b0 > a0) != up;
+    auto mask = from_low ? hn::FirstN(df, size_t(m)) : hn::Not(hn::FirstN(df, size_t(N - m)));
+    if (reverse) mask = hn::MaskFromVec(hn::Reverse(df, hn::VecFromMask(df, mask)));
+    auto lf = [&](const float* p) {
+        const auto v = hn::LoadU(df, p);
+        return reverse ? hn::Reverse(df, v) : v;
+    };
+    auto li = [&](const uint32_t* p) {
+        const auto v = hn::LoadU(di, reinterpret_cast<const int32_t*>(p));
+        return reverse ? hn::Reverse(di, v) : v;
+    };
+    const auto pa = lf(pos + a0), pb = lf(pos + b0);
+    SpanLanes(df, di, hn::And(mask, hn::Ne(pb, pa)), pa, pb, li(col + a0), li(col + b0), lf(attr + a0), lf(attr + b0),
+              up, out, before, cl, ch);
+}
+
 template <class Range = NoRange>
 void WarpRow(const float* pos, const uint32_t* col, const float* attr, int n, int split, int n_out, RowOut out,
              const Range& range = {}) {
     const hn::ScalableTag<float> df;
-    const hn::RebindToSigned<decltype(df)> di;
     const int N = int(hn::Lanes(df));
     constexpr bool kRange = !std::is_same_v<Range, NoRange>;
     auto before = [&](int xa, int xb) {
@@ -232,13 +293,11 @@ void WarpRow(const float* pos, const uint32_t* col, const float* attr, int n, in
     int prev = -1, k = 0;
     while (k < split) {
         if (prev == k - 1 && prev >= 0 && k + N <= split) {
-            const auto pa = hn::LoadU(df, pos + k - 1), pb = hn::LoadU(df, pos + k);
-            const auto fine = hn::And(hn::IsFinite(pa), hn::And(hn::IsFinite(pb), hn::Ge(pb, pa)));
-            if (hn::AllTrue(df, fine)) {
-                SpanLanes(df, di, hn::Ne(pb, pa), pa, pb, hn::LoadU(di, reinterpret_cast<const int32_t*>(col + k - 1)),
-                          hn::LoadU(di, reinterpret_cast<const int32_t*>(col + k)), hn::LoadU(df, attr + k - 1),
-                          hn::LoadU(df, attr + k), n_out, true, out, before);
-                k += N;
+            bool up;
+            const int m = GroupPrefix(df, pos + k - 1, pos + k, true, up);
+            if (m) {
+                DrawGroup(df, pos, col, attr, k - 1, k, m, true, up, out, before, 0, n_out - 1);
+                k += m;
                 prev = k - 1;
                 continue;
             }
@@ -252,14 +311,12 @@ void WarpRow(const float* pos, const uint32_t* col, const float* attr, int n, in
     k = n - 1;
     while (k >= split) {
         if (prev == k + 1 && k - N + 1 >= split) {
-            const int b = k - N + 1;  // lanes: samples b .. k, each after sample + 1
-            const auto pb = hn::LoadU(df, pos + b), pa = hn::LoadU(df, pos + b + 1);
-            const auto fine = hn::And(hn::IsFinite(pa), hn::And(hn::IsFinite(pb), hn::Le(pb, pa)));
-            if (hn::AllTrue(df, fine)) {
-                SpanLanes(df, di, hn::Ne(pb, pa), pa, pb, hn::LoadU(di, reinterpret_cast<const int32_t*>(col + b + 1)),
-                          hn::LoadU(di, reinterpret_cast<const int32_t*>(col + b)), hn::LoadU(df, attr + b + 1),
-                          hn::LoadU(df, attr + b), n_out, false, out, before);
-                k -= N;
+            const int b = k - N + 1;  // lanes: samples b .. k, each after sample + 1; processing order from lane N - 1
+            bool up;
+            const int m = GroupPrefix(df, pos + b + 1, pos + b, false, up);
+            if (m) {
+                DrawGroup(df, pos, col, attr, b + 1, b, m, false, up, out, before, 0, n_out - 1);
+                k -= m;
                 prev = k + 1;
                 continue;
             }
@@ -270,6 +327,139 @@ void WarpRow(const float* pos, const uint32_t* col, const float* attr, int n, in
     const int right_last = prev;
     if (left_last >= 0 && right_last >= 0 && left_last == split - 1 && right_last == split) span(left_last, right_last);
     if constexpr (kRange) range.done();
+}
+
+// Whether WarpRowBackward should take the row: every sample takes part and (unless any_row, the tests' policy) at
+// least one span in kFoldShare folds over (left of the split positions going down, right of it going up: later
+// spans overwrite earlier ones). The AVX-512 kernels' rule (warp/simd/avx512_line.h, line_folds_over): bricks (8 to
+// 31 foldover spans a row of 256 to 1024) stays forwards, ridges (a quarter to a half) goes backwards.
+constexpr int kFoldShare = 16;
+inline bool RowFoldsOver(const float* pos, int n, int split, bool any_row) {
+    if (n < 1) return false;
+    const hn::ScalableTag<float> df;
+    const int N = int(hn::Lanes(df));
+    // Pairs (k - 1, k), k = 1 .. n - 1, but the seam's (k == split): without foldovers the positions never go down
+    // along the row, on either side of the split (the left part's span keyed k joins k - 1 -> k, the right part's
+    // keyed k - 1 joins k -> k - 1); a span folds over where they do, pos[k] < pos[k - 1].
+    // Counted in the lanes (a lane's count goes down by one for each: VecFromMask is -1), the seam's pair taken out
+    // at the end.
+    const hn::RebindToSigned<decltype(df)> di;
+    auto count = hn::Zero(di);
+    auto finite = hn::IsFinite(hn::Set(df, pos[0]));
+    int k = 1;
+    for (; k + N <= n; k += N) {
+        const auto a = hn::LoadU(df, pos + k - 1), b = hn::LoadU(df, pos + k);
+        finite = hn::And(finite, hn::IsFinite(b));
+        count = hn::Add(count, hn::VecFromMask(di, hn::RebindMask(di, hn::Lt(b, a))));
+    }
+    bool all = hn::AllTrue(df, finite);
+    int folds = -int(hn::GetLane(hn::SumOfLanes(di, count)));
+    for (; k < n; ++k) {
+        all = all && std::isfinite(pos[k]);
+        folds += pos[k] < pos[k - 1];
+    }
+    if (split >= 1 && split < n && pos[split] < pos[split - 1]) --folds;
+    if (!all) return false;
+    if (any_row) return true;
+    return folds > 0 && folds * kFoldShare >= n;
+}
+
+// warp_line_to of one row whose samples all take part (RowFoldsOver), with the painter's algorithm run backwards
+// (the AVX-512 kernels' warp_line_reverse, warp/simd/avx512_line.h): the items (points, groups of spans, single
+// spans, the seam) in the reverse of WarpRow's order, each drawing only the pixels no later item (in WarpRow's order)
+// writes. A pixel's value does not depend on which other pixels are drawn, and WarpRow leaves every pixel with the
+// value of the last item that writes it, the first one here to reach it: the same row. The pixels written so far
+// are one interval [w_lo, w_hi]: every sample taking part, the spans form one connected path from the seam outwards
+// and an item's pixels touch that interval. If one ever did not, this returns false (some pixels written) and the
+// caller clears the row and warps it forwards.
+// Why: on foldover-heavy reliefs most pixels of a row are written again later in the same row (ridges 1024^2: 2.43
+// row pixels a texel); measured in docs/perf-history.md.
+inline bool WarpRowBackward(const float* pos, const uint32_t* col, const float* attr, int n, int split, int n_out,
+                            RowOut out) {
+    const hn::ScalableTag<float> df;
+    const int N = int(hn::Lanes(df));
+    int w_lo = 0, w_hi = -1;
+    // An item writing pixels [lo, hi] (empty when lo > hi) through shade(cl, ch), which writes exactly its pixels
+    // in [cl, ch].
+    auto item = [&](int lo, int hi, auto&& shade) -> bool {
+        if (lo > hi) return true;
+        if (w_lo > w_hi) {
+            shade(lo, hi);
+            w_lo = lo;
+            w_hi = hi;
+            return true;
+        }
+        if (hi < w_lo - 1 || lo > w_hi + 1) return false;
+        if (lo < w_lo) shade(lo, w_lo - 1);
+        if (hi > w_hi) shade(w_hi + 1, hi);
+        w_lo = std::min(w_lo, lo);
+        w_hi = std::max(w_hi, hi);
+        return true;
+    };
+    auto put = [&](int x, Rgba8 c, float v) {
+        out.c[x] = pack(c);
+        out.v[x] = v;
+    };
+    auto span = [&](int a, int b) -> bool {
+        int lo, hi;
+        SpanPixels(pos[a], pos[b], n_out, lo, hi);
+        return item(lo, hi, [&](int cl, int ch) {
+            raster_span_pixels(pos[a], unpack(col[a]), attr[a], pos[b], unpack(col[b]), attr[b], cl, ch, put);
+        });
+    };
+    auto point = [&](int k) -> bool {
+        int lo, hi;
+        PointPixels(pos[k], n_out, lo, hi);
+        return item(lo, hi, [&](int, int) { put(lo, unpack(col[k] | 0xFF000000u), attr[k]); });
+    };
+    auto no_before = [](int, int) {};
+    if (split >= 1 && split < n && !span(split - 1, split)) return false;
+    // The part after the split, from its last span (keyed split: samples split + 1 -> split) outwards, then its
+    // first sample.
+    if (split < n) {
+        for (int j = split; j <= n - 2;) {
+            if (j + N - 1 <= n - 2) {
+                bool up;
+                const int m = GroupPrefix(df, pos + j + 1, pos + j, true, up);  // spans j .. j + m - 1
+                if (m) {
+                    int lo, hi;
+                    SpanPixels(pos[j + m], pos[j], n_out, lo, hi);
+                    if (!item(lo, hi, [&](int cl, int ch) {
+                            DrawGroup(df, pos, col, attr, j + 1, j, m, true, up, out, no_before, cl, ch);
+                        }))
+                        return false;
+                    j += m;
+                    continue;
+                }
+            }
+            if (!span(j + 1, j)) return false;
+            ++j;
+        }
+        if (!point(n - 1)) return false;
+    }
+    // The part before the split, from its last span (keyed split - 1) outwards, then its first sample.
+    if (split > 0) {
+        for (int j = split - 1; j >= 1;) {
+            if (j - N + 1 >= 1) {
+                bool up;
+                const int m = GroupPrefix(df, pos + j - N, pos + j - N + 1, false, up);  // spans j - m + 1 .. j
+                if (m) {
+                    int lo, hi;
+                    SpanPixels(pos[j - m], pos[j], n_out, lo, hi);
+                    if (!item(lo, hi, [&](int cl, int ch) {
+                            DrawGroup(df, pos, col, attr, j - N, j - N + 1, m, false, up, out, no_before, cl, ch);
+                        }))
+                        return false;
+                    j -= m;
+                    continue;
+                }
+            }
+            if (!span(j - 1, j)) return false;
+            --j;
+        }
+        if (!point(0)) return false;
+    }
+    return true;
 }
 
 // The reference's row_samples (lookup-table path) of storage row r into s: position (NaN where the texel does not

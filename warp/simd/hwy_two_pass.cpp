@@ -18,8 +18,8 @@ HWY_BEFORE_NAMESPACE();
 namespace rtm::simd::HWY_NAMESPACE {
 
 // The horizontal pass of steps [s0, s1): for each, the reference's row_samples (lookup-table path) and
-// warp_line_to (WarpRow) into one band row (colour with alpha 255 where written, 0 elsewhere; the final row
-// coordinate).
+// warp_line_to (WarpRow, or WarpRowBackward for rows that fold over) into one band row (colour with alpha 255 where
+// written, 0 elsewhere; the final row coordinate).
 void HorizontalSteps(const fast::TwoPassJob& job, int s0, int s1, uint32_t* band_c, float* band_v, size_t stride,
                      float* scratch) {
     const ReliefTexture& t = *job.relief;
@@ -32,7 +32,14 @@ void HorizontalSteps(const fast::TwoPassJob& job, int s0, int s1, uint32_t* band
         uint32_t* rc = band_c + size_t(st - s0) * stride;
         float* rv = band_v + size_t(st - s0) * stride;
         std::memset(rc, 0, size_t(ow) * 4);
-        WarpRow(s.pos, s.color, s.v, w, job.split_u, ow, RowOut{rc, rv});
+        // Rows that fold over: backwards, each pixel drawn once (WarpRowBackward). Bumps never folds over.
+        bool backward = false;
+        if (job.reverse != KernelChoice::never &&
+            RowFoldsOver(s.pos, w, job.split_u, job.reverse == KernelChoice::always)) {
+            backward = WarpRowBackward(s.pos, s.color, s.v, w, job.split_u, ow, RowOut{rc, rv}) && !job.redo_forwards;
+            if (!backward) std::memset(rc, 0, size_t(ow) * 4);  // only with redo_forwards (WarpRowBackward says why)
+        }
+        if (!backward) WarpRow(s.pos, s.color, s.v, w, job.split_u, ow, RowOut{rc, rv});
     }
     if (dropped) *job.dropped += dropped;
 }

@@ -5,20 +5,21 @@
 //
 // Horizontal steps: each row is set up with the reference's own arithmetic, a vector of texels at a time (row_samples'
 // positions and final row coordinates, NaN where a texel does not take part; the tables' entries gathered by
-// displacement index), and drawn in the reference's occlusion-compatible order; where a whole vector of consecutive
-// samples are spans that follow the processing direction (no foldover), their pixels are disjoint and one run, drawn
-// together (from 8 lanes on, each pixel of the run looks its span up and the run is stored a vector of pixels at a
-// time), everything else sample by sample through raster_point and raster_span. Vertical steps: the columns advance
-// together, as many in the lanes of a vector as the target has; each lane computes what raster_span / raster_point
-// compute for its column, operation by operation in float (no contraction: the file is compiled with
-// -ffp-contract=off, and SSE4 has no FMA anyway), and the colour with lerp8's integer formula. Where the pixels go
-// (warp/simd/hwy_columns-inl.h): two masked row stores a step where the lanes share a row or the next (AVX2, SVE),
-// lane by lane otherwise; spans of 5 pixels and more row by row over the lanes.
+// displacement index), and drawn in the reference's occlusion-compatible order: consecutive spans of one orientation
+// (a sub-run, either way along the row) have disjoint pixels and up to a vector of them are drawn together (from 8
+// lanes on, each pixel of the run looks its span up and the run is stored a vector of pixels at a time), everything
+// else sample by sample through raster_point and raster_span. Rows that fold over (FastKernelPolicy::
+// two_pass_reverse) are drawn backwards, each pixel once (WarpRowBackward, as the AVX-512 kernels' backward rows).
+// Vertical steps: the columns advance together, as many in the lanes of a vector as the target has; each lane
+// computes what raster_span / raster_point compute for its column, operation by operation in float (no
+// contraction: the file is compiled with -ffp-contract=off, and SSE4 has no FMA anyway), and the colour with lerp8's
+// integer formula. Where the pixels go (warp/simd/hwy_columns-inl.h): two masked row stores a step where the lanes
+// share a row or the next (AVX2, SVE), lane by lane otherwise; spans of 5 pixels and more row by row over the lanes.
 //
 // The building blocks (row set-up, row warp, column step) are shared with the Highway pipelined kernel
 // (warp/simd/hwy_row-inl.h, warp/simd/hwy_columns-inl.h, warp/simd/hwy_pipelined.h). Not yet here
-// (docs/BENCHMARKS.md, "SIMD targets"): vector paths for foldovers along the row and for runs of short spans of
-// mixed orientation (the AVX-512 kernels' span search and backward rows).
+// (docs/BENCHMARKS.md, "SIMD targets"): the AVX-512 kernels' span search over sub-runs of any length (here a group
+// ends after a vector of spans) and their copies of still runs in the row warp.
 #pragma once
 
 #include <cstddef>
