@@ -10,7 +10,8 @@
 # tests/warp/fast_kernels_test.cpp are cut to their first RTM_SWEEP_CASES cases (default 200 here, of 2000 and 3000
 # natively; the 8 large reliefs to 1; the kernel-policy sweeps and their large reliefs to a fortieth of it), and the
 # steady-state allocation tests are left out (they check the workspace, not the target's arithmetic, and the x86-64
-# runs have them for every target). Under qemu every instruction is emulated: the times it prints are not measurements of ARM speed.
+# runs have them for every target). Under qemu every instruction is emulated: the times it prints are not
+# measurements of ARM speed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
