@@ -64,6 +64,15 @@ void run_parallel(int n, int threads, const Body& body) {
 
 }  // namespace
 
+void parallel_ranges(int n, int threads, const std::function<void(int, int)>& body) {
+    if (n <= 0) return;
+    if (threads == 1) {
+        body(0, n);
+        return;
+    }
+    run_parallel(n, threads, body);
+}
+
 int FaceSwap::source_of(int target) const {
     int src = -1;
     for (int i = 0; i < 3; ++i) {

@@ -119,6 +119,8 @@ private:
     AdjacentBuffer adjacent_;
     AdjacentNeed need_;
     Image2D<uint8_t> own_displ_;
+    ImageRGBA8 cracked_;  // the composite with its cracks closed, swapped with the face's image
+    Image2D<uint8_t> cracked_displ_;
     std::array<ObjectFacePrewarp, kFaceCount> warped_;
     std::array<std::unique_ptr<GlTexture>, kFaceCount> textures_, displ_textures_;
     // Per face: the pre-warp warped_ holds (for the reuse skip), how many pre-warps it has had, and what its texture
