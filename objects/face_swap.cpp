@@ -109,13 +109,17 @@ FaceSwap make_face_swap(const ReliefGeometry& src, const ReliefGeometry& dst) {
     return s;
 }
 
-void AdjacentBuffer::reset(int width, int height) {
+void AdjacentBuffer::reset(int width, int height, int threads) {
     if (color.width != width || color.height != height) {
         color = ImageRGBA8(width, height);
         depth = ImageF(width, height);
     }
-    std::fill(color.pixels.begin(), color.pixels.end(), Rgba8{});
-    std::fill(depth.pixels.begin(), depth.pixels.end(), -std::numeric_limits<float>::infinity());
+    parallel_ranges(height, threads, [&](int r0, int r1) {
+        const size_t i0 = size_t(r0) * size_t(width), i1 = size_t(r1) * size_t(width);
+        std::fill(color.pixels.begin() + std::ptrdiff_t(i0), color.pixels.begin() + std::ptrdiff_t(i1), Rgba8{});
+        std::fill(depth.pixels.begin() + std::ptrdiff_t(i0), depth.pixels.begin() + std::ptrdiff_t(i1),
+                  -std::numeric_limits<float>::infinity());
+    });
 }
 
 void AdjacentNeed::assign(const Image2D<uint8_t>& needed, int threads) {
@@ -130,7 +134,10 @@ void AdjacentNeed::assign_holes(const ImageRGBA8& own, int threads) {
     width = own.width;
     height = own.height;
     pixels.resize(own.pixels.size());
-    for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = own.pixels[i].a < 128;
+    parallel_ranges(height, threads, [&](int r0, int r1) {
+        for (size_t i = size_t(r0) * size_t(width); i < size_t(r1) * size_t(width); ++i)
+            pixels[i] = own.pixels[i].a < 128;
+    });
     index(threads);
 }
 

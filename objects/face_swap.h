@@ -54,7 +54,7 @@ FaceSwap make_face_swap(const ReliefGeometry& src, const ReliefGeometry& dst);
 struct AdjacentBuffer {
     ImageRGBA8 color;
     ImageF depth;
-    void reset(int width, int height);
+    void reset(int width, int height, int threads = 1);  // rows in parallel on `threads` (0: all)
 };
 
 // One pixel of the row pass's output in warp_adjacent_face: F's other coordinate, d', G's displacement, colour

@@ -108,7 +108,7 @@ void ReliefObject::prewarp_face(int face, const glm::dvec3& eye, int level, cons
         need_.assign_holes(out.image, options.threads);
         need = &need_;
     }
-    adjacent_.reset(w, h);
+    adjacent_.reset(w, h, options.threads);
     for (int g : out.adjacent) {
         const ReliefTexture& gt = quads_[size_t(g)].level(level);
         if (!need || need->count > 0)
