@@ -20,46 +20,37 @@ void add_skip(std::vector<std::string>& skips, const std::string& s) {
     if (std::find(skips.begin(), skips.end(), s) == skips.end()) skips.push_back(s);
 }
 
-// Closes cracks one pixel wide in a face's composite texture. The line warp covers a surface only between its
+// Finds the cracks one pixel wide in a face's composite texture. The line warp covers a surface only between its
 // samples' centres, so where two surfaces meet at a marked discontinuity (a step: the top of the step seen by the
 // face, its wall by an adjacent face) half a texel is missing on each side. An empty pixel whose two neighbours
-// along a row, or along a column, are both filled takes their average colour (and the nearer depth). Writes rows
-// [r0, r1) of `img` (and `displ`) whole: `src` (and `dsrc`) with the cracks filled, so nothing spreads further than
-// one pixel and row ranges can run in parallel. Returns the pixels filled.
-long long close_cracks(const ImageRGBA8& src, const Image2D<uint8_t>* dsrc, ImageRGBA8& img, Image2D<uint8_t>* displ,
-                       int r0, int r1) {
-    const int w = src.width, h = src.height;
-    long long n = 0;
+// along a row, or along a column, are both filled takes their average colour (and the nearer depth). Reads rows
+// [r0, r1) of the image as it is and appends the fills to `out` (few: hundreds of a face's 65,536 pixels), to be
+// written after every row range is read, so nothing spreads further than one pixel and ranges run in parallel.
+void find_cracks(const ImageRGBA8& img, const Image2D<uint8_t>* displ, int r0, int r1, std::vector<CrackFill>& out) {
+    const int w = img.width, h = img.height;
     auto avg = [](const Rgba8& a, const Rgba8& b) {
         return Rgba8{uint8_t((a.r + b.r + 1) / 2), uint8_t((a.g + b.g + 1) / 2), uint8_t((a.b + b.b + 1) / 2), 255};
     };
     for (int row = r0; row < r1; ++row) {
-        const Rgba8* s = &src.pixels[size_t(row) * size_t(w)];
-        Rgba8* d = &img.pixels[size_t(row) * size_t(w)];
-        std::copy(s, s + w, d);
-        if (displ)
-            std::copy(dsrc->pixels.begin() + std::ptrdiff_t(row) * w,
-                      dsrc->pixels.begin() + std::ptrdiff_t(row + 1) * w,
-                      displ->pixels.begin() + std::ptrdiff_t(row) * w);
+        const Rgba8* s = &img.pixels[size_t(row) * size_t(w)];
         for (int x = 0; x < w; ++x) {
             if (s[x].a != 0) continue;
             int ax = -1, ar = -1, bx = -1, br = -1;
             if (x > 0 && x + 1 < w && s[x - 1].a == 255 && s[x + 1].a == 255) {
                 ax = x - 1, ar = row, bx = x + 1, br = row;
-            } else if (row > 0 && row + 1 < h && src.at(x, row - 1).a == 255 && src.at(x, row + 1).a == 255) {
+            } else if (row > 0 && row + 1 < h && img.at(x, row - 1).a == 255 && img.at(x, row + 1).a == 255) {
                 ax = x, ar = row - 1, bx = x, br = row + 1;
             } else {
                 continue;
             }
-            d[x] = avg(src.at(ax, ar), src.at(bx, br));
+            CrackFill f{size_t(row) * size_t(w) + size_t(x), avg(img.at(ax, ar), img.at(bx, br)), kEmptyIndex};
             if (displ) {
-                const uint8_t qa = dsrc->at(ax, ar), qb = dsrc->at(bx, br);
-                displ->at(x, row) = qa == kEmptyIndex ? qb : qb == kEmptyIndex ? qa : std::max(qa, qb);
+                const uint8_t qa = displ->at(ax, ar), qb = displ->at(bx, br);
+                f.displ = qa == kEmptyIndex ? qb : qb == kEmptyIndex ? qa : std::max(qa, qb);
             }
-            ++n;
+            out.push_back(f);
         }
     }
-    return n;
 }
 
 }  // namespace
@@ -156,16 +147,23 @@ void ReliefObject::prewarp_face(int face, const glm::dvec3& eye, int level, cons
     });
     out.adjacent_pixels = filled;
     if (!out.adjacent.empty()) {
-        if (cracked_.width != w || cracked_.height != h) cracked_ = ImageRGBA8(w, h);
-        if (with_displ && (cracked_displ_.width != w || cracked_displ_.height != h))
-            cracked_displ_ = Image2D<uint8_t>(w, h);
-        std::atomic<long long> cracks{0};
-        parallel_ranges(h, options.threads, [&](int r0, int r1) {
-            cracks += close_cracks(out.image, with_displ ? &out.displ : nullptr, cracked_,
-                                   with_displ ? &cracked_displ_ : nullptr, r0, r1);
+        // Rows in blocks of 16, each block's fills in its own list (the same lists on any number of threads).
+        const int blocks = (h + 15) / 16;
+        if (cracks_.size() < size_t(blocks)) cracks_.resize(size_t(blocks));
+        parallel_ranges(blocks, options.threads, [&](int b0, int b1) {
+            for (int b = b0; b < b1; ++b) {
+                cracks_[size_t(b)].clear();
+                find_cracks(out.image, with_displ ? &out.displ : nullptr, b * 16, std::min(h, b * 16 + 16),
+                            cracks_[size_t(b)]);
+            }
         });
-        std::swap(out.image, cracked_);
-        if (with_displ) std::swap(out.displ, cracked_displ_);
+        long long cracks = 0;
+        for (int b = 0; b < blocks; ++b)
+            for (const CrackFill& f : cracks_[size_t(b)]) {
+                out.image.pixels[f.at] = f.color;
+                if (with_displ) out.displ.pixels[f.at] = f.displ;
+                ++cracks;
+            }
         out.crack_pixels = cracks;
     }
     if (o.filter == Filter::coverage) premultiply_alpha(out.image);
