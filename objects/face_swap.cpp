@@ -9,7 +9,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <memory>
@@ -64,6 +66,15 @@ void run_parallel(int n, int threads, const Body& body) {
 
 }  // namespace
 
+void parallel_ranges(int n, int threads, const std::function<void(int, int)>& body) {
+    if (n <= 0) return;
+    if (threads == 1) {
+        body(0, n);
+        return;
+    }
+    run_parallel(n, threads, body);
+}
+
 int FaceSwap::source_of(int target) const {
     int src = -1;
     for (int i = 0; i < 3; ++i) {
@@ -100,13 +111,17 @@ FaceSwap make_face_swap(const ReliefGeometry& src, const ReliefGeometry& dst) {
     return s;
 }
 
-void AdjacentBuffer::reset(int width, int height) {
+void AdjacentBuffer::reset(int width, int height, int threads) {
     if (color.width != width || color.height != height) {
         color = ImageRGBA8(width, height);
         depth = ImageF(width, height);
     }
-    std::fill(color.pixels.begin(), color.pixels.end(), Rgba8{});
-    std::fill(depth.pixels.begin(), depth.pixels.end(), -std::numeric_limits<float>::infinity());
+    parallel_ranges(height, threads, [&](int r0, int r1) {
+        const size_t i0 = size_t(r0) * size_t(width), i1 = size_t(r1) * size_t(width);
+        std::fill(color.pixels.begin() + std::ptrdiff_t(i0), color.pixels.begin() + std::ptrdiff_t(i1), Rgba8{});
+        std::fill(depth.pixels.begin() + std::ptrdiff_t(i0), depth.pixels.begin() + std::ptrdiff_t(i1),
+                  -std::numeric_limits<float>::infinity());
+    });
 }
 
 void AdjacentNeed::assign(const Image2D<uint8_t>& needed, int threads) {
@@ -121,7 +136,20 @@ void AdjacentNeed::assign_holes(const ImageRGBA8& own, int threads) {
     width = own.width;
     height = own.height;
     pixels.resize(own.pixels.size());
-    for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = own.pixels[i].a < 128;
+    parallel_ranges(height, threads, [&](int r0, int r1) {
+        const size_t i0 = size_t(r0) * size_t(width), i1 = size_t(r1) * size_t(width);
+        if constexpr (std::endian::native == std::endian::little && sizeof(Rgba8) == 4) {
+            // Alpha is each pixel's top byte: a < 128 where its top bit is clear (one word a pixel: vectorized).
+            const unsigned char* src = reinterpret_cast<const unsigned char*>(own.pixels.data());
+            for (size_t i = i0; i < i1; ++i) {
+                uint32_t v;
+                std::memcpy(&v, src + 4 * i, 4);
+                pixels[i] = uint8_t((~v) >> 31);
+            }
+        } else {
+            for (size_t i = i0; i < i1; ++i) pixels[i] = own.pixels[i].a < 128;
+        }
+    });
     index(threads);
 }
 

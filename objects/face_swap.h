@@ -24,6 +24,7 @@
 
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -53,7 +54,7 @@ FaceSwap make_face_swap(const ReliefGeometry& src, const ReliefGeometry& dst);
 struct AdjacentBuffer {
     ImageRGBA8 color;
     ImageF depth;
-    void reset(int width, int height);
+    void reset(int width, int height, int threads = 1);  // rows in parallel on `threads` (0: all)
 };
 
 // One pixel of the row pass's output in warp_adjacent_face: F's other coordinate, d', G's displacement, colour
@@ -124,6 +125,10 @@ struct AdjacentWorkspace {
     std::vector<double> row_umin, row_umax, row_vmin, row_vmax;
     std::vector<int> col_rows;  // per intermediate line, the first and last row that wrote to it
 };
+
+// Runs body(begin, end) over parts of [0, n) on `threads` threads (0: all available, 1: this thread alone, in one
+// call), in the task arena the adjacent faces' passes use (one per thread count, made once).
+void parallel_ranges(int n, int threads, const std::function<void(int, int)>& body);
 
 // Pre-warps relief `g` (an adjacent face) onto the plane of `f_geom` (width x height texels) for the eye in `kf`
 // (compute_coefficients(f_geom, eye)), z-testing into `out` (already sized width x height). With `exact` the

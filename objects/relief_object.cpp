@@ -3,6 +3,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <stdexcept>
 
@@ -19,37 +20,37 @@ void add_skip(std::vector<std::string>& skips, const std::string& s) {
     if (std::find(skips.begin(), skips.end(), s) == skips.end()) skips.push_back(s);
 }
 
-// Closes cracks one pixel wide in a face's composite texture. The line warp covers a surface only between its
+// Finds the cracks one pixel wide in a face's composite texture. The line warp covers a surface only between its
 // samples' centres, so where two surfaces meet at a marked discontinuity (a step: the top of the step seen by the
 // face, its wall by an adjacent face) half a texel is missing on each side. An empty pixel whose two neighbours
-// along a row, or along a column, are both filled takes their average colour (and the nearer depth). Reads the
-// image as it was, so nothing spreads further than one pixel. Returns the pixels filled.
-long long close_cracks(ImageRGBA8& img, Image2D<uint8_t>* displ) {
-    const ImageRGBA8 src = img;
-    const Image2D<uint8_t> dsrc = displ ? *displ : Image2D<uint8_t>();
-    long long n = 0;
+// along a row, or along a column, are both filled takes their average colour (and the nearer depth). Reads rows
+// [r0, r1) of the image as it is and appends the fills to `out` (few: hundreds of a face's 65,536 pixels), to be
+// written after every row range is read, so nothing spreads further than one pixel and ranges run in parallel.
+void find_cracks(const ImageRGBA8& img, const Image2D<uint8_t>* displ, int r0, int r1, std::vector<CrackFill>& out) {
+    const int w = img.width, h = img.height;
     auto avg = [](const Rgba8& a, const Rgba8& b) {
         return Rgba8{uint8_t((a.r + b.r + 1) / 2), uint8_t((a.g + b.g + 1) / 2), uint8_t((a.b + b.b + 1) / 2), 255};
     };
-    for (int row = 0; row < img.height; ++row)
-        for (int x = 0; x < img.width; ++x) {
-            if (src.at(x, row).a != 0) continue;
+    for (int row = r0; row < r1; ++row) {
+        const Rgba8* s = &img.pixels[size_t(row) * size_t(w)];
+        for (int x = 0; x < w; ++x) {
+            if (s[x].a != 0) continue;
             int ax = -1, ar = -1, bx = -1, br = -1;
-            if (x > 0 && x + 1 < img.width && src.at(x - 1, row).a == 255 && src.at(x + 1, row).a == 255) {
+            if (x > 0 && x + 1 < w && s[x - 1].a == 255 && s[x + 1].a == 255) {
                 ax = x - 1, ar = row, bx = x + 1, br = row;
-            } else if (row > 0 && row + 1 < img.height && src.at(x, row - 1).a == 255 && src.at(x, row + 1).a == 255) {
+            } else if (row > 0 && row + 1 < h && img.at(x, row - 1).a == 255 && img.at(x, row + 1).a == 255) {
                 ax = x, ar = row - 1, bx = x, br = row + 1;
             } else {
                 continue;
             }
-            img.at(x, row) = avg(src.at(ax, ar), src.at(bx, br));
+            CrackFill f{size_t(row) * size_t(w) + size_t(x), avg(img.at(ax, ar), img.at(bx, br)), kEmptyIndex};
             if (displ) {
-                const uint8_t qa = dsrc.at(ax, ar), qb = dsrc.at(bx, br);
-                displ->at(x, row) = qa == kEmptyIndex ? qb : qb == kEmptyIndex ? qa : std::max(qa, qb);
+                const uint8_t qa = displ->at(ax, ar), qb = displ->at(bx, br);
+                f.displ = qa == kEmptyIndex ? qb : qb == kEmptyIndex ? qa : std::max(qa, qb);
             }
-            ++n;
+            out.push_back(f);
         }
-    return n;
+    }
 }
 
 }  // namespace
@@ -98,7 +99,7 @@ void ReliefObject::prewarp_face(int face, const glm::dvec3& eye, int level, cons
         need_.assign_holes(out.image, options.threads);
         need = &need_;
     }
-    adjacent_.reset(w, h);
+    adjacent_.reset(w, h, options.threads);
     for (int g : out.adjacent) {
         const ReliefTexture& gt = quads_[size_t(g)].level(level);
         if (!need || need->count > 0)
@@ -109,37 +110,62 @@ void ReliefObject::prewarp_face(int face, const glm::dvec3& eye, int level, cons
     out.adjacent_ms = ms_since(t_adjacent);
     const double depth = box_.extent()[face_axis(face)];
     out.depth_quant = Quantizer::from_range(-depth, 0.0);
-    if (with_displ) out.displ = Image2D<uint8_t>(w, h);
+    if (with_displ && (out.displ.width != w || out.displ.height != h)) out.displ = Image2D<uint8_t>(w, h);
     // The face's own depth level re-quantized over the box's depth: a function of the 8-bit level alone, so one table
     // (encode and its rounding per pixel were 6% of an object's pre-warp in a profile, docs/perf-history.md).
     std::array<uint8_t, 256> own_level{};
     if (with_displ)
         for (int q = 0; q < 256; ++q)
             own_level[size_t(q)] = q == kEmptyIndex ? kEmptyIndex : out.depth_quant.encode(ft.quant.decode(uint8_t(q)));
-    long long filled = 0;
-    for (size_t i = 0; i < out.image.pixels.size(); ++i) {
-        Rgba8& p = out.image.pixels[i];
-        // A pixel the face covers less than half (the coverage filter's fractional alpha; the texture-mapping stage
-        // discards it) is a hole too.
-        bool own = p.a >= 128;
-        if (!own && adjacent_.color.pixels[i].a != 0) {
-            p = adjacent_.color.pixels[i];
-            if (o.filter == Filter::coverage) p = {p.r, p.g, p.b, 255};
-            ++filled;
-        } else if (!own && p.a != 0) {
-            own = true;  // the face's own partial coverage stays (no adjacent sample to prefer)
+    // The composite, then the cracks, each over rows in parallel (every pixel on its own: the same image on any
+    // number of threads).
+    std::atomic<long long> filled{0};
+    parallel_ranges(h, options.threads, [&](int r0, int r1) {
+        long long n = 0;
+        for (size_t i = size_t(r0) * size_t(w); i < size_t(r1) * size_t(w); ++i) {
+            Rgba8& p = out.image.pixels[i];
+            // A pixel the face covers less than half (the coverage filter's fractional alpha; the texture-mapping
+            // stage discards it) is a hole too.
+            bool own = p.a >= 128;
+            if (!own && adjacent_.color.pixels[i].a != 0) {
+                p = adjacent_.color.pixels[i];
+                if (o.filter == Filter::coverage) p = {p.r, p.g, p.b, 255};
+                ++n;
+            } else if (!own && p.a != 0) {
+                own = true;  // the face's own partial coverage stays (no adjacent sample to prefer)
+            }
+            if (!with_displ) continue;
+            uint8_t& dq = out.displ.pixels[i];
+            if (own)
+                dq = own_level[own_displ_.pixels[i]];
+            else if (p.a != 0)
+                dq = out.depth_quant.encode(adjacent_.depth.pixels[i]);
+            else
+                dq = kEmptyIndex;
         }
-        if (!with_displ) continue;
-        uint8_t& dq = out.displ.pixels[i];
-        if (own)
-            dq = own_level[own_displ_.pixels[i]];
-        else if (p.a != 0)
-            dq = out.depth_quant.encode(adjacent_.depth.pixels[i]);
-        else
-            dq = kEmptyIndex;
-    }
+        filled += n;
+    });
     out.adjacent_pixels = filled;
-    if (!out.adjacent.empty()) out.crack_pixels = close_cracks(out.image, with_displ ? &out.displ : nullptr);
+    if (!out.adjacent.empty()) {
+        // Rows in blocks of 16, each block's fills in its own list (the same lists on any number of threads).
+        const int blocks = (h + 15) / 16;
+        if (cracks_.size() < size_t(blocks)) cracks_.resize(size_t(blocks));
+        parallel_ranges(blocks, options.threads, [&](int b0, int b1) {
+            for (int b = b0; b < b1; ++b) {
+                cracks_[size_t(b)].clear();
+                find_cracks(out.image, with_displ ? &out.displ : nullptr, b * 16, std::min(h, b * 16 + 16),
+                            cracks_[size_t(b)]);
+            }
+        });
+        long long cracks = 0;
+        for (int b = 0; b < blocks; ++b)
+            for (const CrackFill& f : cracks_[size_t(b)]) {
+                out.image.pixels[f.at] = f.color;
+                if (with_displ) out.displ.pixels[f.at] = f.displ;
+                ++cracks;
+            }
+        out.crack_pixels = cracks;
+    }
     if (o.filter == Filter::coverage) premultiply_alpha(out.image);
     out.prewarp_ms = ms_since(t0);
 }

@@ -43,6 +43,13 @@
 namespace rtm {
 
 // One visible face's pre-warped texture (Figure 17), the same size as the face at its pyramid level.
+// A crack closed in a face's composite texture: the pixel (index into the image), its colour and depth level.
+struct CrackFill {
+    size_t at = 0;
+    Rgba8 color;
+    uint8_t displ = 0;
+};
+
 struct ObjectFacePrewarp {
     int face = -1;
     int level = 0;
@@ -119,6 +126,7 @@ private:
     AdjacentBuffer adjacent_;
     AdjacentNeed need_;
     Image2D<uint8_t> own_displ_;
+    std::vector<std::vector<CrackFill>> cracks_;  // per block of 16 rows, the cracks a face's composite closes
     std::array<ObjectFacePrewarp, kFaceCount> warped_;
     std::array<std::unique_ptr<GlTexture>, kFaceCount> textures_, displ_textures_;
     // Per face: the pre-warp warped_ holds (for the reuse skip), how many pre-warps it has had, and what its texture

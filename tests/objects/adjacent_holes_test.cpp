@@ -73,5 +73,48 @@ TEST(AdjacentHoles, ObjectFacesAreTheSameAsWithTheAdjacentFacesWhole) {
     EXPECT_GT(filled, 1000);  // the adjacent faces did fill holes
 }
 
+// The composite and the crack closing run over rows in parallel: the face's texture, its depth levels and the counts
+// are the same on one, two and three threads (views where cracks are closed and adjacent faces fill holes).
+TEST(AdjacentHoles, CompositeAndCracksAreTheSameOnAnyNumberOfThreads) {
+    const uint64_t seed = test::test_seed(20261204u);
+    SCOPED_TRACE("RTM_SEED=" + std::to_string(seed));
+    std::printf("RTM_SEED=%llu\n", (unsigned long long)seed);
+    std::mt19937_64 rng(seed);
+    long long faces = 0, cracks = 0, filled = 0;
+    for (SyntheticShape shape : {SyntheticShape::sphere, SyntheticShape::cross_box}) {
+        ReliefObject object(make_synthetic_object(shape, 64));
+        for (int i = 0; i < 8; ++i) {
+            const glm::dvec3 eye = random_eye(rng, object.box());
+            const ObjectRegion region = object.region(eye);
+            if (region.inside()) continue;
+            PrewarpOptions o;
+            o.filter = i % 4 == 3 ? Filter::coverage : Filter::point;
+            const bool displ = i % 2 == 0;
+            for (int f : region.visible_faces()) {
+                SCOPED_TRACE(to_string(shape) + " view " + std::to_string(i) + " face " + kFaceKeys[size_t(f)]);
+                ObjectFacePrewarp one;
+                o.threads = 1;
+                object.prewarp_face(f, eye, 0, o, displ, one);
+                for (int threads : {2, 3}) {
+                    ObjectFacePrewarp many;
+                    o.threads = threads;
+                    object.prewarp_face(f, eye, 0, o, displ, many);
+                    ASSERT_TRUE(many.image == one.image) << threads << " threads";
+                    ASSERT_TRUE(many.displ == one.displ) << threads << " threads";
+                    EXPECT_EQ(many.adjacent_pixels, one.adjacent_pixels);
+                    EXPECT_EQ(many.crack_pixels, one.crack_pixels);
+                }
+                ++faces;
+                cracks += one.crack_pixels;
+                filled += one.adjacent_pixels;
+            }
+        }
+    }
+    std::printf("%lld faces, %lld cracks closed, %lld pixels filled by adjacent faces\n", faces, cracks, filled);
+    EXPECT_GT(faces, 10);
+    EXPECT_GT(cracks, 0);
+    EXPECT_GT(filled, 100);
+}
+
 }  // namespace
 }  // namespace rtm

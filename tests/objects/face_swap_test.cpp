@@ -289,6 +289,26 @@ TEST(FaceSwap, NeededPixelsMatchTheWholeWarp) {
     EXPECT_GT(differ_elsewhere, 100);  // and the need did leave work out
 }
 
+// The need from a face's pre-warp: every pixel whose alpha is under 128 (empty, or covered less than half), every
+// alpha value in every channel mix, on one and two threads.
+TEST(FaceSwap, AdjacentNeedHolesAreThePixelsUnderHalfAlpha) {
+    std::mt19937 rng(11);
+    ImageRGBA8 img(37, 29);
+    for (size_t i = 0; i < img.pixels.size(); ++i)
+        img.pixels[i] = {uint8_t(rng()), uint8_t(rng()), uint8_t(rng()), uint8_t(i < 256 ? i : rng())};
+    for (int threads : {1, 2}) {
+        AdjacentNeed need;
+        need.assign_holes(img, threads);
+        long long n = 0;
+        for (int row = 0; row < img.height; ++row)
+            for (int x = 0; x < img.width; ++x) {
+                ASSERT_EQ(need.needed(x, row), img.at(x, row).a < 128) << x << "," << row << " " << threads;
+                n += img.at(x, row).a < 128;
+            }
+        EXPECT_EQ(need.count, n);
+    }
+}
+
 TEST(FaceSwap, AdjacentNeedLinesMatchTheMask) {
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> U(0.0, 1.0);
