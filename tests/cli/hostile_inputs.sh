@@ -225,7 +225,16 @@ write("huge.png", png(100000, 100000, zlib.compress(b"\0" * 1000)))
 ihdr = chunk(b"IHDR", struct.pack(">IIBBBBB", 4, 4, 8, 2, 0, 0, 0))
 write("text_2gb.png", b"\x89PNG\r\n\x1a\n" + ihdr + struct.pack(">I", 2016634473) + b"tEXtComment\0" + b"x" * 40)
 # The same in OpenEXR: a string attribute claiming 1.9 GB, which OpenEXR 3.1 would allocate and clear.
-write("attr_2gb.exr", b"\x76\x2f\x31\x01\x02\0\0\0" + b"comments\0string\0" + struct.pack("<i", 1929379935) + b"x" * 40)
+exr_magic = b"\x76\x2f\x31\x01\x02\0\0\0"
+write("attr_2gb.exr", exr_magic + b"comments\0string\0" + struct.pack("<i", 1929379935) + b"x" * 40)
+# The same string behind a channel list whose size field says 1 byte: OpenEXR reads a channel list to its empty name
+# whatever the size field says, so a walk trusting the field lost step and missed the string (a fuzzing find).
+channel = b"R\0" + struct.pack("<iB3xii", 1, 0, 1, 1)
+write("chlist_short.exr", exr_magic + b"channels\0chlist\0" + struct.pack("<i", 1) + channel + b"\0" +
+      b"comments\0string\0" + struct.pack("<i", 1929379935) + b"x" * 40)
+# A data window and a tile size the library would size its tables by.
+write("window_huge.exr", exr_magic + b"dataWindow\0box2i\0" + struct.pack("<i4i", 16, 0, 0, 99999, 99999) + b"\0")
+write("tiles_huge.exr", exr_magic + b"tiles\0tiledesc\0" + struct.pack("<iIIB", 9, 100000, 100000, 0) + b"\0")
 # OpenImageIO's SGI reader throws std::length_error on this one instead of reporting an error (a fuzzing find).
 write("throws.sgi", \
     bytes.fromhex("01da00da00010002ff2850320005785249006146ca7700000000008ef60000000000000000000000000000"
@@ -254,7 +263,8 @@ new_out
 expect_ok prewarp --relief "$(with_disp disp_pfm ok.pfm)" --eye 0.5,0.5,3 --out "$O/p.png"
 
 for img in empty.png text.png text.pgm truncated.png header_only.png corrupt.png bad_zlib.png huge.png huge.ppm \
-  wide.ppm dense.ppm zero.ppm truncated.ppm huge.pfm text_2gb.png attr_2gb.exr throws.sgi; do
+  wide.ppm dense.ppm zero.ppm truncated.ppm huge.pfm text_2gb.png attr_2gb.exr chlist_short.exr window_huge.exr \
+  tiles_huge.exr throws.sgi; do
   case $img in
     empty.png) msg="file is empty" ;;
     text.png) msg="cannot read as an image: Not a PNG file" ;;
@@ -268,6 +278,10 @@ for img in empty.png text.png text.pgm truncated.png header_only.png corrupt.png
     zero.ppm) msg="image header claims 0x0 pixels, expected a width and height of at least 1" ;;
     text_2gb.png) msg="cannot read as an image: PNG chunk \"tEXt\" at byte 33 claims 2016634473 bytes, more than" ;;
     attr_2gb.exr) msg="cannot read as an image: OpenEXR attribute \"comments\" at byte 8 claims 1929379935 bytes" ;;
+    chlist_short.exr) msg="cannot read as an image: OpenEXR attribute \"channels\" (chlist) at byte 8 has a size field"\
+" of 1 but its value takes 19 bytes (corrupt)" ;;
+    window_huge.exr) msg="image claims 100000x100000 pixels, more than the limit of 16384x16384" ;;
+    tiles_huge.exr) msg="cannot read as an image: OpenEXR tiles of 100000x100000 pixels, more than the limit" ;;
   esac
   stem=${img//./_}
   # As colour and as displacement; render and prewarp swap roles from one image to the next.
