@@ -16,10 +16,12 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <span>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 
 #include "warp/line_warp.h"
 
@@ -382,6 +384,8 @@ struct AdjacentJob {
     double threshold = 0;                       // pass 2's discontinuity threshold on G's displacement (0: none)
     int c_lo = 0;                               // pass 2's first column
     const AdjacentNeed::Lines* need = nullptr;  // the needed pixels in the passes' orientation, or null: all
+    int chunks = 0;                             // chunks of kRowChunk texels per row of G
+    const AdjacentChunks* levels = nullptr;     // G's chunks made once, or null: from its texels
     AdjacentWorkspace* ws = nullptr;
     AdjacentBuffer* out = nullptr;
     long long* dropped_rows = nullptr;
@@ -391,6 +395,7 @@ struct AdjacentJob {
 struct RowScratch {
     std::vector<double> row_v, dt_v, d_v, pos, other;
     std::vector<uint8_t> nonempty, valid, lines;
+    std::vector<std::pair<int, int>> ranges;  // the samples to warp (row_chunks)
     std::vector<SwapAttr> attr;
     std::vector<Rgba8> color;
     explicit RowScratch(int gw, int n1)
@@ -406,11 +411,12 @@ struct RowScratch {
           color(size_t(gw)) {}
 };
 
-// Row r's coordinates, all of them and without branches (the loop vectorizes), into s: pos (F's coordinate the row
-// pass computes), other (F's other coordinate), valid, colour, and the d' and G's displacement the attributes carry.
-// A texel that is empty or cannot be pre-warped is invalid, so what its lanes computed is never read. Returns the
-// number of valid texels; dropped_rows[r] gets the texels that could not be pre-warped.
-inline int row_coordinates(const AdjacentJob& j, int r, RowScratch& s) {
+// Row r's coordinates for texels xb .. xe - 1 without branches (the loops vectorize), into s at the texels' indices:
+// pos (F's coordinate the row pass computes), other (F's other coordinate), valid, colour, and the d' and G's
+// displacement the attributes carry. A texel that is empty or cannot be pre-warped is invalid, so what its lanes
+// computed is never read. Returns the number of valid texels; `dropped` (if not null) gets the texels that could not
+// be pre-warped.
+inline int row_coordinates(const AdjacentJob& j, int r, RowScratch& s, int xb, int xe, long long* dropped) {
     const ReliefTexture& g = *j.g;
     const int gw = g.width, gh = g.height;
     const double k1 = j.k1, k2 = j.k2, k3 = j.k3;
@@ -422,22 +428,22 @@ inline int row_coordinates(const AdjacentJob& j, int r, RowScratch& s) {
     Rgba8* __restrict cl = s.color.data();
     if (j.exact) {
         const float* dr = &g.displacement[size_t(r) * size_t(gw)];
-        for (int x = 0; x < gw; ++x) {
+        for (int x = xb; x < xe; ++x) {
             dd[x] = double(dr[x]);
             dt[x] = j.offset_d + j.scale_d * dd[x];
         }
     } else {
-        for (int x = 0; x < gw; ++x) {
+        for (int x = xb; x < xe; ++x) {
             dd[x] = j.level_d[tr[x].q];
             dt[x] = j.level_term[tr[x].q];
         }
     }
-    for (int x = 0; x < gw; ++x) {
+    for (int x = xb; x < xe; ++x) {
         const ReliefTexel& t = tr[x];
         cl[x] = {t.r, t.g, t.b, 255};
         ne[x] = t.q != kEmptyIndex;
     }
-    std::fill(s.row_v.begin(), s.row_v.end(), row_term);
+    std::fill(s.row_v.begin() + xb, s.row_v.begin() + xe, row_term);
     const double* srcs[3];
     srcs[j.by_u] = j.col_term;
     srcs[j.by_v] = s.row_v.data();
@@ -452,7 +458,7 @@ inline int row_coordinates(const AdjacentJob& j, int r, RowScratch& s) {
     int n_ok = 0;
     // The reference's operations in its order: den = 1 + k3 d', u_i = (u' + k1 d') / den, v_i likewise.
     auto coordinates = [&](auto first_is_u) {
-        for (int x = 0; x < gw; ++x) {
+        for (int x = xb; x < xe; ++x) {
             const double den = 1.0 + k3 * pz[x];
             const double ui = (px[x] + k1 * pz[x]) / den, vi = (py[x] + k2 * pz[x]) / den;
             const bool ok = den > 0.0;
@@ -467,20 +473,35 @@ inline int row_coordinates(const AdjacentJob& j, int r, RowScratch& s) {
         coordinates(std::true_type{});
     else
         coordinates(std::false_type{});
-    j.dropped_rows[r] = nd;
+    if (dropped) *dropped = nd;
     if (n_ok > 0)
-        for (int x = 0; x < gw; ++x) s.attr[size_t(x)] = {ot[x], pz[x], dd[x]};
+        for (int x = xb; x < xe; ++x) s.attr[size_t(x)] = {ot[x], pz[x], dd[x]};
     return n_ok;
 }
 
+// The pixels a coordinate range [lo, hi] can reach on a line: a span's pixels have their centres in it, a point's
+// pixel holds it, so floor(lo) .. floor(hi); widened by 1e-7 of a pixel plus 1e-9 of the value, far more than the
+// rounding that separates the bounds from the samples' computed values. Clamped to +-1e9 (beyond any line).
+inline int first_pixel(double lo) {
+    const double w = lo - (1e-7 + 1e-9 * std::abs(lo));
+    return int(std::floor(std::clamp(w, -1e9, 1e9)));
+}
+inline int last_pixel(double hi) {
+    const double w = hi + (1e-7 + 1e-9 * std::abs(hi));
+    return int(std::floor(std::clamp(w, -1e9, 1e9)));
+}
+
 // The line warp of warp/line_warp.h (warp_line_to) drawing only the pixels clip_lo .. clip_hi of the output (within
-// 0 .. n_out - 1): the same runs, spans and points in the same order, each pixel's value from raster_span_pixels as
-// there (a pixel's value depends on its index alone), the others left out. With k_lo .. k_hi, the samples outside are
-// taken as invalid (and not read).
+// 0 .. n_out - 1) and reading only the samples of `ranges` (sorted, disjoint, inclusive): the same runs, spans and
+// points in the same order as over the whole line, each pixel's value from raster_span_pixels as there (a pixel's value
+// depends on its index alone), the others left out. Samples outside the ranges are taken as invalid (and not read), so
+// a range starts a run at its first sample (a point where the whole line may have drawn a span: the caller makes sure
+// such a pixel is not one it keeps). The whole line's order is kept across ranges: every range's part before `split`
+// from the first range on, then every range's part from `split` on, from the last range back, then the span joining
+// the two parts (warp_line_to's order).
 template <class A, class Put, class Connected>
-void warp_line_clipped(const LineInput<double, A>& in, int split, int clip_lo, int clip_hi, Put&& put,
-                       Connected&& connected, int k_lo = 0, int k_hi = -1) {
-    if (k_hi < 0) k_hi = in.n - 1;
+void warp_line_ranges(const LineInput<double, A>& in, int split, int clip_lo, int clip_hi,
+                      std::span<const std::pair<int, int>> ranges, Put&& put, Connected&& connected) {
     const double lo_clip = clip_lo, hi_clip = clip_hi;
     auto point = [&](int k) {
         const double p = in.pos[k];
@@ -520,12 +541,53 @@ void warp_line_clipped(const LineInput<double, A>& in, int split, int clip_lo, i
         }
         return prev;
     };
-    // Samples outside k_lo .. k_hi are invalid: the parts start and end within.
-    const int left_last = k_lo < split ? part(k_lo, std::min(split, k_hi + 1), +1) : -1;
-    const int right_last = k_hi >= split ? part(k_hi, std::max(split, k_lo) - 1, -1) : -1;
+    int left_last = -1, right_last = -1;
+    for (const auto& [k_lo, k_hi] : ranges)
+        if (k_lo < split) left_last = part(k_lo, std::min(split, k_hi + 1), +1);
+    for (size_t i = ranges.size(); i-- > 0;) {
+        const auto& [k_lo, k_hi] = ranges[i];
+        if (k_hi >= split) right_last = part(k_hi, std::max(split, k_lo) - 1, -1);
+    }
     if (left_last >= 0 && right_last >= 0 && left_last == split - 1 && right_last == split &&
         connected(left_last, right_last))
         span(left_last, right_last);
+}
+
+// The same over the samples k_lo .. k_hi (k_hi < 0: to the end).
+template <class A, class Put, class Connected>
+void warp_line_clipped(const LineInput<double, A>& in, int split, int clip_lo, int clip_hi, Put&& put,
+                       Connected&& connected, int k_lo = 0, int k_hi = -1) {
+    const std::pair<int, int> range{k_lo, k_hi < 0 ? in.n - 1 : k_hi};
+    warp_line_ranges(in, split, clip_lo, clip_hi, std::span<const std::pair<int, int>>(&range, 1),
+                     std::forward<Put>(put), std::forward<Connected>(connected));
+}
+
+// The samples of a row worth warping, given the intermediate lines it must draw: chunks of kRowChunk samples, each
+// read as the samples x0 - 1 .. x0 + kRowChunk (its own and one neighbour on each side), kept when the range of their
+// positions reaches a line to draw (pixels first_pixel .. last_pixel of that range, as for a row). Every span of the
+// line warp joins two samples of one chunk so read, and every point is one chunk's sample: a span or point drawing a
+// kept line belongs to a kept chunk. A kept chunk's range starts and ends one sample into its neighbours, so its spans
+// are drawn as over the whole row; the runs it starts at its ends draw (as points) only within a dropped chunk's range,
+// which holds no line drawn. Ranges that meet are merged. Appends to `out`, sorted.
+constexpr int kRowChunk = kAdjacentChunk;
+template <class LineOk>
+void row_chunks(const double* pos, const uint8_t* valid, int n, int cl, int ch, LineOk&& line_ok,
+                std::vector<std::pair<int, int>>& out) {
+    for (int x0 = 0; x0 < n; x0 += kRowChunk) {
+        const int a = std::max(0, x0 - 1), b = std::min(n - 1, x0 + kRowChunk);
+        double mn = std::numeric_limits<double>::infinity(), mx = -mn;
+        for (int x = a; x <= b; ++x)
+            if (valid[x] && std::isfinite(pos[x])) mn = std::min(mn, pos[x]), mx = std::max(mx, pos[x]);
+        if (!(mn <= mx)) continue;
+        const int c0 = std::max(first_pixel(mn), cl), c1 = std::min(last_pixel(mx), ch);
+        bool keep = false;
+        for (int c = c0; c <= c1 && !keep; ++c) keep = line_ok(c);
+        if (!keep) continue;
+        if (!out.empty() && out.back().second >= a - 1)
+            out.back().second = b;
+        else
+            out.emplace_back(a, b);
+    }
 }
 
 // With a need: bounds of each row's two coordinates over its valid texels (warp_adjacent_face in face_swap.h), from
@@ -542,23 +604,43 @@ inline void adjacent_row_ranges(const AdjacentJob& j, int r0, int r1) {
     for (int r = r0; r < r1; ++r) {
         const ReliefTexel* tr = &g.texels[size_t(r) * size_t(gw)];
         // The extremes of the column and displacement terms over the row's non-empty texels.
+        // Also per chunk of the row (row_chunk_bounds), over the chunk's texels and one neighbour on each side.
         double cmin = inf, cmax = -inf, dmin = inf, dmax = -inf;
         const double* ct = j.col_term;
-        if (j.exact) {
-            const float* dr = &g.displacement[size_t(r) * size_t(gw)];
-            for (int x = 0; x < gw; ++x) {
-                const bool ne = tr[x].q != kEmptyIndex;
-                const double dt = j.offset_d + j.scale_d * double(dr[x]);
-                cmin = std::min(cmin, ne ? ct[x] : inf), cmax = std::max(cmax, ne ? ct[x] : -inf);
-                dmin = std::min(dmin, ne ? dt : inf), dmax = std::max(dmax, ne ? dt : -inf);
+        const float* dr = j.exact ? &g.displacement[size_t(r) * size_t(gw)] : nullptr;
+        auto term_d = [&](int x) { return dr ? j.offset_d + j.scale_d * double(dr[x]) : j.level_term[tr[x].q]; };
+        ChunkTerms* chunks = &ws.chunk_terms[size_t(r) * size_t(j.chunks)];
+        if (j.levels) {
+            // From the relief's chunks: the column term is monotone in the column and the displacement term in the
+            // level (Quantizer::decode is non-decreasing) and in the displacement, so the extremes over a chunk's
+            // non-empty texels are the terms at its first and last one and at its extreme levels (or displacements).
+            const AdjacentChunks::Chunk* lv = &j.levels->chunks[size_t(r) * size_t(j.chunks)];
+            for (int k = 0; k < j.chunks; ++k) {
+                const AdjacentChunks::Chunk& c = lv[k];
+                if (c.first > c.last) {
+                    chunks[k] = {inf, -inf, inf, -inf};
+                    continue;
+                }
+                const double ca = ct[c.first], cb = ct[c.last];
+                const double da = dr ? j.offset_d + j.scale_d * double(c.dmin) : j.level_term[c.qmin];
+                const double db = dr ? j.offset_d + j.scale_d * double(c.dmax) : j.level_term[c.qmax];
+                chunks[k] = {std::min(ca, cb), std::max(ca, cb), std::min(da, db), std::max(da, db)};
+                cmin = std::min(cmin, chunks[k].cmin), cmax = std::max(cmax, chunks[k].cmax);
+                dmin = std::min(dmin, chunks[k].dmin), dmax = std::max(dmax, chunks[k].dmax);
             }
-        } else {
-            for (int x = 0; x < gw; ++x) {
+        }
+        for (int k = 0; k < (j.levels ? 0 : j.chunks); ++k) {
+            const int a = std::max(0, k * kRowChunk - 1), b = std::min(gw - 1, (k + 1) * kRowChunk);
+            double c0 = inf, c1 = -inf, d0 = inf, d1 = -inf;
+            for (int x = a; x <= b; ++x) {
                 const bool ne = tr[x].q != kEmptyIndex;
-                const double dt = j.level_term[tr[x].q];
-                cmin = std::min(cmin, ne ? ct[x] : inf), cmax = std::max(cmax, ne ? ct[x] : -inf);
-                dmin = std::min(dmin, ne ? dt : inf), dmax = std::max(dmax, ne ? dt : -inf);
+                const double dt = term_d(x);
+                c0 = std::min(c0, ne ? ct[x] : inf), c1 = std::max(c1, ne ? ct[x] : -inf);
+                d0 = std::min(d0, ne ? dt : inf), d1 = std::max(d1, ne ? dt : -inf);
             }
+            chunks[k] = {c0, c1, d0, d1};
+            cmin = std::min(cmin, c0), cmax = std::max(cmax, c1);
+            dmin = std::min(dmin, d0), dmax = std::max(dmax, d1);
         }
         double& umin = ws.row_umin[size_t(r)];
         double& umax = ws.row_umax[size_t(r)];
@@ -566,6 +648,7 @@ inline void adjacent_row_ranges(const AdjacentJob& j, int r0, int r1) {
         double& vmax = ws.row_vmax[size_t(r)];
         umin = vmin = inf, umax = vmax = -inf;
         j.dropped_rows[r] = 0;
+        ws.row_cornered[size_t(r)] = 0;
         if (!(cmin <= cmax)) continue;  // no non-empty texel
         const double row_term = j.offset_v + j.scale_v * ((gh - 1 - r) + 0.5);
         double lo[3], hi[3];  // per component of p = (u', v', d')
@@ -591,12 +674,13 @@ inline void adjacent_row_ranges(const AdjacentJob& j, int r0, int r1) {
                 umin = u0, umax = u1, vmin = v0, vmax = v1;
             else
                 umin = v0, umax = v1, vmin = u0, vmax = u1;
+            ws.row_cornered[size_t(r)] = 1;
             continue;
         }
         // Texel by texel: the coordinates themselves.
         if (!scratch) scratch = std::make_unique<RowScratch>(gw, j.n1);
         RowScratch& s = *scratch;
-        if (row_coordinates(j, r, s) == 0) continue;
+        if (row_coordinates(j, r, s, 0, gw, &j.dropped_rows[r]) == 0) continue;
         bool finite = true;
         for (int x = 0; x < gw; ++x) {
             if (!s.valid[size_t(x)]) continue;
@@ -608,16 +692,42 @@ inline void adjacent_row_ranges(const AdjacentJob& j, int r0, int r1) {
     }
 }
 
-// The pixels a coordinate range [lo, hi] can reach on a line: a span's pixels have their centres in it, a point's
-// pixel holds it, so floor(lo) .. floor(hi); widened by 1e-7 of a pixel plus 1e-9 of the value, far more than the
-// rounding that separates the bounds from the samples' computed values. Clamped to +-1e9 (beyond any line).
-inline int first_pixel(double lo) {
-    const double w = lo - (1e-7 + 1e-9 * std::abs(lo));
-    return int(std::floor(std::clamp(w, -1e9, 1e9)));
-}
-inline int last_pixel(double hi) {
-    const double w = hi + (1e-7 + 1e-9 * std::abs(hi));
-    return int(std::floor(std::clamp(w, -1e9, 1e9)));
+// With a need, for row r bounded by its corners (adjacent_row_ranges): the chunks (read as row_chunks reads them)
+// whose bound of the row pass's coordinate reaches a line to draw (lines[c] for c in cl .. ch), as merged ranges of
+// samples appended to `out`. Each chunk's bound is the row's, over the box of the chunk's terms (ChunkTerms): within
+// the row's box, so its denominators are positive and the same monotonicity holds.
+inline void row_chunk_bounds(const AdjacentJob& j, int r, int cl, int ch, const uint8_t* lines,
+                             std::vector<std::pair<int, int>>& out) {
+    const int gw = j.g->width, gh = j.g->height;
+    const double inf = std::numeric_limits<double>::infinity();
+    const double row_term = j.offset_v + j.scale_v * ((gh - 1 - r) + 0.5);
+    const int i = j.first;  // F's coordinate the row pass computes: 0 (u, with k1) or 1 (v, with k2)
+    const double k = i == 0 ? j.k1 : j.k2;
+    const ChunkTerms* chunks = &j.ws->chunk_terms[size_t(r) * size_t(j.chunks)];
+    for (int c = 0; c < j.chunks; ++c) {
+        const ChunkTerms& t = chunks[c];
+        if (!(t.cmin <= t.cmax)) continue;  // no non-empty texel
+        double lo[3], hi[3];
+        lo[j.by_u] = t.cmin, hi[j.by_u] = t.cmax;
+        lo[j.by_v] = hi[j.by_v] = row_term;
+        lo[j.by_d] = t.dmin, hi[j.by_d] = t.dmax;
+        double mn = inf, mx = -inf;
+        for (double pz : {lo[2], hi[2]})
+            for (double pp : {lo[i], hi[i]}) {
+                const double val = (pp + k * pz) / (1.0 + j.k3 * pz);
+                mn = std::min(mn, val), mx = std::max(mx, val);
+            }
+        if (!std::isfinite(mn) || !std::isfinite(mx)) mn = -inf, mx = inf;
+        const int c0 = std::max(first_pixel(mn), cl), c1 = std::min(last_pixel(mx), ch);
+        bool keep = false;
+        for (int x = c0; x <= c1 && !keep; ++x) keep = lines[x] != 0;
+        if (!keep) continue;
+        const int a = std::max(0, c * kRowChunk - 1), b = std::min(gw - 1, (c + 1) * kRowChunk);
+        if (!out.empty() && out.back().second >= a - 1)
+            out.back().second = b;
+        else
+            out.emplace_back(a, b);
+    }
 }
 
 // Pass 1 over rows r0 .. r1 - 1 of G: as the reference's, into one array of intermediate samples. With a need, a row
@@ -667,7 +777,20 @@ inline void adjacent_row_pass(const AdjacentJob& j, int r0, int r1) {
                 }
             if (ch < cl) continue;
         }
-        if (row_coordinates(j, r, s) == 0) continue;
+        // With a need, a row bounded by its corners computes only the chunks whose bounds reach a line to draw;
+        // another (bounded texel by texel) computes all its coordinates and keeps the chunks they reach it with.
+        s.ranges.clear();
+        if (j.need && ws.row_cornered[size_t(r)]) {
+            row_chunk_bounds(j, r, cl, ch, lines, s.ranges);
+            int n_ok = 0;
+            for (const auto& [a, b] : s.ranges) n_ok += row_coordinates(j, r, s, a, b + 1, nullptr);
+            if (n_ok == 0) continue;
+        } else {
+            if (row_coordinates(j, r, s, 0, gw, &j.dropped_rows[r]) == 0) continue;
+            if (j.need)
+                row_chunks(
+                    s.pos.data(), s.valid.data(), gw, cl, ch, [&](int c) { return lines[c] != 0; }, s.ranges);
+        }
         const uint8_t* brk = g.breaks.empty() ? nullptr : &g.breaks[size_t(r) * size_t(gw)];
         auto connected = [&](int a, int b) { return !brk || !(brk[std::min(a, b)] & kBreakRight); };
         int wlo = j.n1, whi = -1;
@@ -686,7 +809,7 @@ inline void adjacent_row_pass(const AdjacentJob& j, int r0, int r1) {
                 wlo = std::min(wlo, x);
                 whi = std::max(whi, x);
             };
-            warp_line_clipped(in, j.split_u, cl, ch, put, connected);
+            warp_line_ranges(in, j.split_u, cl, ch, std::span<const std::pair<int, int>>(s.ranges), put, connected);
         }
         lo = wlo, hi = whi;
     }
@@ -814,9 +937,37 @@ Passes choose_passes(Isa isa) {
 
 }  // namespace
 
+AdjacentChunks AdjacentChunks::make(const ReliefTexture& t) {
+    AdjacentChunks out;
+    out.width = t.width;
+    out.height = t.height;
+    out.per_row = (t.width + kAdjacentChunk - 1) / kAdjacentChunk;
+    out.chunks.resize(size_t(out.height) * size_t(out.per_row));
+    const bool exact = t.displacement.size() == t.texels.size();
+    for (int r = 0; r < t.height; ++r)
+        for (int k = 0; k < out.per_row; ++k) {
+            Chunk& c = out.chunks[size_t(r) * size_t(out.per_row) + size_t(k)];
+            const int a = std::max(0, k * kAdjacentChunk - 1), b = std::min(t.width - 1, (k + 1) * kAdjacentChunk);
+            for (int x = a; x <= b; ++x) {
+                const size_t i = size_t(r) * size_t(t.width) + size_t(x);
+                const uint8_t q = t.texels[i].q;
+                if (q == kEmptyIndex) continue;
+                const float d = exact ? t.displacement[i] : 0.0f;
+                if (c.first > c.last) {
+                    c = {x, x, q, q, d, d};
+                    continue;
+                }
+                c.last = x;
+                c.qmin = std::min(c.qmin, q), c.qmax = std::max(c.qmax, q);
+                c.dmin = std::min(c.dmin, d), c.dmax = std::max(c.dmax, d);
+            }
+        }
+    return out;
+}
+
 long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geom, int width, int height,
                              const PrewarpCoefficients& kf, bool exact, AdjacentWorkspace& ws, AdjacentBuffer& out,
-                             int threads, Isa isa, const AdjacentNeed* need) {
+                             int threads, Isa isa, const AdjacentNeed* need, const AdjacentChunks* chunks) {
     const FaceSwap swap = make_face_swap(g.geometry, f_geom);
     std::array<int, 3> src{};
     if (!single_source_terms(swap, src))
@@ -872,6 +1023,15 @@ long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geo
                                         std::to_string(need->height) + ", the face " + std::to_string(width) + "x" +
                                         std::to_string(height));
         j.need = &need->lines[size_t(j.first)];
+        j.chunks = (gw + kRowChunk - 1) / kRowChunk;
+        if (chunks && (chunks->width != gw || chunks->height != gh || chunks->per_row != j.chunks ||
+                       chunks->chunks.size() != size_t(gh) * size_t(j.chunks)))
+            throw std::invalid_argument("warp_adjacent_face: the chunks are of a " + std::to_string(chunks->width) +
+                                        "x" + std::to_string(chunks->height) + " relief, the face is " +
+                                        std::to_string(gw) + "x" + std::to_string(gh));
+        j.levels = chunks;
+        ws.chunk_terms.resize(size_t(gh) * size_t(j.chunks));
+        ws.row_cornered.resize(size_t(gh));
         ws.row_umin.resize(size_t(gh));
         ws.row_umax.resize(size_t(gh));
         ws.row_vmin.resize(size_t(gh));

@@ -112,6 +112,31 @@ private:
     void index(int threads);  // lines from pixels
 };
 
+// warp_adjacent_face with a need reads each row of G in chunks of kAdjacentChunk texels, each with one neighbour on
+// each side (texels 16 k - 1 .. 16 k + 16).
+inline constexpr int kAdjacentChunk = 16;
+
+// The extremes of G's column and displacement terms over the non-empty texels of one chunk; cmin > cmax when there
+// are none.
+struct ChunkTerms {
+    double cmin = 0, cmax = 0, dmin = 0, dmax = 0;
+};
+
+// What a relief's chunks hold, whatever the view: per chunk of each row (as above), the first and last non-empty
+// texel and the extremes of the displacement level and (for `exact`) of the displacement over the non-empty texels.
+// warp_adjacent_face computes the same extremes from every texel of G when not given these: a six-face object keeps
+// one per face and pyramid level, made once, so that a warp reads 16 chunks a row instead of every texel.
+struct AdjacentChunks {
+    struct Chunk {
+        int first = 1, last = 0;  // first > last: no non-empty texel
+        uint8_t qmin = 0, qmax = 0;
+        float dmin = 0, dmax = 0;
+    };
+    int width = 0, height = 0, per_row = 0;
+    std::vector<Chunk> chunks;  // row-major, per_row per row of the relief
+    static AdjacentChunks make(const ReliefTexture& t);
+};
+
 // Scratch for warp_adjacent_face, reused across calls.
 struct AdjacentWorkspace {
     ImageRGBA8 mid_color;  // the reference's row-pass output
@@ -123,7 +148,9 @@ struct AdjacentWorkspace {
     // With an AdjacentNeed: bounds of each row's two coordinates over its valid texels (the row pass's and the
     // other); an empty range (min > max) when the row has none.
     std::vector<double> row_umin, row_umax, row_vmin, row_vmax;
-    std::vector<int> col_rows;  // per intermediate line, the first and last row that wrote to it
+    std::vector<uint8_t> row_cornered;    // 1 where a row's bounds came from its terms' corners
+    std::vector<ChunkTerms> chunk_terms;  // per row, per chunk of 16 texels
+    std::vector<int> col_rows;            // per intermediate line, the first and last row that wrote to it
 };
 
 // Runs body(begin, end) over parts of [0, n) on `threads` threads (0: all available, 1: this thread alone, in one
@@ -158,9 +185,13 @@ void parallel_ranges(int n, int threads, const std::function<void(int, int)>& bo
 // (widened by far more than the rounding; a row whose box reaches a denominator <= 0 is bounded texel by texel).
 // tests/objects/face_swap_test.cpp checks it with random masks, and tests/objects/adjacent_holes_test.cpp the
 // objects' faces with and without.
+//
+// `chunks`, if given, must be AdjacentChunks::make(g) (its size is checked: std::invalid_argument); the result is the
+// same with or without.
 long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geom, int width, int height,
                              const PrewarpCoefficients& kf, bool exact, AdjacentWorkspace& ws, AdjacentBuffer& out,
-                             int threads = 0, Isa isa = Isa::automatic, const AdjacentNeed* need = nullptr);
+                             int threads = 0, Isa isa = Isa::automatic, const AdjacentNeed* need = nullptr,
+                             const AdjacentChunks* chunks = nullptr);
 
 // The reference: the swap applied to every texel as a matrix, the generic schedule; any two frames.
 long long warp_adjacent_face_reference(const ReliefTexture& g, const ReliefGeometry& f_geom, int width, int height,

@@ -102,9 +102,18 @@ void ReliefObject::prewarp_face(int face, const glm::dvec3& eye, int level, cons
     adjacent_.reset(w, h, options.threads);
     for (int g : out.adjacent) {
         const ReliefTexture& gt = quads_[size_t(g)].level(level);
-        if (!need || need->count > 0)
+        if (!need || need->count > 0) {
+            // The adjacent face's chunks (view-independent), made the first time it is warped at this level.
+            const AdjacentChunks* chunks = nullptr;
+            if (need) {
+                std::vector<AdjacentChunks>& per_level = chunks_[size_t(g)];
+                if (per_level.size() <= size_t(level)) per_level.resize(size_t(level) + 1);
+                if (per_level[size_t(level)].width == 0) per_level[size_t(level)] = AdjacentChunks::make(gt);
+                chunks = &per_level[size_t(level)];
+            }
             warp_adjacent_face(gt, ft.geometry, w, h, k, options.exact, adjacent_ws_, adjacent_, options.threads,
-                               options.isa, need);
+                               options.isa, need, chunks);
+        }
         out.texels += (long long)gt.width * gt.height;
     }
     out.adjacent_ms = ms_since(t_adjacent);

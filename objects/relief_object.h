@@ -125,6 +125,7 @@ private:
     AdjacentWorkspace adjacent_ws_;
     AdjacentBuffer adjacent_;
     AdjacentNeed need_;
+    std::array<std::vector<AdjacentChunks>, kFaceCount> chunks_;  // per face and pyramid level, made on first use
     Image2D<uint8_t> own_displ_;
     std::vector<std::vector<CrackFill>> cracks_;  // per block of 16 rows, the cracks a face's composite closes
     std::array<ObjectFacePrewarp, kFaceCount> warped_;

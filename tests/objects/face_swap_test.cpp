@@ -236,7 +236,7 @@ TEST(FaceSwap, NeededPixelsMatchTheWholeWarp) {
     std::mt19937 rng{static_cast<unsigned>(seed)};
     std::uniform_int_distribution<int> size(6, 48);
     const std::vector<Isa> isas = supported_isas();
-    AdjacentWorkspace ws_need, ws_whole;
+    AdjacentWorkspace ws_need, ws_whole, ws_chunks;
     long long needed = 0, landed = 0, differ_elsewhere = 0;
     for (int trial = 0; trial < 10; ++trial) {
         const SyntheticShape shape = trial % 2 ? SyntheticShape::cross_box : SyntheticShape::sphere;
@@ -254,9 +254,12 @@ TEST(FaceSwap, NeededPixelsMatchTheWholeWarp) {
                 SCOPED_TRACE("trial " + std::to_string(trial) + " face " + kFaceKeys[size_t(f)] + " need kind " +
                              std::to_string(kind) + (exact ? " exact" : "") + " threads " + std::to_string(threads) +
                              " isa " + isa_name(isa));
-                AdjacentBuffer part, whole;
+                // part: the need, whole: none, chunked: the need with the adjacent face's chunks made once, which
+                // must give part's buffer everywhere (the same bounds from the chunks' extremes).
+                AdjacentBuffer part, whole, chunked;
                 part.reset(ft.width, ft.height);
                 whole.reset(ft.width, ft.height);
+                chunked.reset(ft.width, ft.height);
                 for (int g = 0; g < kFaceCount; ++g) {
                     if (face_axis(g) == face_axis(f)) continue;
                     const ReliefTexture& gt = obj.faces[size_t(g)];
@@ -265,6 +268,12 @@ TEST(FaceSwap, NeededPixelsMatchTheWholeWarp) {
                     const long long b = warp_adjacent_face(gt, ft.geometry, ft.width, ft.height, k, exact, ws_whole,
                                                            whole, threads, isa);
                     ASSERT_EQ(a, b) << kFaceKeys[size_t(g)];
+                    const AdjacentChunks chunks = AdjacentChunks::make(gt);
+                    const long long c = warp_adjacent_face(gt, ft.geometry, ft.width, ft.height, k, exact, ws_chunks,
+                                                           chunked, threads, isa, &need, &chunks);
+                    ASSERT_EQ(a, c) << kFaceKeys[size_t(g)];
+                    ASSERT_TRUE(chunked.color.pixels == part.color.pixels) << "with chunks, " << kFaceKeys[size_t(g)];
+                    ASSERT_TRUE(chunked.depth.pixels == part.depth.pixels) << "with chunks, " << kFaceKeys[size_t(g)];
                     for (int row = 0; row < ft.height; ++row)
                         for (int x = 0; x < ft.width; ++x) {
                             if (!need.needed(x, row)) {
@@ -287,6 +296,61 @@ TEST(FaceSwap, NeededPixelsMatchTheWholeWarp) {
                 landed, differ_elsewhere);
     EXPECT_GT(landed, 500);            // the comparison saw real samples at needed pixels
     EXPECT_GT(differ_elsewhere, 100);  // and the need did leave work out
+}
+
+// A relief's chunks: per chunk of 16 texels and one neighbour on each side, the first and last non-empty texel and
+// the extremes of level and displacement, against a direct count; and chunks of another relief are refused.
+TEST(FaceSwap, AdjacentChunksHoldTheirTexelsExtremes) {
+    const SixFaceObject obj = make_synthetic_object(SyntheticShape::sphere, 37);
+    const ReliefTexture& t = obj.faces[0];
+    const AdjacentChunks chunks = AdjacentChunks::make(t);
+    ASSERT_EQ(chunks.per_row, 3);
+    ASSERT_EQ(chunks.chunks.size(), size_t(3 * t.height));
+    int empty_chunks = 0;
+    for (int r = 0; r < t.height; ++r)
+        for (int k = 0; k < 3; ++k) {
+            const AdjacentChunks::Chunk& c = chunks.chunks[size_t(r * 3 + k)];
+            int first = -1, last = -1, qmin = 255, qmax = -1;
+            float dmin = 1e30f, dmax = -1e30f;
+            for (int x = std::max(0, 16 * k - 1); x <= std::min(t.width - 1, 16 * k + 16); ++x) {
+                const int q = t.texel(x, r).q;
+                if (q == kEmptyIndex) continue;
+                if (first < 0) first = x;
+                last = x;
+                qmin = std::min(qmin, q), qmax = std::max(qmax, q);
+                dmin = std::min(dmin, t.displ(x, r)), dmax = std::max(dmax, t.displ(x, r));
+            }
+            if (first < 0) {
+                EXPECT_GT(c.first, c.last) << r << " " << k;
+                ++empty_chunks;
+                continue;
+            }
+            EXPECT_EQ(c.first, first) << r << " " << k;
+            EXPECT_EQ(c.last, last) << r << " " << k;
+            EXPECT_EQ(c.qmin, qmin) << r << " " << k;
+            EXPECT_EQ(c.qmax, qmax) << r << " " << k;
+            EXPECT_EQ(c.dmin, dmin) << r << " " << k;
+            EXPECT_EQ(c.dmax, dmax) << r << " " << k;
+        }
+    EXPECT_GT(empty_chunks, 0);  // the sphere's corners are empty: both kinds seen
+
+    const ReliefTexture& f = obj.faces[2];
+    const PrewarpCoefficients k = compute_coefficients(f.geometry,
+                                                       (obj.box.lo + obj.box.hi) * 0.5 + glm::dvec3(0, 4, 0));
+    AdjacentNeed need;
+    need.assign_holes(ImageRGBA8(f.width, f.height));
+    AdjacentWorkspace ws;
+    AdjacentBuffer out;
+    out.reset(f.width, f.height);
+    const SixFaceObject other = make_synthetic_object(SyntheticShape::sphere, 20);
+    const AdjacentChunks wrong = AdjacentChunks::make(other.faces[0]);
+    try {
+        warp_adjacent_face(t, f.geometry, f.width, f.height, k, false, ws, out, 1, Isa::automatic, &need, &wrong);
+        FAIL() << "chunks of a 20x20 relief were taken for a 37x37 one";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("the chunks are of a 20x20 relief, the face is 37x37"), std::string::npos)
+            << e.what();
+    }
 }
 
 // The need from a face's pre-warp: every pixel whose alpha is under 128 (empty, or covered less than half), every
