@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -126,18 +127,20 @@ void AdjacentBuffer::reset(int width, int height, int threads) {
     });
 }
 
-void AdjacentNeed::assign(const Image2D<uint8_t>& needed, int threads) {
+void AdjacentNeed::assign(const Image2D<uint8_t>& needed, int threads, std::array<bool, 2> orientations) {
     width = needed.width;
     height = needed.height;
     pixels.resize(needed.pixels.size());
-    for (size_t i = 0; i < pixels.size(); ++i) pixels[i] = needed.pixels[i] != 0;
-    index(threads);
+    count = 0;
+    for (size_t i = 0; i < pixels.size(); ++i) count += pixels[i] = needed.pixels[i] != 0;
+    index(threads, orientations);
 }
 
-void AdjacentNeed::assign_holes(const ImageRGBA8& own, int threads) {
+void AdjacentNeed::assign_holes(const ImageRGBA8& own, int threads, std::array<bool, 2> orientations) {
     width = own.width;
     height = own.height;
     pixels.resize(own.pixels.size());
+    std::atomic<long long> n{0};
     parallel_ranges(height, threads, [&](int r0, int r1) {
         const size_t i0 = size_t(r0) * size_t(width), i1 = size_t(r1) * size_t(width);
         if constexpr (std::endian::native == std::endian::little && sizeof(Rgba8) == 4) {
@@ -151,16 +154,22 @@ void AdjacentNeed::assign_holes(const ImageRGBA8& own, int threads) {
         } else {
             for (size_t i = i0; i < i1; ++i) pixels[i] = own.pixels[i].a < 128;
         }
+        long long k = 0;
+        for (size_t i = i0; i < i1; ++i) k += pixels[i];
+        n += k;
     });
-    index(threads);
+    count = n;
+    index(threads, orientations);
 }
 
-void AdjacentNeed::index(int threads) {
+void AdjacentNeed::index(int threads, std::array<bool, 2> orientations) {
     if (width > 65535 || height > 65535)
         throw std::invalid_argument("AdjacentNeed: " + std::to_string(width) + "x" + std::to_string(height) +
                                     " pixels, more than 65535 a side");
     const uint8_t* bottom = pixels.data() + size_t(std::max(height - 1, 0)) * size_t(width);  // F's row j = 0
+    built = orientations;
     for (int o = 0; o < 2; ++o) {
+        if (!built[size_t(o)]) continue;
         Lines& l = lines[size_t(o)];
         l.n1 = o == 0 ? width : height;
         l.n2 = o == 0 ? height : width;
@@ -173,7 +182,6 @@ void AdjacentNeed::index(int threads) {
     }
     Lines& l0 = lines[0];  // line x, position j = height - 1 - row
     Lines& l1 = lines[1];  // line j, position x
-    long long n0 = 0;
     // lines[0]: F's rows from the bottom, each adding to the columns' counts.
     auto columns = [&] {
         std::fill(l0.prefix.begin(), l0.prefix.begin() + width, uint16_t(0));
@@ -183,14 +191,11 @@ void AdjacentNeed::index(int threads) {
             const uint8_t* v = bottom - std::ptrdiff_t(j) * width;
             const uint16_t* below = &l0.prefix[size_t(j) * size_t(width)];
             uint16_t* p0 = &l0.prefix[size_t(j + 1) * size_t(width)];
-            int n = 0;
             for (int x = 0; x < width; ++x) {
                 p0[x] = uint16_t(below[x] + v[x]);
-                n += v[x];
                 lo0[x] = v[x] && lo0[x] > j ? j : lo0[x];
                 hi0[x] = v[x] ? j : hi0[x];
             }
-            n0 += n;
         }
     };
     // lines[1]: running counts along F's rows, position-major, 16 lines at a time so that each position writes one
@@ -221,9 +226,9 @@ void AdjacentNeed::index(int threads) {
             }
         }
     };
-    if (threads == 1) {
-        columns();
-        rows();
+    if (threads == 1 || !built[0] || !built[1]) {
+        if (built[0]) columns();
+        if (built[1]) rows();
     } else {
         auto both = [&] { tbb::parallel_invoke(columns, rows); };
         if (threads > 1)
@@ -231,7 +236,6 @@ void AdjacentNeed::index(int threads) {
         else
             both();
     }
-    count = n0;
 }
 
 int first_pass_coordinate(const FaceSwap& s) {
@@ -965,6 +969,12 @@ AdjacentChunks AdjacentChunks::make(const ReliefTexture& t) {
     return out;
 }
 
+int adjacent_pass_orientation(const ReliefGeometry& g, const ReliefGeometry& f) {
+    const FaceSwap swap = make_face_swap(g, f);
+    std::array<int, 3> src{};
+    return single_source_terms(swap, src) ? first_pass_coordinate(swap) : -1;
+}
+
 long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geom, int width, int height,
                              const PrewarpCoefficients& kf, bool exact, AdjacentWorkspace& ws, AdjacentBuffer& out,
                              int threads, Isa isa, const AdjacentNeed* need, const AdjacentChunks* chunks) {
@@ -1022,6 +1032,9 @@ long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geo
             throw std::invalid_argument("warp_adjacent_face: the need is " + std::to_string(need->width) + "x" +
                                         std::to_string(need->height) + ", the face " + std::to_string(width) + "x" +
                                         std::to_string(height));
+        if (!need->built[size_t(j.first)])
+            throw std::invalid_argument("warp_adjacent_face: the need was not indexed for pass orientation " +
+                                        std::to_string(j.first) + " (adjacent_pass_orientation)");
         j.need = &need->lines[size_t(j.first)];
         j.chunks = (gw + kRowChunk - 1) / kRowChunk;
         if (chunks && (chunks->width != gw || chunks->height != gh || chunks->per_row != j.chunks ||

@@ -100,16 +100,18 @@ struct AdjacentNeed {
         }
     };
     std::array<Lines, 2> lines;
-    // F's pixel (x, row), row 0 at the top, is needed where `needed` is non-zero. The two orientations are built on
-    // `threads` threads (0: oneTBB's default). Throws std::invalid_argument for a side over 65535 pixels.
-    void assign(const Image2D<uint8_t>& needed, int threads = 0);
+    std::array<bool, 2> built{};  // which of `lines` were built (a warp needs its pass orientation's)
+    // F's pixel (x, row), row 0 at the top, is needed where `needed` is non-zero. The orientations asked for (each
+    // adjacent face's adjacent_pass_orientation) are built on `threads` threads (0: oneTBB's default). Throws
+    // std::invalid_argument for a side over 65535 pixels.
+    void assign(const Image2D<uint8_t>& needed, int threads = 0, std::array<bool, 2> orientations = {true, true});
     // The holes of F's own pre-warped texture: pixels with alpha < 128 (less than half covered: the texture-mapping
     // stage discards them, so the composite takes an adjacent sample there).
-    void assign_holes(const ImageRGBA8& own, int threads = 0);
+    void assign_holes(const ImageRGBA8& own, int threads = 0, std::array<bool, 2> orientations = {true, true});
     bool needed(int x, int row) const { return pixels[size_t(row) * size_t(width) + size_t(x)] != 0; }
 
 private:
-    void index(int threads);  // lines from pixels
+    void index(int threads, std::array<bool, 2> orientations);  // lines from pixels
 };
 
 // warp_adjacent_face with a need reads each row of G in chunks of kAdjacentChunk texels, each with one neighbour on
@@ -136,6 +138,10 @@ struct AdjacentChunks {
     std::vector<Chunk> chunks;  // row-major, per_row per row of the relief
     static AdjacentChunks make(const ReliefTexture& t);
 };
+
+// Which of AdjacentNeed::lines warp_adjacent_face reads for adjacent face `g` onto face `f` (0 or 1), or -1 if it
+// reads none (two frames that are not faces of one box take the reference, which draws everything).
+int adjacent_pass_orientation(const ReliefGeometry& g, const ReliefGeometry& f);
 
 // Scratch for warp_adjacent_face, reused across calls.
 struct AdjacentWorkspace {

@@ -96,7 +96,13 @@ void ReliefObject::prewarp_face(int face, const glm::dvec3& eye, int level, cons
     const auto t_adjacent = Clock::now();
     const AdjacentNeed* need = nullptr;
     if (adjacent_holes_only && !out.adjacent.empty()) {
-        need_.assign_holes(out.image, options.threads);
+        // Only the orientations of the need the adjacent faces' passes read.
+        std::array<bool, 2> orientations{};
+        for (int g : out.adjacent) {
+            const int o = adjacent_pass_orientation(quads_[size_t(g)].level(level).geometry, ft.geometry);
+            if (o >= 0) orientations[size_t(o)] = true;
+        }
+        need_.assign_holes(out.image, options.threads, orientations);
         need = &need_;
     }
     adjacent_.reset(w, h, options.threads);

@@ -353,6 +353,47 @@ TEST(FaceSwap, AdjacentChunksHoldTheirTexelsExtremes) {
     }
 }
 
+// A need built for one pass orientation serves the adjacent faces whose passes read it (the same buffer as with
+// both built) and is refused, naming the orientation, by one whose passes read the other.
+TEST(FaceSwap, AdjacentNeedBuildsOnlyTheOrientationsAskedFor) {
+    const SixFaceObject obj = make_synthetic_object(SyntheticShape::cross_box, 24);
+    const int f = 4;  // +z
+    const ReliefTexture& ft = obj.faces[size_t(f)];
+    const PrewarpCoefficients k = compute_coefficients(ft.geometry, glm::dvec3(0.3, 0.2, 4.0));
+    Image2D<uint8_t> mask(ft.width, ft.height);
+    for (size_t i = 0; i < mask.pixels.size(); ++i) mask.pixels[i] = uint8_t(i % 3 == 0);
+    AdjacentNeed both;
+    both.assign(mask, 1);
+    std::array<int, 2> seen{};
+    for (int g = 0; g < kFaceCount; ++g) {
+        if (face_axis(g) == face_axis(f)) continue;
+        const ReliefTexture& gt = obj.faces[size_t(g)];
+        const int o = adjacent_pass_orientation(gt.geometry, ft.geometry);
+        ASSERT_TRUE(o == 0 || o == 1) << kFaceKeys[size_t(g)];
+        ++seen[size_t(o)];
+        AdjacentNeed only, other;
+        only.assign(mask, 1, {o == 0, o == 1});
+        other.assign(mask, 1, {o == 1, o == 0});
+        EXPECT_EQ(only.count, both.count);
+        AdjacentWorkspace ws;
+        AdjacentBuffer a, b;
+        a.reset(ft.width, ft.height);
+        b.reset(ft.width, ft.height);
+        warp_adjacent_face(gt, ft.geometry, ft.width, ft.height, k, false, ws, a, 1, Isa::automatic, &only);
+        warp_adjacent_face(gt, ft.geometry, ft.width, ft.height, k, false, ws, b, 1, Isa::automatic, &both);
+        EXPECT_TRUE(a.color.pixels == b.color.pixels) << kFaceKeys[size_t(g)];
+        try {
+            warp_adjacent_face(gt, ft.geometry, ft.width, ft.height, k, false, ws, a, 1, Isa::automatic, &other);
+            FAIL() << "a need without orientation " << o << " was taken for " << kFaceKeys[size_t(g)];
+        } catch (const std::invalid_argument& e) {
+            EXPECT_NE(std::string(e.what()).find("not indexed for pass orientation " + std::to_string(o)),
+                      std::string::npos)
+                << e.what();
+        }
+    }
+    EXPECT_GT(seen[0] + seen[1], 0);
+}
+
 // The need from a face's pre-warp: every pixel whose alpha is under 128 (empty, or covered less than half), every
 // alpha value in every channel mix, on one and two threads.
 TEST(FaceSwap, AdjacentNeedHolesAreThePixelsUnderHalfAlpha) {
