@@ -189,6 +189,10 @@ void parallel_ranges(int n, int threads, const std::function<void(int, int)>& bo
 // (P + k Z) / (1 + k3 Z) with P and Z two of G's column, row and displacement terms, monotone in each on a box where
 // the denominator is positive, so its extremes over the row are at the corners of the box of the row's P and Z
 // (widened by far more than the rounding; a row whose box reaches a denominator <= 0 is bounded texel by texel).
+// Within a row that draws, the same bound per chunk of kAdjacentChunk texels (read with one neighbour on each side)
+// keeps only the chunks that reach a line to draw: every span joins two samples of one chunk so read, so a span or
+// point drawing a kept line belongs to a kept chunk, and the line warp runs over the kept chunks' samples in the
+// whole row's order (a kept range starts and ends one sample into a dropped chunk, whose bound holds no line drawn).
 // tests/objects/face_swap_test.cpp checks it with random masks, and tests/objects/adjacent_holes_test.cpp the
 // objects' faces with and without.
 //

@@ -58,6 +58,15 @@ for t in t1:
     parts = t["prewarp_ms"] + t["upload_ms"] + t["texture_map_ms"] + t["other_ms"]
     check(t["total_ms"] > 0 and parts >= t["total_ms"] * (1 - 1e-9), name + ": the parts make the frame")
     check(abs(t["fps"] - 1000 / t["total_ms"]) <= 1e-9 * t["fps"], name + ": frames/s")
+ob = d["objects"]
+check(len(ob) == 6, f"{len(ob)} object rows, want 6 (two objects, three views)")
+for o in ob:
+    name = f'object {o["object"]} {o["view"]}'
+    check(o["frames"] >= 20 and o["faces_drawn"] == len(o["faces"]) >= 1, name + ": frames and faces")
+    # The relief frame measured between the view's frames, and the ratio of the two medians.
+    check(o["relief_ms"] > 0, name + ": relief frame")
+    check(abs(o["relief_frame_ratio"] - o["total_ms"] / o["relief_ms"]) <= 1e-9 * o["relief_frame_ratio"],
+          name + ": ratio to the relief frame")
 sc = d["scene"]
 check(sc["quads"] == 2 and sc["path_frames"] == 5 and sc["size"] == [640, 480], "scene: quads, path, size")
 check([r["variant"] for r in sc["rows"]][0] == "skips" and len(sc["rows"]) == 12, "scene: variants")
