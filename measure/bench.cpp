@@ -176,10 +176,11 @@ namespace {
 
 // Six-face objects next to Table 1 (docs/OBJECTS.md): every frame pre-warps every visible face and its adjacent
 // faces and uploads them (no skips). Table 1's single relief frame (its first relief, two-pass) is measured again
-// with each view, in blocks alternating with the object's (kBlock frames each, the first of each block left out so
-// that neither is timed just after the other evicted its data), and each view's ratio is of the two medians: a machine
-// whose speed drifts during the run (a shared host) then moves both alike, where the ratio to Table 1's own
-// measurement, seconds earlier, moved with the drift.
+// with each view, in blocks alternating with the object's (kBlock frames each, the first kWarm of each block left
+// out: after a switch each frame takes 6 to 10 frames to come down to its steady time, 1.2-1.7x the first, as the
+// other's data leaves the caches), and each view's ratio is of the two medians: a machine whose speed drifts during the
+// run (a shared host) then moves both alike, where the ratio to Table 1's own measurement, seconds earlier, moved with
+// the drift.
 template <class Progress>
 void bench_objects(const BenchConfig& c, Renderer& renderer, int threads, BenchResult& res, Progress&& progress) {
     std::unique_ptr<ReliefQuad> relief;
@@ -243,14 +244,14 @@ void bench_objects(const BenchConfig& c, Renderer& renderer, int threads, BenchR
                 if (keep) single.push_back(rs.total_ms);
             };
             for (int i = 0; i < 2; ++i) frame(false);  // warm-up
-            // Blocks of each until at least 0.5 s (or --min-time) and 20 kept object frames, at most 400.
-            constexpr int kBlock = 20;
+            // Blocks of each until at least 0.5 s (or --min-time) and 20 kept object frames, at most 400 kept.
+            constexpr int kBlock = 30, kWarm = 10;
             const double min_seconds = std::max(c.min_seconds, 0.5);
             const auto t_begin = Clock::now();
             while ((total.size() < 20 || ms_since(t_begin) < 1000.0 * min_seconds) && total.size() < 400) {
                 if (relief)
-                    for (int i = 0; i < kBlock; ++i) relief_frame(i > 0);
-                for (int i = 0; i < kBlock; ++i) frame(i > 0);
+                    for (int i = 0; i < kBlock; ++i) relief_frame(i >= kWarm);
+                for (int i = 0; i < kBlock; ++i) frame(i >= kWarm);
             }
             ObjectFrameRow r;
             r.object = to_string(shape);
