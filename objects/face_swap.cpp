@@ -566,6 +566,37 @@ void warp_line_clipped(const LineInput<double, A>& in, int split, int clip_lo, i
                      std::forward<Put>(put), std::forward<Connected>(connected));
 }
 
+constexpr int kRowChunk = kAdjacentChunk;
+
+// Chunk c of a row of n samples (kRowChunk samples, read with one neighbour on each side) whose samples' positions lie
+// in [mn, mx]: appended to `out` (merged with the last range when they meet) if the pixels that range reaches hold a
+// line to draw (lines[x] for x in cl .. ch).
+inline void keep_chunk(int c, int n, double mn, double mx, int cl, int ch, const uint8_t* lines,
+                       std::vector<std::pair<int, int>>& out) {
+    const int c0 = std::max(first_pixel(mn), cl), c1 = std::min(last_pixel(mx), ch);
+    bool keep = false;
+    for (int x = c0; x <= c1 && !keep; ++x) keep = lines[x] != 0;
+    if (!keep) return;
+    const int a = std::max(0, c * kRowChunk - 1), b = std::min(n - 1, (c + 1) * kRowChunk);
+    if (!out.empty() && out.back().second >= a - 1)
+        out.back().second = b;
+    else
+        out.emplace_back(a, b);
+}
+
+// The range of (p + k z) / (1 + k3 z) over the box [lo[i], hi[i]] x [lo[2], hi[2]] where its denominator is positive:
+// increasing in p and monotone in z, so its extremes are at the corners; all of the line when not finite.
+inline void corner_bound(const double* lo, const double* hi, int i, double k, double k3, double& mn, double& mx) {
+    const double inf = std::numeric_limits<double>::infinity();
+    mn = inf, mx = -inf;
+    for (double pz : {lo[2], hi[2]})
+        for (double pp : {lo[i], hi[i]}) {
+            const double val = (pp + k * pz) / (1.0 + k3 * pz);
+            mn = std::min(mn, val), mx = std::max(mx, val);
+        }
+    if (!std::isfinite(mn) || !std::isfinite(mx)) mn = -inf, mx = inf;
+}
+
 // The samples of a row worth warping, given the intermediate lines it must draw: chunks of kRowChunk samples, each
 // read as the samples x0 - 1 .. x0 + kRowChunk (its own and one neighbour on each side), kept when the range of their
 // positions reaches a line to draw (pixels first_pixel .. last_pixel of that range, as for a row). Every span of the
@@ -573,24 +604,14 @@ void warp_line_clipped(const LineInput<double, A>& in, int split, int clip_lo, i
 // kept line belongs to a kept chunk. A kept chunk's range starts and ends one sample into its neighbours, so its spans
 // are drawn as over the whole row; the runs it starts at its ends draw (as points) only within a dropped chunk's range,
 // which holds no line drawn. Ranges that meet are merged. Appends to `out`, sorted.
-constexpr int kRowChunk = kAdjacentChunk;
-template <class LineOk>
-void row_chunks(const double* pos, const uint8_t* valid, int n, int cl, int ch, LineOk&& line_ok,
-                std::vector<std::pair<int, int>>& out) {
-    for (int x0 = 0; x0 < n; x0 += kRowChunk) {
-        const int a = std::max(0, x0 - 1), b = std::min(n - 1, x0 + kRowChunk);
+inline void row_chunks(const double* pos, const uint8_t* valid, int n, int cl, int ch, const uint8_t* lines,
+                       std::vector<std::pair<int, int>>& out) {
+    for (int c = 0; c * kRowChunk < n; ++c) {
+        const int a = std::max(0, c * kRowChunk - 1), b = std::min(n - 1, (c + 1) * kRowChunk);
         double mn = std::numeric_limits<double>::infinity(), mx = -mn;
         for (int x = a; x <= b; ++x)
             if (valid[x] && std::isfinite(pos[x])) mn = std::min(mn, pos[x]), mx = std::max(mx, pos[x]);
-        if (!(mn <= mx)) continue;
-        const int c0 = std::max(first_pixel(mn), cl), c1 = std::min(last_pixel(mx), ch);
-        bool keep = false;
-        for (int c = c0; c <= c1 && !keep; ++c) keep = line_ok(c);
-        if (!keep) continue;
-        if (!out.empty() && out.back().second >= a - 1)
-            out.back().second = b;
-        else
-            out.emplace_back(a, b);
+        if (mn <= mx) keep_chunk(c, n, mn, mx, cl, ch, lines, out);
     }
 }
 
@@ -662,18 +683,9 @@ inline void adjacent_row_ranges(const AdjacentJob& j, int r0, int r1) {
         const double den_lo = 1.0 + j.k3 * lo[2], den_hi = 1.0 + j.k3 * hi[2];
         if (den_lo > 0.0 && den_hi > 0.0 && std::isfinite(den_lo) && std::isfinite(den_hi)) {
             // Coordinate i of F (0: u with k1, 1: v with k2) at the four corners.
-            auto bound = [&](int i, double k, double& mn, double& mx) {
-                mn = inf, mx = -inf;
-                for (double pz : {lo[2], hi[2]})
-                    for (double pp : {lo[i], hi[i]}) {
-                        const double val = (pp + k * pz) / (1.0 + j.k3 * pz);
-                        mn = std::min(mn, val), mx = std::max(mx, val);
-                    }
-                if (!std::isfinite(mn) || !std::isfinite(mx)) mn = -inf, mx = inf;
-            };
             double u0, u1, v0, v1;
-            bound(0, j.k1, u0, u1);
-            bound(1, j.k2, v0, v1);
+            corner_bound(lo, hi, 0, j.k1, j.k3, u0, u1);
+            corner_bound(lo, hi, 1, j.k2, j.k3, v0, v1);
             if (j.first == 0)
                 umin = u0, umax = u1, vmin = v0, vmax = v1;
             else
@@ -703,7 +715,6 @@ inline void adjacent_row_ranges(const AdjacentJob& j, int r0, int r1) {
 inline void row_chunk_bounds(const AdjacentJob& j, int r, int cl, int ch, const uint8_t* lines,
                              std::vector<std::pair<int, int>>& out) {
     const int gw = j.g->width, gh = j.g->height;
-    const double inf = std::numeric_limits<double>::infinity();
     const double row_term = j.offset_v + j.scale_v * ((gh - 1 - r) + 0.5);
     const int i = j.first;  // F's coordinate the row pass computes: 0 (u, with k1) or 1 (v, with k2)
     const double k = i == 0 ? j.k1 : j.k2;
@@ -715,22 +726,9 @@ inline void row_chunk_bounds(const AdjacentJob& j, int r, int cl, int ch, const 
         lo[j.by_u] = t.cmin, hi[j.by_u] = t.cmax;
         lo[j.by_v] = hi[j.by_v] = row_term;
         lo[j.by_d] = t.dmin, hi[j.by_d] = t.dmax;
-        double mn = inf, mx = -inf;
-        for (double pz : {lo[2], hi[2]})
-            for (double pp : {lo[i], hi[i]}) {
-                const double val = (pp + k * pz) / (1.0 + j.k3 * pz);
-                mn = std::min(mn, val), mx = std::max(mx, val);
-            }
-        if (!std::isfinite(mn) || !std::isfinite(mx)) mn = -inf, mx = inf;
-        const int c0 = std::max(first_pixel(mn), cl), c1 = std::min(last_pixel(mx), ch);
-        bool keep = false;
-        for (int x = c0; x <= c1 && !keep; ++x) keep = lines[x] != 0;
-        if (!keep) continue;
-        const int a = std::max(0, c * kRowChunk - 1), b = std::min(gw - 1, (c + 1) * kRowChunk);
-        if (!out.empty() && out.back().second >= a - 1)
-            out.back().second = b;
-        else
-            out.emplace_back(a, b);
+        double mn, mx;
+        corner_bound(lo, hi, i, k, j.k3, mn, mx);
+        keep_chunk(c, gw, mn, mx, cl, ch, lines, out);
     }
 }
 
@@ -791,9 +789,7 @@ inline void adjacent_row_pass(const AdjacentJob& j, int r0, int r1) {
             if (n_ok == 0) continue;
         } else {
             if (row_coordinates(j, r, s, 0, gw, &j.dropped_rows[r]) == 0) continue;
-            if (j.need)
-                row_chunks(
-                    s.pos.data(), s.valid.data(), gw, cl, ch, [&](int c) { return lines[c] != 0; }, s.ranges);
+            if (j.need) row_chunks(s.pos.data(), s.valid.data(), gw, cl, ch, lines, s.ranges);
         }
         const uint8_t* brk = g.breaks.empty() ? nullptr : &g.breaks[size_t(r) * size_t(gw)];
         auto connected = [&](int a, int b) { return !brk || !(brk[std::min(a, b)] & kBreakRight); };
