@@ -181,6 +181,8 @@ namespace {
 // other's data leaves the caches), and each view's ratio is of the two medians: a machine whose speed drifts during the
 // run (a shared host) then moves both alike, where the ratio to Table 1's own measurement, seconds earlier, moved with
 // the drift.
+constexpr int kBlock = 30, kWarm = 10;
+
 template <class Progress>
 void bench_objects(const BenchConfig& c, Renderer& renderer, int threads, BenchResult& res, Progress&& progress) {
     std::unique_ptr<ReliefQuad> relief;
@@ -245,7 +247,6 @@ void bench_objects(const BenchConfig& c, Renderer& renderer, int threads, BenchR
             };
             for (int i = 0; i < 2; ++i) frame(false);  // warm-up
             // Blocks of each until at least 0.5 s (or --min-time) and 20 kept object frames, at most 400 kept.
-            constexpr int kBlock = 30, kWarm = 10;
             const double min_seconds = std::max(c.min_seconds, 0.5);
             const auto t_begin = Clock::now();
             while ((total.size() < 20 || ms_since(t_begin) < 1000.0 * min_seconds) && total.size() < 400) {
@@ -603,8 +604,9 @@ std::string bench_markdown(const BenchResult& r) {
              "pre-warps each visible face after its adjacent faces, and uploads; two-pass), from one-, two- and "
              "three-face views (orbit AZ,EL,2.5 about the box's bounding sphere); pre-warp: all faces, with each "
              "face's time; of which adjacent: the adjacent faces pre-warped onto them (Figure 15); relief: Table 1's "
-             "two-pass frame of the first relief, rendered after each object frame of the view; x relief: the "
-             "object frame over it (the two medians).\n\n";
+             "two-pass frame of the first relief, measured again with the view, in blocks of "
+          << kBlock << " frames alternating with the object's, the first " << kWarm
+          << " of each block left out; x relief: the object frame over it (the two medians).\n\n";
         s << "| object | faces | view | pre-warp (per face) | of which adjacent | upload | texture mapping | frame | "
              "frames/s | relief | x relief |\n";
         s << "|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
