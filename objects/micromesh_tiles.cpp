@@ -47,11 +47,12 @@ TiledMicroMesh build_tiled_micromesh(const ReliefTexture& t, int tile_cells) {
     return out;
 }
 
-std::vector<IndexRange> visible_tile_ranges(const TiledMicroMesh& m, const Camera& cam, size_t* triangles) {
+std::vector<IndexRange> visible_tile_ranges(const std::vector<MicroMeshTile>& tiles, const Camera& cam,
+                                            size_t* triangles) {
     std::vector<IndexRange> ranges;
     const glm::dmat4 clip_from_world = cam.projection() * cam.view();
     size_t n = 0;
-    for (const MicroMeshTile& tile : m.tiles) {
+    for (const MicroMeshTile& tile : tiles) {
         if (outside_frustum(clip_from_world, tile.bounds)) continue;
         n += tile.count / 3;
         if (!ranges.empty() && ranges.back().first + ranges.back().count == tile.first)

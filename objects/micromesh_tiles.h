@@ -32,8 +32,10 @@ struct TiledMicroMesh {
 // `tile_cells`: the tile's side in cells (>= 1, else std::invalid_argument naming the value).
 TiledMicroMesh build_tiled_micromesh(const ReliefTexture& t, int tile_cells = 16);
 
-// The index ranges of the tiles not wholly outside the camera's frustum (conservative, objects/view_analysis.h
-// outside_frustum), consecutive tiles merged into one range; `triangles`, when given, receives the number drawn.
-std::vector<IndexRange> visible_tile_ranges(const TiledMicroMesh& m, const Camera& cam, size_t* triangles = nullptr);
+// The index ranges of the tiles (a TiledMicroMesh's) not wholly outside the camera's frustum (conservative,
+// objects/view_analysis.h outside_frustum), consecutive tiles merged into one range; `triangles`, when given, receives
+// the number drawn. Needs only the tiles: a mesh kept on the GPU keeps no vertices on the CPU.
+std::vector<IndexRange> visible_tile_ranges(const std::vector<MicroMeshTile>& tiles, const Camera& cam,
+                                            size_t* triangles = nullptr);
 
 }  // namespace rtm

@@ -47,11 +47,6 @@ const MicroMesh& ReliefQuad::micromesh() {
     return *micromesh_;
 }
 
-const TiledMicroMesh& ReliefQuad::tiled_micromesh() {
-    if (!tiled_micromesh_) tiled_micromesh_ = std::make_unique<TiledMicroMesh>(build_tiled_micromesh(relief_));
-    return *tiled_micromesh_;
-}
-
 void ReliefQuad::draw_micromesh(Renderer& renderer, const Camera& cam, bool tiles, DrawReport* report) {
     if (!tiles) {
         const MicroMesh& m = micromesh();
@@ -59,16 +54,20 @@ void ReliefQuad::draw_micromesh(Renderer& renderer, const Camera& cam, bool tile
         if (report) report->micromesh_triangles = report->micromesh_triangles_total = (long long)(m.indices.size() / 3);
         return;
     }
-    const TiledMicroMesh& tm = tiled_micromesh();
     if (!micromesh_gl_) {
-        micromesh_gl_ = std::make_unique<GlMesh>();
-        micromesh_gl_->upload(tm.mesh.vertices, tm.mesh.indices);
+        // Built, uploaded, and only its tiles kept: the vertices and indices live on the GPU alone.
+        TiledMicroMesh tm = build_tiled_micromesh(relief_);
+        auto gl = std::make_unique<GlMesh>();
+        gl->upload(tm.mesh.vertices, tm.mesh.indices);
+        micromesh_gl_ = std::move(gl);
+        micromesh_tiles_ = std::move(tm.tiles);
+        micromesh_tiled_triangles_ = (long long)(tm.mesh.indices.size() / 3);
     }
     size_t drawn = 0;
-    renderer.draw_mesh_ranges(cam, *micromesh_gl_, visible_tile_ranges(tm, cam, &drawn));
+    renderer.draw_mesh_ranges(cam, *micromesh_gl_, visible_tile_ranges(micromesh_tiles_, cam, &drawn));
     if (report) {
         report->micromesh_triangles = (long long)drawn;
-        report->micromesh_triangles_total = (long long)(tm.mesh.indices.size() / 3);
+        report->micromesh_triangles_total = micromesh_tiled_triangles_;
     }
 }
 

@@ -20,7 +20,7 @@
 namespace rtm {
 
 struct MicroMesh;
-struct TiledMicroMesh;
+struct MicroMeshTile;
 
 struct StageTimes {
     double prewarp_ms = 0.0;      // pre-warping and resampling
@@ -72,8 +72,6 @@ public:
     const GlTexture* texture() const { return texture_.get(); }
     // The micro-polygon mesh of this relief (ground truth), built on first use.
     const MicroMesh& micromesh();
-    // The same triangles ordered by 16x16-cell tiles (objects/micromesh_tiles.h), built on first use.
-    const TiledMicroMesh& tiled_micromesh();
     // Draws the micro-polygon mesh for the eye inside the slab: with `tiles`, from a copy kept on the GPU, only the
     // tiles not wholly outside the frustum; else the whole mesh, uploaded for this draw. Counts into `report`.
     void draw_micromesh(Renderer& renderer, const Camera& cam, bool tiles, DrawReport* report = nullptr);
@@ -113,8 +111,11 @@ private:
     ImageRGBA8 flat_;               // source colours of level flat_level_ as an ordinary texture (alpha 0 where empty)
     int flat_level_ = -1;
     std::unique_ptr<MicroMesh> micromesh_;
-    std::unique_ptr<TiledMicroMesh> tiled_micromesh_;
-    std::unique_ptr<GlMesh> micromesh_gl_;    // tiled_micromesh_ on the GPU, uploaded on first use
+    // The micro-polygon mesh ordered by 16x16-cell tiles (objects/micromesh_tiles.h) on the GPU, uploaded on first
+    // use; on the CPU only its tiles' index ranges and bounds (and its triangle count) stay.
+    std::unique_ptr<GlMesh> micromesh_gl_;
+    std::vector<MicroMeshTile> micromesh_tiles_;
+    long long micromesh_tiled_triangles_ = 0;
     LastPrewarp last_prewarp_;                // what prewarped_ was made for (reuse when the eye barely moved)
     UploadedTexture uploaded_;                // what texture_ holds (partial upload)
     std::unique_ptr<PerPixelQuad> perpixel_;  // the per-pixel methods' textures and programs, made on first use

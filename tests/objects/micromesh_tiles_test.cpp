@@ -108,7 +108,7 @@ TEST(MicromeshTiles, CullingKeepsEveryTriangleInView) {
         cam.fov_deg = 30 + 60 * u(rng);
         cam.fit_clip_planes(b.centre(), b.radius());
         size_t drawn = 0;
-        const std::vector<IndexRange> ranges = visible_tile_ranges(m, cam, &drawn);
+        const std::vector<IndexRange> ranges = visible_tile_ranges(m.tiles, cam, &drawn);
         std::vector<char> in_range(m.mesh.indices.size() / 3, 0);
         size_t counted = 0;
         for (size_t i = 0; i < ranges.size(); ++i) {
