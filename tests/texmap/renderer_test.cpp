@@ -432,14 +432,19 @@ TEST_F(RendererTest, MeshColoursAreInterpolated) {
     }
 }
 
-TEST_F(RendererTest, MeshAlphaBelowOneHalfIsDiscardedAndDepthWorks) {
-    Camera cam = front_camera(32);
-    // A transparent triangle in front, an opaque blue one behind, a red one in front of that on the right.
-    std::vector<MeshVertex> v = {
+// Three triangles seen by front_camera: a transparent one in front, an opaque blue one behind, a red one in front
+// of that on the right.
+std::vector<MeshVertex> three_triangles() {
+    return {
         {{-2, -2, 0.5f}, {255, 255, 255, 0}},  {{2, -2, 0.5f}, {255, 255, 255, 0}}, {{0, 2, 0.5f}, {255, 255, 255, 0}},
         {{-2, -2, -0.5f}, {0, 0, 255, 255}},   {{2, -2, -0.5f}, {0, 0, 255, 255}},  {{0, 2, -0.5f}, {0, 0, 255, 255}},
         {{0.25f, -2, 0.0f}, {255, 0, 0, 255}}, {{2, -2, 0.0f}, {255, 0, 0, 255}},   {{2, 2, 0.0f}, {255, 0, 0, 255}},
     };
+}
+
+TEST_F(RendererTest, MeshAlphaBelowOneHalfIsDiscardedAndDepthWorks) {
+    Camera cam = front_camera(32);
+    const std::vector<MeshVertex> v = three_triangles();
     renderer_->begin_frame(cam);
     renderer_->draw_mesh(cam, v, {0, 1, 2, 3, 4, 5, 6, 7, 8});
     ImageRGBA8 out = renderer_->read_pixels(32, 32);
@@ -460,11 +465,7 @@ TEST_F(RendererTest, MeshRejectsIndicesOutOfRange) {
 // other triangles; bad indices and ranges are refused naming them.
 TEST_F(RendererTest, GpuMeshRangesDrawWhatDrawMeshDraws) {
     Camera cam = front_camera(32);
-    std::vector<MeshVertex> v = {
-        {{-2, -2, 0.5f}, {255, 255, 255, 0}},  {{2, -2, 0.5f}, {255, 255, 255, 0}}, {{0, 2, 0.5f}, {255, 255, 255, 0}},
-        {{-2, -2, -0.5f}, {0, 0, 255, 255}},   {{2, -2, -0.5f}, {0, 0, 255, 255}},  {{0, 2, -0.5f}, {0, 0, 255, 255}},
-        {{0.25f, -2, 0.0f}, {255, 0, 0, 255}}, {{2, -2, 0.0f}, {255, 0, 0, 255}},   {{2, 2, 0.0f}, {255, 0, 0, 255}},
-    };
+    const std::vector<MeshVertex> v = three_triangles();
     const std::vector<uint32_t> idx = {0, 1, 2, 3, 4, 5, 6, 7, 8};
     renderer_->begin_frame(cam);
     renderer_->draw_mesh(cam, v, idx);
