@@ -615,6 +615,29 @@ inline void row_chunks(const double* pos, const uint8_t* valid, int n, int cl, i
     }
 }
 
+// Row r's chunks of relief t (AdjacentChunks): per chunk, the first and last non-empty texel of the samples it reads
+// and the extremes of their levels and (with `exact`) displacements.
+inline void chunk_row(const ReliefTexture& t, int r, int per_row, bool exact, AdjacentChunks::Chunk* out) {
+    for (int k = 0; k < per_row; ++k) {
+        AdjacentChunks::Chunk c;
+        const int a = std::max(0, k * kAdjacentChunk - 1), b = std::min(t.width - 1, (k + 1) * kAdjacentChunk);
+        for (int x = a; x <= b; ++x) {
+            const size_t i = size_t(r) * size_t(t.width) + size_t(x);
+            const uint8_t q = t.texels[i].q;
+            if (q == kEmptyIndex) continue;
+            const float d = exact ? t.displacement[i] : 0.0f;
+            if (c.first > c.last) {
+                c = {x, x, q, q, d, d};
+                continue;
+            }
+            c.last = x;
+            c.qmin = std::min(c.qmin, q), c.qmax = std::max(c.qmax, q);
+            c.dmin = std::min(c.dmin, d), c.dmax = std::max(c.dmax, d);
+        }
+        out[k] = c;
+    }
+}
+
 // With a need: bounds of each row's two coordinates over its valid texels (warp_adjacent_face in face_swap.h), from
 // the extremes of the terms the row's non-empty texels combine, without a division per texel. Each coordinate is
 // (P + k Z) / (1 + k3 Z), P and Z two different terms (G's column, row or displacement term); with 1 + k3 Z > 0 over
@@ -627,45 +650,35 @@ inline void adjacent_row_ranges(const AdjacentJob& j, int r0, int r1) {
     const double inf = std::numeric_limits<double>::infinity();
     std::unique_ptr<RowScratch> scratch;
     for (int r = r0; r < r1; ++r) {
-        const ReliefTexel* tr = &g.texels[size_t(r) * size_t(gw)];
         // The extremes of the column and displacement terms over the row's non-empty texels.
-        // Also per chunk of the row (row_chunk_bounds), over the chunk's texels and one neighbour on each side.
+        // Also per chunk of the row (row_chunk_bounds), over the chunk's texels and one neighbour on each side: from
+        // the relief's chunks (made once, or here for this row). The column term is monotone in the column and the
+        // displacement term in the level (Quantizer::decode is non-decreasing) and in the displacement, so the
+        // extremes over a chunk's non-empty texels are the terms at its first and last one and at its extreme levels
+        // (or displacements).
         double cmin = inf, cmax = -inf, dmin = inf, dmax = -inf;
         const double* ct = j.col_term;
-        const float* dr = j.exact ? &g.displacement[size_t(r) * size_t(gw)] : nullptr;
-        auto term_d = [&](int x) { return dr ? j.offset_d + j.scale_d * double(dr[x]) : j.level_term[tr[x].q]; };
-        ChunkTerms* chunks = &ws.chunk_terms[size_t(r) * size_t(j.chunks)];
+        const AdjacentChunks::Chunk* lv;
         if (j.levels) {
-            // From the relief's chunks: the column term is monotone in the column and the displacement term in the
-            // level (Quantizer::decode is non-decreasing) and in the displacement, so the extremes over a chunk's
-            // non-empty texels are the terms at its first and last one and at its extreme levels (or displacements).
-            const AdjacentChunks::Chunk* lv = &j.levels->chunks[size_t(r) * size_t(j.chunks)];
-            for (int k = 0; k < j.chunks; ++k) {
-                const AdjacentChunks::Chunk& c = lv[k];
-                if (c.first > c.last) {
-                    chunks[k] = {inf, -inf, inf, -inf};
-                    continue;
-                }
-                const double ca = ct[c.first], cb = ct[c.last];
-                const double da = dr ? j.offset_d + j.scale_d * double(c.dmin) : j.level_term[c.qmin];
-                const double db = dr ? j.offset_d + j.scale_d * double(c.dmax) : j.level_term[c.qmax];
-                chunks[k] = {std::min(ca, cb), std::max(ca, cb), std::min(da, db), std::max(da, db)};
-                cmin = std::min(cmin, chunks[k].cmin), cmax = std::max(cmax, chunks[k].cmax);
-                dmin = std::min(dmin, chunks[k].dmin), dmax = std::max(dmax, chunks[k].dmax);
-            }
+            lv = &j.levels->chunks[size_t(r) * size_t(j.chunks)];
+        } else {
+            AdjacentChunks::Chunk* own = &ws.own_chunks[size_t(r) * size_t(j.chunks)];
+            chunk_row(g, r, j.chunks, j.exact, own);
+            lv = own;
         }
-        for (int k = 0; k < (j.levels ? 0 : j.chunks); ++k) {
-            const int a = std::max(0, k * kRowChunk - 1), b = std::min(gw - 1, (k + 1) * kRowChunk);
-            double c0 = inf, c1 = -inf, d0 = inf, d1 = -inf;
-            for (int x = a; x <= b; ++x) {
-                const bool ne = tr[x].q != kEmptyIndex;
-                const double dt = term_d(x);
-                c0 = std::min(c0, ne ? ct[x] : inf), c1 = std::max(c1, ne ? ct[x] : -inf);
-                d0 = std::min(d0, ne ? dt : inf), d1 = std::max(d1, ne ? dt : -inf);
+        ChunkTerms* chunks = &ws.chunk_terms[size_t(r) * size_t(j.chunks)];
+        for (int k = 0; k < j.chunks; ++k) {
+            const AdjacentChunks::Chunk& c = lv[k];
+            if (c.first > c.last) {
+                chunks[k] = {inf, -inf, inf, -inf};
+                continue;
             }
-            chunks[k] = {c0, c1, d0, d1};
-            cmin = std::min(cmin, c0), cmax = std::max(cmax, c1);
-            dmin = std::min(dmin, d0), dmax = std::max(dmax, d1);
+            const double ca = ct[c.first], cb = ct[c.last];
+            const double da = j.exact ? j.offset_d + j.scale_d * double(c.dmin) : j.level_term[c.qmin];
+            const double db = j.exact ? j.offset_d + j.scale_d * double(c.dmax) : j.level_term[c.qmax];
+            chunks[k] = {std::min(ca, cb), std::max(ca, cb), std::min(da, db), std::max(da, db)};
+            cmin = std::min(cmin, chunks[k].cmin), cmax = std::max(cmax, chunks[k].cmax);
+            dmin = std::min(dmin, chunks[k].dmin), dmax = std::max(dmax, chunks[k].dmax);
         }
         double& umin = ws.row_umin[size_t(r)];
         double& umax = ws.row_umax[size_t(r)];
@@ -945,23 +958,7 @@ AdjacentChunks AdjacentChunks::make(const ReliefTexture& t) {
     out.chunks.resize(size_t(out.height) * size_t(out.per_row));
     const bool exact = t.displacement.size() == t.texels.size();
     for (int r = 0; r < t.height; ++r)
-        for (int k = 0; k < out.per_row; ++k) {
-            Chunk& c = out.chunks[size_t(r) * size_t(out.per_row) + size_t(k)];
-            const int a = std::max(0, k * kAdjacentChunk - 1), b = std::min(t.width - 1, (k + 1) * kAdjacentChunk);
-            for (int x = a; x <= b; ++x) {
-                const size_t i = size_t(r) * size_t(t.width) + size_t(x);
-                const uint8_t q = t.texels[i].q;
-                if (q == kEmptyIndex) continue;
-                const float d = exact ? t.displacement[i] : 0.0f;
-                if (c.first > c.last) {
-                    c = {x, x, q, q, d, d};
-                    continue;
-                }
-                c.last = x;
-                c.qmin = std::min(c.qmin, q), c.qmax = std::max(c.qmax, q);
-                c.dmin = std::min(c.dmin, d), c.dmax = std::max(c.dmax, d);
-            }
-        }
+        chunk_row(t, r, out.per_row, exact, &out.chunks[size_t(r) * size_t(out.per_row)]);
     return out;
 }
 
@@ -1040,6 +1037,7 @@ long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geo
                                         std::to_string(gw) + "x" + std::to_string(gh));
         j.levels = chunks;
         ws.chunk_terms.resize(size_t(gh) * size_t(j.chunks));
+        if (!chunks) ws.own_chunks.resize(size_t(gh) * size_t(j.chunks));
         ws.row_cornered.resize(size_t(gh));
         ws.row_umin.resize(size_t(gh));
         ws.row_umax.resize(size_t(gh));

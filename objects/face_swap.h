@@ -154,9 +154,10 @@ struct AdjacentWorkspace {
     // With an AdjacentNeed: bounds of each row's two coordinates over its valid texels (the row pass's and the
     // other); an empty range (min > max) when the row has none.
     std::vector<double> row_umin, row_umax, row_vmin, row_vmax;
-    std::vector<uint8_t> row_cornered;    // 1 where a row's bounds came from its terms' corners
-    std::vector<ChunkTerms> chunk_terms;  // per row, per chunk of 16 texels
-    std::vector<int> col_rows;            // per intermediate line, the first and last row that wrote to it
+    std::vector<uint8_t> row_cornered;              // 1 where a row's bounds came from its terms' corners
+    std::vector<ChunkTerms> chunk_terms;            // per row, per chunk of 16 texels
+    std::vector<AdjacentChunks::Chunk> own_chunks;  // G's chunks when the caller keeps none
+    std::vector<int> col_rows;                      // per intermediate line, the first and last row that wrote to it
 };
 
 // Runs body(begin, end) over parts of [0, n) on `threads` threads (0: all available, 1: this thread alone, in one
