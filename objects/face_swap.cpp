@@ -5,7 +5,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <array>
@@ -14,9 +13,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <map>
 #include <memory>
-#include <mutex>
 #include <span>
 #include <sstream>
 #include <stdexcept>
@@ -25,6 +22,7 @@
 #include <utility>
 
 #include "warp/line_warp.h"
+#include "warp/task_arenas.h"
 
 namespace rtm {
 
@@ -45,23 +43,13 @@ inline ColAttr attr_lerp(const ColAttr& a, const ColAttr& b, double t) {
     return {a.d * (1 - t) + b.d * t, a.g * (1 - t) + b.g * t};
 }
 
-// One task arena per thread count, made once: an object warps four to six adjacent faces a frame.
-tbb::task_arena& arena_for(int threads) {
-    static std::mutex m;
-    static std::map<int, std::unique_ptr<tbb::task_arena>> arenas;
-    const std::lock_guard<std::mutex> lock(m);
-    std::unique_ptr<tbb::task_arena>& a = arenas[threads];
-    if (!a) a = std::make_unique<tbb::task_arena>(threads);
-    return *a;
-}
-
 template <class Body>
 void run_parallel(int n, int threads, const Body& body) {
     auto loop = [&] {
         tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const auto& r) { body(r.begin(), r.end()); });
     };
     if (threads > 0) {
-        arena_for(threads).execute(loop);
+        task_arena_for(threads).execute(loop);
     } else {
         loop();
     }
@@ -232,7 +220,7 @@ void AdjacentNeed::index(int threads, std::array<bool, 2> orientations) {
     } else {
         auto both = [&] { tbb::parallel_invoke(columns, rows); };
         if (threads > 1)
-            arena_for(threads).execute(both);
+            task_arena_for(threads).execute(both);
         else
             both();
     }
@@ -395,25 +383,44 @@ struct AdjacentJob {
     long long* dropped_rows = nullptr;
 };
 
-// One row's inputs to the line warp, per thread.
+// One row's inputs to the line warp, per thread: kept in thread-local storage that only grows (row_scratch), since the
+// passes run as many small tasks a frame and allocating ten vectors in each was 5% of an object's pre-warp.
 struct RowScratch {
     std::vector<double> row_v, dt_v, d_v, pos, other;
     std::vector<uint8_t> nonempty, valid, lines;
     std::vector<std::pair<int, int>> ranges;  // the samples to warp (row_chunks)
     std::vector<SwapAttr> attr;
     std::vector<Rgba8> color;
-    explicit RowScratch(int gw, int n1)
-        : row_v(size_t(gw)),
-          dt_v(size_t(gw)),
-          d_v(size_t(gw)),
-          pos(size_t(gw)),
-          other(size_t(gw)),
-          nonempty(size_t(gw)),
-          valid(size_t(gw)),
-          lines(size_t(n1)),
-          attr(size_t(gw)),
-          color(size_t(gw)) {}
+    void fit(int gw, int n1) {
+        const size_t w = size_t(gw);
+        if (row_v.size() < w) {
+            for (auto* v : {&row_v, &dt_v, &d_v, &pos, &other}) v->resize(w);
+            nonempty.resize(w), valid.resize(w), attr.resize(w), color.resize(w);
+        }
+        if (lines.size() < size_t(n1)) lines.resize(size_t(n1));
+    }
 };
+RowScratch& row_scratch(int gw, int n1) {
+    thread_local RowScratch s;
+    s.fit(gw, n1);
+    return s;
+}
+
+// One intermediate line's inputs to the column pass, per thread (as RowScratch).
+struct ColumnScratch {
+    std::vector<double> pos;
+    std::vector<ColAttr> attr;
+    std::vector<Rgba8> color;
+    std::vector<uint8_t> valid;
+};
+ColumnScratch& column_scratch(int gh) {
+    thread_local ColumnScratch s;
+    if (s.pos.size() < size_t(gh)) {
+        s.pos.resize(size_t(gh)), s.attr.resize(size_t(gh));
+        s.color.resize(size_t(gh)), s.valid.resize(size_t(gh));
+    }
+    return s;
+}
 
 // Row r's coordinates for texels xb .. xe - 1 without branches (the loops vectorize), into s at the texels' indices:
 // pos (F's coordinate the row pass computes), other (F's other coordinate), valid, colour, and the d' and G's
@@ -648,7 +655,6 @@ inline void adjacent_row_ranges(const AdjacentJob& j, int r0, int r1) {
     const int gw = g.width, gh = g.height;
     AdjacentWorkspace& ws = *j.ws;
     const double inf = std::numeric_limits<double>::infinity();
-    std::unique_ptr<RowScratch> scratch;
     for (int r = r0; r < r1; ++r) {
         // The extremes of the column and displacement terms over the row's non-empty texels.
         // Also per chunk of the row (row_chunk_bounds), over the chunk's texels and one neighbour on each side: from
@@ -707,8 +713,7 @@ inline void adjacent_row_ranges(const AdjacentJob& j, int r0, int r1) {
             continue;
         }
         // Texel by texel: the coordinates themselves.
-        if (!scratch) scratch = std::make_unique<RowScratch>(gw, j.n1);
-        RowScratch& s = *scratch;
+        RowScratch& s = row_scratch(gw, j.n1);
         if (row_coordinates(j, r, s, 0, gw, &j.dropped_rows[r]) == 0) continue;
         bool finite = true;
         for (int x = 0; x < gw; ++x) {
@@ -751,7 +756,7 @@ inline void adjacent_row_pass(const AdjacentJob& j, int r0, int r1) {
     const ReliefTexture& g = *j.g;
     const int gw = g.width, gh = g.height;
     AdjacentWorkspace& ws = *j.ws;
-    RowScratch s(gw, j.n1);
+    RowScratch& s = row_scratch(gw, j.n1);
     uint8_t* lines = s.lines.data();
     for (int r = r0; r < r1; ++r) {
         AdjacentSample* o = ws.mid.row(r);
@@ -835,10 +840,11 @@ inline void adjacent_column_pass(const AdjacentJob& j, int i0, int i1) {
     const int gh = j.g->height;
     const AdjacentWorkspace& ws = *j.ws;
     AdjacentBuffer& out = *j.out;
-    std::vector<double> pos(static_cast<size_t>(gh));
-    std::vector<ColAttr> attr(static_cast<size_t>(gh));
-    std::vector<Rgba8> color(static_cast<size_t>(gh));
-    std::vector<uint8_t> valid(static_cast<size_t>(gh));
+    ColumnScratch& scratch = column_scratch(gh);
+    std::vector<double>& pos = scratch.pos;
+    std::vector<ColAttr>& attr = scratch.attr;
+    std::vector<Rgba8>& color = scratch.color;
+    std::vector<uint8_t>& valid = scratch.valid;
     const double threshold = j.threshold;
     for (int c = j.c_lo + i0; c < j.c_lo + i1; ++c) {
         // With a need: only the column's needed pixels, and only the rows that wrote to it (the others hold
@@ -1079,7 +1085,7 @@ long long warp_adjacent_face(const ReliefTexture& g, const ReliefGeometry& f_geo
         if (c_hi >= c_lo) over(c_hi - c_lo + 1, fn.columns);
     };
     if (threads > 1) {
-        arena_for(threads).execute(passes);
+        task_arena_for(threads).execute(passes);
     } else {
         passes();
     }

@@ -7,7 +7,6 @@
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_pipeline.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <atomic>
@@ -16,9 +15,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
-#include <map>
 #include <memory>
-#include <mutex>
 
 #include "warp/simd/avx512_pipelined.h"
 #include "warp/simd/avx512_two_pass.h"
@@ -27,6 +24,7 @@
 #include "warp/simd/kernel_policy.h"
 #include "warp/line_warp.h"
 #include "warp/tables.h"
+#include "warp/task_arenas.h"
 
 namespace rtm {
 
@@ -37,17 +35,6 @@ constexpr int kMaxSide = 1 << 22;
 // Largest output the kernels accept: the column kernels' scatter (store_rows, warp/simd/avx512_columns.h) addresses
 // pixels by 32-bit offsets of up to the whole image from its last storage row. 2^31 - 16 pixels is 8 GiB of RGBA8.
 constexpr long long kMaxPixels = (1ll << 31) - 16;
-
-// One task arena per explicit thread count, created on first use: an arena created, used for one parallel_for and
-// destroyed costs 8 to 150 us here, a cached one 1 us (a 256^2 pre-warp takes about 300 us).
-tbb::task_arena& arena_for(int threads) {
-    static std::mutex mu;
-    static std::map<int, std::unique_ptr<tbb::task_arena>> arenas;
-    std::lock_guard<std::mutex> lock(mu);
-    auto& a = arenas[threads];
-    if (!a) a = std::make_unique<tbb::task_arena>(threads);
-    return *a;
-}
 
 // Runs body(begin, end) over [0, n) in chunks of at least `grain`: inline for one thread (no TBB overhead at all),
 // in the caller's arena for threads == 0, in a cached arena otherwise.
@@ -62,7 +49,7 @@ void run_ranges(int threads, int n, int grain, const Body& body) {
                           [&](const tbb::blocked_range<int>& r) { body(r.begin(), r.end()); });
     };
     if (threads > 0)
-        arena_for(threads).execute(loop);
+        task_arena_for(threads).execute(loop);
     else
         loop();
 }
@@ -446,7 +433,7 @@ PrewarpStats fast_two_pass(const simd::TwoPassKernels& kernels, const ReliefText
             }) & tbb::make_filter<int, void>(tbb::filter_mode::serial_in_order, [&](int b) { vertical(b, mid, ow); }));
     };
     if (options.threads > 0)
-        arena_for(options.threads).execute(pipeline);
+        task_arena_for(options.threads).execute(pipeline);
     else
         pipeline();
     return {(long long)w * h, dropped.load(), e};
