@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <numeric>
 
+#include "warp/task_arenas.h"
 #include "warp/timing.h"
 
 namespace rtm {
@@ -64,8 +65,7 @@ void draw_quad_frame(std::vector<ReliefQuad>& quads, Renderer& renderer, const C
                               });
         };
         if (options.threads > 0) {
-            tbb::task_arena arena(options.threads);
-            arena.execute(loop);
+            task_arena_for(options.threads).execute(loop);
         } else {
             loop();
         }
