@@ -70,6 +70,7 @@ struct LineSoA {
     int n_out = 0;
     float* pos = nullptr;     // final position along the line, in output pixels (NaN or inf when invalid)
     float* attr = nullptr;    // carried attribute (final row coordinate)
+    float* attr2 = nullptr;   // a second one (kAttr == 2: the displacement, for the columns' discontinuity test)
     float* inv = nullptr;     // 1 / (pos[k] - pos[k-1])
     int32_t* fl = nullptr;    // floor(pos - 0.5) clamped to [-1, n_out]
     int32_t* ce = nullptr;    // ceil(pos - 0.5) clamped to [-1, n_out]
@@ -109,7 +110,7 @@ struct LineStorage {
         const size_t per_bytes = (capacity + 2 * kPad) * 4;
         const size_t mask_bytes = ((capacity / 64 + 2) * 8 + 63) & ~size_t(63);  // aligned_alloc: whole lines
         // aligned_alloc requires the size to be a multiple of the alignment (AddressSanitizer enforces it).
-        const size_t total = (per_bytes * 6 + 6 * mask_bytes + 63) & ~size_t(63);
+        const size_t total = (per_bytes * 7 + 6 * mask_bytes + 63) & ~size_t(63);
         block = alloc64(total);
         std::memset(block, 0, total);  // padding read by windows and masked-off lanes: keep it defined
         char* p = static_cast<char*>(block);
@@ -120,6 +121,7 @@ struct LineStorage {
         };
         soa.pos = reinterpret_cast<float*>(take(per_bytes)) + kPad;
         soa.attr = reinterpret_cast<float*>(take(per_bytes)) + kPad;
+        soa.attr2 = reinterpret_cast<float*>(take(per_bytes)) + kPad;
         soa.inv = reinterpret_cast<float*>(take(per_bytes)) + kPad;
         soa.fl = reinterpret_cast<int32_t*>(take(per_bytes)) + kPad;
         soa.ce = reinterpret_cast<int32_t*>(take(per_bytes)) + kPad;
@@ -311,7 +313,9 @@ struct Lerp8 {
     }
 };
 
-// Output of one line: colours (packed) and, when kAttr, the attribute, both stride 1.
+// Output of one line: colours (packed) and, when kAttr (1 or 2), the attribute and (kAttr == 2) the second one
+// (LineSoA::attr2), all stride 1. The kernels below take kAttr as 0 (colour only), 1 or 2: with 2 both attributes
+// are interpolated with the same parameter t per pixel, so one walk gives what two walks, one per attribute, gave.
 struct LineOut {
     uint32_t* color = nullptr;
     float* attr = nullptr;
@@ -322,16 +326,17 @@ struct LineOut {
     // Copy spans one pixel wide on pixel centres (zero displacement) instead of shading them
     // (PrewarpOptions::copy_still_runs).
     bool copy = true;
+    float* attr2 = nullptr;
 };
 
 // Shades output pixels x0 .. x0 + 15 (lanes m) of a sub-run whose spans are keyed by their later sample k (in
 // processing order), the earlier one being k + A; kb holds the key of the span covering each pixel, kmin and
 // kmax the extreme keys over the lanes of m.
-template <int A, bool kAttr>
+template <int A, int kAttr>
 inline void shade_block(const LineSoA& s, __m512i kb, int kmin, int kmax, int x0, __mmask16 m, const LineOut& out) {
     const int base = A < 0 ? kmin - 1 : kmin;
     const int top = A < 0 ? kmax : kmax + 1;
-    __m512 pa, inv, va = _mm512_setzero_ps(), vb = _mm512_setzero_ps();
+    __m512 pa, inv, va = _mm512_setzero_ps(), vb = _mm512_setzero_ps(), wa = va, wb = va;
     __m512i ca, cb;
     const __m512i sign = _mm512_set1_epi32(int(0x80000000));
     if (top - base < 32) {
@@ -352,6 +357,10 @@ inline void shade_block(const LineSoA& s, __m512i kb, int kmin, int kmax, int x0
             va = perm(s.attr, ia);
             vb = perm(s.attr, ib);
         }
+        if constexpr (kAttr == 2) {
+            wa = perm(s.attr2, ia);
+            wb = perm(s.attr2, ib);
+        }
     } else {  // a block reaching over more than 32 samples (strong minification): gathers
         const __m512i ka = _mm512_add_epi32(kb, _mm512_set1_epi32(A));
         const __m512 z = _mm512_setzero_ps();
@@ -364,6 +373,10 @@ inline void shade_block(const LineSoA& s, __m512i kb, int kmin, int kmax, int x0
             va = gat(s.attr, ka);
             vb = gat(s.attr, kb);
         }
+        if constexpr (kAttr == 2) {
+            wa = gat(s.attr2, ka);
+            wb = gat(s.attr2, kb);
+        }
     }
     // raster_span at the pixel centres x + 0.5: t, then lerp8 and attr_lerp.
     const __m512 xc = _mm512_add_ps(_mm512_cvtepi32_ps(_mm512_add_epi32(_mm512_set1_epi32(x0), iota16())),
@@ -374,15 +387,20 @@ inline void shade_block(const LineSoA& s, __m512i kb, int kmin, int kmax, int x0
         _mm512_mask_storeu_ps(out.attr + x0, m,
                               _mm512_add_ps(_mm512_mul_ps(va, _mm512_sub_ps(_mm512_set1_ps(1.0f), t)),
                                             _mm512_mul_ps(vb, t)));
+    if constexpr (kAttr == 2)
+        _mm512_mask_storeu_ps(out.attr2 + x0, m,
+                              _mm512_add_ps(_mm512_mul_ps(wa, _mm512_sub_ps(_mm512_set1_ps(1.0f), t)),
+                                            _mm512_mul_ps(wb, t)));
 }
 
 // The colour (packed, alpha 255) and attribute of pixels X, X + 1, .. X + N - 1 (N = 1, 2 or 4) of each of the 16
 // spans keyed k0 .. k0 + 15 (the later sample of span k is k, the earlier k + A): raster_span's arithmetic, with the
 // span's samples loaded directly (consecutive keys) instead of permuted, and set up once for the N pixels. The
-// centre of X + j is that of X plus j, exactly (pixel indices stay below 2^22). Without kAttr, v is 0.
-template <int A, bool kAttr, int N>
+// centre of X + j is that of X plus j, exactly (pixel indices stay below 2^22). Without kAttr, v is 0; w is the
+// second attribute with kAttr == 2, else 0.
+template <int A, int kAttr, int N>
 __attribute__((always_inline)) inline void span_pixels(const LineSoA& s, int k0, __m512i X, __m512i (&c)[N],
-                                                       __m512 (&v)[N]) {
+                                                       __m512 (&v)[N], __m512 (&w)[N]) {
     static_assert(N == 1 || N == 2 || N == 4);
     const __m512i sign = _mm512_set1_epi32(int(0x80000000));
     const __m512 pa = _mm512_loadu_ps(s.pos + k0 + A);
@@ -392,10 +410,14 @@ __attribute__((always_inline)) inline void span_pixels(const LineSoA& s, int k0,
                                                                   sign));
     const Lerp8 lerp(_mm512_loadu_si512(s.col + k0 + A), _mm512_loadu_si512(s.col + k0));
     const __m512 one = _mm512_set1_ps(1.0f);
-    __m512 va = _mm512_setzero_ps(), vb = _mm512_setzero_ps();
+    __m512 va = _mm512_setzero_ps(), vb = _mm512_setzero_ps(), wa = va, wb = va;
     if constexpr (kAttr) {
         va = _mm512_loadu_ps(s.attr + k0 + A);
         vb = _mm512_loadu_ps(s.attr + k0);
+    }
+    if constexpr (kAttr == 2) {
+        wa = _mm512_loadu_ps(s.attr2 + k0 + A);
+        wb = _mm512_loadu_ps(s.attr2 + k0);
     }
     const __m512 xc = _mm512_add_ps(_mm512_cvtepi32_ps(X), _mm512_set1_ps(0.5f));
     for (int j = 0; j < N; ++j) {
@@ -403,6 +425,8 @@ __attribute__((always_inline)) inline void span_pixels(const LineSoA& s, int k0,
         c[j] = lerp.at(t);
         v[j] = kAttr ? _mm512_add_ps(_mm512_mul_ps(va, _mm512_sub_ps(one, t)), _mm512_mul_ps(vb, t))
                      : _mm512_setzero_ps();
+        w[j] = kAttr == 2 ? _mm512_add_ps(_mm512_mul_ps(wa, _mm512_sub_ps(one, t)), _mm512_mul_ps(wb, t))
+                          : _mm512_setzero_ps();
     }
 }
 
@@ -410,7 +434,7 @@ __attribute__((always_inline)) inline void span_pixels(const LineSoA& s, int k0,
 // finds its span (the last one with st(i) <= x) by a branch-free binary search over a window of 32 starts with
 // two-register permutes. Kept out of line: it serves long spans and foldovers, and inlined into the loop of
 // shade_subrun it took registers from the common path.
-template <int A, bool INC, bool kAttr>
+template <int A, bool INC, int kAttr>
 __attribute__((noinline)) void shade_per_pixel(const LineSoA& s, int kL, int i_beg, int i_end, int p_lo, int p_hi,
                                                const LineOut& out) {
     constexpr int step = (INC ? 1 : -1) * (A < 0 ? 1 : -1);
@@ -500,7 +524,7 @@ __attribute__((noinline)) void shade_per_pixel(const LineSoA& s, int kL, int i_b
 // 1024^2 in the scatter alone; an unaligned 64-byte store of the key per span, 2.5x slower still.)
 //
 // kStrict (warp_line_reverse): exactly the pixels of [out.clip_lo, out.clip_hi] are written, none outside.
-template <int A, bool INC, bool kAttr, bool kStrict = false>
+template <int A, bool INC, int kAttr, bool kStrict = false>
 inline void shade_subrun(const LineSoA& s, int k_first, int k_last, const LineOut& out, int& x_lo, int& x_hi) {
     const int n_out = out.n;
     // Spans from left to right: processing order when positions increase, the reverse otherwise.
@@ -569,6 +593,7 @@ inline void shade_subrun(const LineSoA& s, int k_first, int k_last, const LineOu
                                              _mm512_or_si512(_mm512_loadu_si512(s.col + k0),
                                                              _mm512_set1_epi32(int(0xFF000000))));
                     if constexpr (kAttr) _mm512_mask_storeu_ps(out.attr + x0, mc, _mm512_loadu_ps(s.attr + k0));
+                    if constexpr (kAttr == 2) _mm512_mask_storeu_ps(out.attr2 + x0, mc, _mm512_loadu_ps(s.attr2 + k0));
                     continue;
                 }
             }
@@ -597,8 +622,8 @@ inline void shade_subrun(const LineSoA& s, int k_first, int k_last, const LineOu
                 if (!_mm512_mask_cmpge_epi32_mask(m, cnt, _mm512_set1_epi32(4))) {
                     const __mmask16 has4 = _mm512_mask_cmpge_epi32_mask(m, cnt, _mm512_set1_epi32(3));
                     __m512i c[4];
-                    __m512 v[4];
-                    span_pixels<A, kAttr, 4>(s, k0, lo, c, v);
+                    __m512 v[4], w[4];
+                    span_pixels<A, kAttr, 4>(s, k0, lo, c, v, w);
                     const __m512i qa = _mm512_setr_epi64(0, 8, 1, 9, 2, 10, 3, 11);
                     const __m512i qb = _mm512_setr_epi64(4, 12, 5, 13, 6, 14, 7, 15);
                     const __m512i p12l = _mm512_permutex2var_epi32(c[0], il_lo, c[1]);
@@ -609,17 +634,20 @@ inline void shade_subrun(const LineSoA& s, int k_first, int k_last, const LineOu
                                            _mm512_permutex2var_epi64(p12l, qb, p34l),
                                            _mm512_permutex2var_epi64(p12h, qa, p34h),
                                            _mm512_permutex2var_epi64(p12h, qb, p34h)};
-                    __m512 qv[4];
-                    if constexpr (kAttr) {
-                        const __m512d a12l = _mm512_castps_pd(_mm512_permutex2var_ps(v[0], il_lo, v[1]));
-                        const __m512d a12h = _mm512_castps_pd(_mm512_permutex2var_ps(v[0], il_hi, v[1]));
-                        const __m512d a34l = _mm512_castps_pd(_mm512_permutex2var_ps(v[2], il_lo, v[3]));
-                        const __m512d a34h = _mm512_castps_pd(_mm512_permutex2var_ps(v[2], il_hi, v[3]));
-                        qv[0] = _mm512_castpd_ps(_mm512_permutex2var_pd(a12l, qa, a34l));
-                        qv[1] = _mm512_castpd_ps(_mm512_permutex2var_pd(a12l, qb, a34l));
-                        qv[2] = _mm512_castpd_ps(_mm512_permutex2var_pd(a12h, qa, a34h));
-                        qv[3] = _mm512_castpd_ps(_mm512_permutex2var_pd(a12h, qb, a34h));
-                    }
+                    // The four pixels of each span in pixel order (as the colours above).
+                    auto in_order = [&](const __m512(&a)[4], __m512(&q)[4]) {
+                        const __m512d a12l = _mm512_castps_pd(_mm512_permutex2var_ps(a[0], il_lo, a[1]));
+                        const __m512d a12h = _mm512_castps_pd(_mm512_permutex2var_ps(a[0], il_hi, a[1]));
+                        const __m512d a34l = _mm512_castps_pd(_mm512_permutex2var_ps(a[2], il_lo, a[3]));
+                        const __m512d a34h = _mm512_castps_pd(_mm512_permutex2var_ps(a[2], il_hi, a[3]));
+                        q[0] = _mm512_castpd_ps(_mm512_permutex2var_pd(a12l, qa, a34l));
+                        q[1] = _mm512_castpd_ps(_mm512_permutex2var_pd(a12l, qb, a34l));
+                        q[2] = _mm512_castpd_ps(_mm512_permutex2var_pd(a12h, qa, a34h));
+                        q[3] = _mm512_castpd_ps(_mm512_permutex2var_pd(a12h, qb, a34h));
+                    };
+                    __m512 qv[4], qw[4];
+                    if constexpr (kAttr) in_order(v, qv);
+                    if constexpr (kAttr == 2) in_order(w, qw);
                     const uint32_t h1 = has1, h2 = has2, h3 = has3, h4 = has4;
                     int p = p0;
                     for (int g = 0; g < 4; ++g) {
@@ -634,6 +662,8 @@ inline void shade_subrun(const LineSoA& s, int k_first, int k_last, const LineOu
                         _mm512_mask_storeu_epi32(out.color + p, ms, _mm512_maskz_compress_epi32(mg, qc[g]));
                         if constexpr (kAttr)
                             _mm512_mask_storeu_ps(out.attr + p, ms, _mm512_maskz_compress_ps(mg, qv[g]));
+                        if constexpr (kAttr == 2)
+                            _mm512_mask_storeu_ps(out.attr2 + p, ms, _mm512_maskz_compress_ps(mg, qw[g]));
                         p += np;
                     }
                     continue;
@@ -646,17 +676,19 @@ inline void shade_subrun(const LineSoA& s, int k_first, int k_last, const LineOu
             }
             if (!has2) {
                 __m512i c[1];
-                __m512 v[1];
-                span_pixels<A, kAttr, 1>(s, k0, lo, c, v);
+                __m512 v[1], w[1];
+                span_pixels<A, kAttr, 1>(s, k0, lo, c, v, w);
                 const int np = int(_mm_popcnt_u32(has1));
                 const __mmask16 ms = first_lanes(np) & clip16(p0);
                 _mm512_mask_storeu_epi32(out.color + p0, ms, _mm512_maskz_compress_epi32(has1, c[0]));
                 if constexpr (kAttr) _mm512_mask_storeu_ps(out.attr + p0, ms, _mm512_maskz_compress_ps(has1, v[0]));
+                if constexpr (kAttr == 2)
+                    _mm512_mask_storeu_ps(out.attr2 + p0, ms, _mm512_maskz_compress_ps(has1, w[0]));
                 continue;
             }
             __m512i c[2];
-            __m512 v[2];
-            span_pixels<A, kAttr, 2>(s, k0, lo, c, v);
+            __m512 v[2], w[2];
+            span_pixels<A, kAttr, 2>(s, k0, lo, c, v, w);
             const __m512i c1 = c[0], c2 = c[1];
             const __m512 v1 = v[0], v2 = v[1];
             // Pixel order: span by span, first pixel then second.
@@ -675,12 +707,18 @@ inline void shade_subrun(const LineSoA& s, int k_first, int k_last, const LineOu
                 _mm512_mask_storeu_ps(out.attr + p0 + nlo, shi,
                                       _mm512_maskz_compress_ps(mhi, _mm512_permutex2var_ps(v1, il_hi, v2)));
             }
+            if constexpr (kAttr == 2) {
+                _mm512_mask_storeu_ps(out.attr2 + p0, slo,
+                                      _mm512_maskz_compress_ps(mlo, _mm512_permutex2var_ps(w[0], il_lo, w[1])));
+                _mm512_mask_storeu_ps(out.attr2 + p0 + nlo, shi,
+                                      _mm512_maskz_compress_ps(mhi, _mm512_permutex2var_ps(w[0], il_hi, w[1])));
+            }
         }
     }
 }
 
 // The reference span rasterizer for one span (a = earlier sample, b = later sample).
-template <bool kAttr>
+template <int kAttr>
 inline void scalar_span(const LineSoA& s, int a, int b, const LineOut& out, int& x_lo, int& x_hi) {
     auto rgba = [](uint32_t c) { return Rgba8{uint8_t(c), uint8_t(c >> 8), uint8_t(c >> 16), uint8_t(c >> 24)}; };
     const Rgba8 rca = rgba(s.col[a]), rcb = rgba(s.col[b]);
@@ -693,11 +731,15 @@ inline void scalar_span(const LineSoA& s, int a, int b, const LineOut& out, int&
                     x_lo = imin(x_lo, x);
                     x_hi = imax(x_hi, x);
                 });
+    // The second attribute: the same span again (the same pixels and parameters), its value only.
+    if constexpr (kAttr == 2)
+        raster_span(s.pos[a], rca, s.attr2[a], s.pos[b], rcb, s.attr2[b], out.n,
+                    [&](int x, Rgba8, float v) { out.attr2[x] = v; });
 }
 
 // One part of the line: samples from `first` towards the split (A = -1: first = 0, end = split, increasing;
 // A = +1: first = n - 1, end = split - 1, decreasing). on_range(x_lo, x_hi) is called after each group of writes.
-template <int A, bool kAttr, class OnRange>
+template <int A, int kAttr, class OnRange>
 inline void warp_part(const LineSoA& s, int first, int end, const LineOut& out, OnRange&& on_range) {
     constexpr int step = A < 0 ? 1 : -1;
     const uint64_t* inc_bits = A < 0 ? s.up_inc : s.dn_inc;
@@ -713,6 +755,7 @@ inline void warp_part(const LineSoA& s, int first, int end, const LineOut& out, 
             const int x = int(p);
             out.color[x] = s.col[k] | 0xFF000000u;
             if constexpr (kAttr) out.attr[x] = s.attr[k];
+            if constexpr (kAttr == 2) out.attr2[x] = s.attr2[k];
             on_range(x, x);
         }
         int j = k + step;
@@ -748,7 +791,7 @@ inline void warp_part(const LineSoA& s, int first, int end, const LineOut& out, 
 // the last sample, then the span across the split where samples split - 1 and split are connected (both take part
 // and no discontinuity mark removed the up span keyed split, apply_row_breaks; without marks, connected samples
 // are all pairs of adjacent samples that take part, as with AlwaysConnected).
-template <bool kAttr, class OnRange>
+template <int kAttr, class OnRange>
 inline void warp_line_fast(const LineSoA& s, int split, const LineOut& out, OnRange&& on_range) {
     warp_part<-1, kAttr>(s, 0, split, out, on_range);
     warp_part<+1, kAttr>(s, s.n - 1, split - 1, out, on_range);
@@ -804,7 +847,7 @@ inline bool line_folds_over(const LineSoA& s, int split, bool any_row = false) {
 // 0.149); of that, the backward order alone 6.9 -> 4.9 and 0.40 -> 0.28, the four-pixel spans in shade_subrun the
 // rest. Bumps and bricks (forward rows) unchanged within noise. Only the two-pass kernel uses it: the pipelined
 // kernel's emitter receives the ranges of the forward order.
-template <bool kAttr>
+template <int kAttr>
 inline bool warp_line_reverse(const LineSoA& s, int split, const LineOut& out) {
     const int n = s.n, n_out = out.n;
     int w_lo = 0, w_hi = -1;
@@ -845,6 +888,9 @@ inline bool warp_line_reverse(const LineSoA& s, int split, const LineOut& out) {
                 out.color[x] = uint32_t(c.r) | uint32_t(c.g) << 8 | uint32_t(c.b) << 16 | 0xFF000000u;
                 if constexpr (kAttr) out.attr[x] = d;
             });
+            if constexpr (kAttr == 2)
+                raster_span_pixels(pa, rgba(s.col[a]), s.attr2[a], pb, rgba(s.col[b]), s.attr2[b], cl, ch,
+                                   [&](int x, Rgba8, float d) { out.attr2[x] = d; });
         });
     };
     auto point = [&](int k) -> bool {
@@ -854,6 +900,7 @@ inline bool warp_line_reverse(const LineSoA& s, int split, const LineOut& out) {
         return item(x, x, [&](int, int) {
             out.color[x] = s.col[k] | 0xFF000000u;
             if constexpr (kAttr) out.attr[x] = s.attr[k];
+            if constexpr (kAttr == 2) out.attr2[x] = s.attr2[k];
         });
     };
     // A sub-run keyed k_first .. k_last in processing order (as warp_part cuts it).

@@ -126,17 +126,16 @@ inline bool apply_row_breaks(LineSoA& s, const uint8_t* row_breaks) {
     return any;
 }
 
-// The attribute of every sample of storage row r replaced by its texel's displacement (the reference's
-// tables' displ[q], what row_samples carries as RowAttr::d), for a second warp of the row that carries d instead
-// of v (the columns' discontinuity threshold). Empty and dropped texels get whatever their level holds: they take
-// no part.
+// The second attribute (LineSoA::attr2) of every sample of storage row r: its texel's displacement (the reference's
+// tables' displ[q], what row_samples carries as RowAttr::d), carried by the row warp beside v for the columns'
+// discontinuity threshold. Empty and dropped texels get whatever their level holds: they take no part.
 inline void row_displacements(const ReliefTexture& t, const PrewarpTables& tab, int r, LineSoA& s) {
     const int w = t.width;
     const uint32_t* src = reinterpret_cast<const uint32_t*>(t.texels.data() + size_t(r) * size_t(w));
     for (int x = 0; x < w; x += 16) {
         const __mmask16 m = first_lanes(w - x);
         const __m512i q = _mm512_srli_epi32(_mm512_maskz_loadu_epi32(m, src + x), 24);
-        _mm512_mask_storeu_ps(s.attr + x, m, _mm512_mask_i32gather_ps(_mm512_setzero_ps(), m, q, tab.displ.data(), 4));
+        _mm512_mask_storeu_ps(s.attr2 + x, m, _mm512_mask_i32gather_ps(_mm512_setzero_ps(), m, q, tab.displ.data(), 4));
     }
 }
 

@@ -131,27 +131,29 @@ void horizontal_steps(const TwoPassJob& job, int s0, int s1, uint32_t* band_c, f
         std::memset(rc, 0, size_t(ow) * 4);
         LineOut lo{rc, rv, ow};
         lo.copy = job.copy_still;
+        // With a discontinuity threshold the row also carries each texel's displacement (the reference's
+        // RowAttr::d) for the vertical pass's test, as a second attribute interpolated with the same parameter as v
+        // (kAttr 2): one walk of the row, where a second walk carrying d had shaded every span again (about 0.1 ms
+        // of a 256^2 marked face's pre-warp, one thread; docs/perf-history.md, "Six-face objects").
+        const bool with_d = job.threshold > 0.0f;
+        if (with_d) {
+            row_displacements(t, *job.ref_tables, r, s);
+            lo.attr2 = rv + job.d_offset;
+        }
         // Rows that fold over: backwards, each pixel shaded once (warp_line_reverse). Bumps never folds over and
         // takes the forward order as before.
         bool backward = false;
         if (!marked && job.reverse != KernelChoice::never &&
             line_folds_over(s, job.split_u, job.reverse == KernelChoice::always)) {
-            backward = warp_line_reverse<true>(s, job.split_u, lo) && !job.redo_forwards;
+            backward = (with_d ? warp_line_reverse<2>(s, job.split_u, lo) : warp_line_reverse<1>(s, job.split_u, lo)) &&
+                       !job.redo_forwards;
             if (!backward) std::memset(rc, 0, size_t(ow) * 4);  // only with redo_forwards (warp_line_reverse says why)
         }
-        if (!backward) warp_line_fast<true>(s, job.split_u, lo, NoRange{});
-        if (job.threshold > 0.0f) {
-            // The displacement carried along the row (the reference's RowAttr::d): the same warp again with d as
-            // the attribute. The samples' positions, the spans and the order are the same, so every pixel gets the
-            // same t, the same colour again and d interpolated as attr_lerp does. (One line kernel carrying two
-            // attributes would save the second walk; this keeps the kernel as it is.)
-            row_displacements(t, *job.ref_tables, r, s);
-            LineOut ld{rc, rv + job.d_offset, ow};
-            ld.copy = job.copy_still;
-            if (backward)
-                warp_line_reverse<true>(s, job.split_u, ld);
+        if (!backward) {
+            if (with_d)
+                warp_line_fast<2>(s, job.split_u, lo, NoRange{});
             else
-                warp_line_fast<true>(s, job.split_u, ld, NoRange{});
+                warp_line_fast<1>(s, job.split_u, lo, NoRange{});
         }
     }
     if (dropped) *job.dropped += dropped;
