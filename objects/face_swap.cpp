@@ -133,11 +133,12 @@ void AdjacentNeed::assign_holes(const ImageRGBA8& own, int threads, std::array<b
         const size_t i0 = size_t(r0) * size_t(width), i1 = size_t(r1) * size_t(width);
         if constexpr (std::endian::native == std::endian::little && sizeof(Rgba8) == 4) {
             // Alpha is each pixel's top byte: a < 128 where its top bit is clear (one word a pixel: vectorized).
-            const unsigned char* src = reinterpret_cast<const unsigned char*>(own.pixels.data());
+            const unsigned char* __restrict src = reinterpret_cast<const unsigned char*>(own.pixels.data());
+            uint8_t* __restrict dst = pixels.data();
             for (size_t i = i0; i < i1; ++i) {
                 uint32_t v;
                 std::memcpy(&v, src + 4 * i, 4);
-                pixels[i] = uint8_t((~v) >> 31);
+                dst[i] = uint8_t((~v) >> 31);
             }
         } else {
             for (size_t i = i0; i < i1; ++i) pixels[i] = own.pixels[i].a < 128;
@@ -171,17 +172,21 @@ void AdjacentNeed::index(int threads, std::array<bool, 2> orientations) {
     Lines& l0 = lines[0];  // line x, position j = height - 1 - row
     Lines& l1 = lines[1];  // line j, position x
     // lines[0]: F's rows from the bottom, each adding to the columns' counts.
+    // (Branch-free over restrict pointers, so that the loops vectorize: the branches and possible aliasing kept them
+    // scalar, and building the need was 8% of an object's pre-warp.)
     auto columns = [&] {
         std::fill(l0.prefix.begin(), l0.prefix.begin() + width, uint16_t(0));
-        int* lo0 = l0.lo.data();
-        int* hi0 = l0.hi.data();
-        for (int j = 0; j < height; ++j) {
-            const uint8_t* v = bottom - std::ptrdiff_t(j) * width;
-            const uint16_t* below = &l0.prefix[size_t(j) * size_t(width)];
-            uint16_t* p0 = &l0.prefix[size_t(j + 1) * size_t(width)];
-            for (int x = 0; x < width; ++x) {
-                p0[x] = uint16_t(below[x] + v[x]);
-                lo0[x] = v[x] && lo0[x] > j ? j : lo0[x];
+        int* __restrict lo0 = l0.lo.data();
+        int* __restrict hi0 = l0.hi.data();
+        const int none = l0.n2, w = width, h = height;
+        for (int j = 0; j < h; ++j) {
+            const uint8_t* __restrict v = bottom - std::ptrdiff_t(j) * w;
+            const uint16_t* __restrict below = &l0.prefix[size_t(j) * size_t(w)];
+            uint16_t* __restrict p0 = &l0.prefix[size_t(j + 1) * size_t(w)];
+            for (int x = 0; x < w; ++x) p0[x] = uint16_t(below[x] + v[x]);
+            // lo: the first j with a needed pixel (rows come in increasing j), hi: the last.
+            for (int x = 0; x < w; ++x) {
+                lo0[x] = std::min(lo0[x], v[x] ? j : none);
                 hi0[x] = v[x] ? j : hi0[x];
             }
         }
@@ -206,10 +211,15 @@ void AdjacentNeed::index(int threads, std::array<bool, 2> orientations) {
                 }
             }
             for (int b = 0; b < nb; ++b) {
-                int first = width, last = -1;
-                for (int x = 0; x < width; ++x)
-                    if (v[b][x]) first = std::min(first, x), last = x;
-                l1.lo[size_t(j0 + b)] = first;
+                // The first and last needed pixel of the line (std::find on bytes is a vectorized search).
+                const uint8_t* first = std::find_if(v[b], v[b] + width, [](uint8_t q) { return q != 0; });
+                int last = -1;
+                for (int x = width - 1; x >= 0 && first != v[b] + width; --x)
+                    if (v[b][x]) {
+                        last = x;
+                        break;
+                    }
+                l1.lo[size_t(j0 + b)] = int(first - v[b]);
                 l1.hi[size_t(j0 + b)] = last;
             }
         }

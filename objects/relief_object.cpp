@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
+#include <cstddef>
 #include <stdexcept>
 
 #include "objects/object_plan.h"
@@ -31,10 +33,28 @@ void find_cracks(const ImageRGBA8& img, const Image2D<uint8_t>* displ, int r0, i
     auto avg = [](const Rgba8& a, const Rgba8& b) {
         return Rgba8{uint8_t((a.r + b.r + 1) / 2), uint8_t((a.g + b.g + 1) / 2), uint8_t((a.b + b.b + 1) / 2), 255};
     };
+    // Per row, first the candidates branch-free (an empty pixel with both neighbours along the row, or both along the
+    // column, filled), a loop that vectorizes; then the few candidates one by one. (Pixel by pixel with branches it
+    // was 5% of an object's pre-warp.)
+    std::vector<uint8_t> cand(static_cast<size_t>(w));
+    static_assert(sizeof(Rgba8) == 4 && offsetof(Rgba8, a) == 3);
+    const uint8_t* alpha = reinterpret_cast<const uint8_t*>(img.pixels.data()) + 3;  // pixel i's alpha at [4 * i]
     for (int row = r0; row < r1; ++row) {
         const Rgba8* s = &img.pixels[size_t(row) * size_t(w)];
+        {
+            const uint8_t* __restrict a = alpha + 4 * size_t(row) * size_t(w);
+            const bool vertical = row > 0 && row + 1 < h;
+            const uint8_t* __restrict up = vertical ? a - 4 * size_t(w) : a;
+            const uint8_t* __restrict dn = vertical ? a + 4 * size_t(w) : a;
+            uint8_t* __restrict c = cand.data();
+            for (int x = 0; x < w; ++x)
+                c[x] = uint8_t(a[4 * x] == 0) & uint8_t(vertical) & uint8_t(up[4 * x] == 255) &
+                       uint8_t(dn[4 * x] == 255);
+            for (int x = 1; x + 1 < w; ++x)
+                c[x] |= uint8_t(a[4 * x] == 0) & uint8_t(a[4 * x - 4] == 255) & uint8_t(a[4 * x + 4] == 255);
+        }
         for (int x = 0; x < w; ++x) {
-            if (s[x].a != 0) continue;
+            if (!cand[size_t(x)]) continue;
             int ax = -1, ar = -1, bx = -1, br = -1;
             if (x > 0 && x + 1 < w && s[x - 1].a == 255 && s[x + 1].a == 255) {
                 ax = x - 1, ar = row, bx = x + 1, br = row;
@@ -137,6 +157,23 @@ void ReliefObject::prewarp_face(int face, const glm::dvec3& eye, int level, cons
     std::atomic<long long> filled{0};
     parallel_ranges(h, options.threads, [&](int r0, int r1) {
         long long n = 0;
+        if constexpr (std::endian::native == std::endian::little && sizeof(Rgba8) == 4) {
+            if (!with_displ) {
+                // The same without depth levels, branch-free over whole pixels (the loop vectorizes): a hole (alpha,
+                // the top byte, below 128) takes the adjacent sample where one landed (alpha not 0).
+                uint32_t* __restrict img = reinterpret_cast<uint32_t*>(out.image.pixels.data());
+                const uint32_t* __restrict adj = reinterpret_cast<const uint32_t*>(adjacent_.color.pixels.data());
+                const uint32_t force = o.filter == Filter::coverage ? 0xFF000000u : 0u;
+                for (size_t i = size_t(r0) * size_t(w); i < size_t(r1) * size_t(w); ++i) {
+                    const uint32_t p = img[i], a = adj[i];
+                    const bool take = (p >> 31) == 0 && (a >> 24) != 0;
+                    img[i] = take ? (a | force) : p;
+                    n += take;
+                }
+                filled += n;
+                return;
+            }
+        }
         for (size_t i = size_t(r0) * size_t(w); i < size_t(r1) * size_t(w); ++i) {
             Rgba8& p = out.image.pixels[i];
             // A pixel the face covers less than half (the coverage filter's fractional alpha; the texture-mapping
