@@ -58,7 +58,9 @@ inline void column_long_span(const ColumnOut& o, int x, int ylo, int yhi, float 
 inline void store_rows(const ColumnOut& o, int x, __mmask16 act, __m512i y, __m512i col) {
     {
         const int yf = _mm512_cvtsi512_si32(_mm512_permutexvar_epi32(_mm512_set1_epi32(int(_tzcnt_u32(act))), y));
-        if (o.ahead) _m_prefetchw(o.vline(imin(imax(yf + o.ahead, 0), o.oh - 1)) + x);
+        // A prefetch for writing (prefetchw with the target's prfchw; the builtin, since clang declares _m_prefetchw
+        // only in x86intrin.h).
+        if (o.ahead) __builtin_prefetch(o.vline(imin(imax(yf + o.ahead, 0), o.oh - 1)) + x, 1);
         const __m512i d = _mm512_sub_epi32(y, _mm512_set1_epi32(yf));
         if (_mm512_mask_cmpgt_epu32_mask(act, d, _mm512_set1_epi32(1)) == 0) {
             _mm512_mask_storeu_epi32(o.vline(yf) + x, act & _mm512_cmpeq_epi32_mask(d, _mm512_setzero_si512()), col);
