@@ -49,7 +49,9 @@ std::string manifest(const std::vector<std::pair<std::string, std::string>>& cha
     std::vector<std::pair<std::string, std::string>> f = {
         {"color", "\"c.png\""},  {"displacement", "\"d.png\""}, {"displacement_range", "[0.0, 0.25]"},
         {"origin", "[0, 0, 0]"}, {"a", "[0.01, 0, 0]"},         {"b", "[0, 0.01, 0]"}};
-    for (const auto& [key, raw] : changes) {
+    for (const auto& change : changes) {
+        const std::string& key = change.first;  // not a structured binding: clang 14 cannot capture one
+        const std::string& raw = change.second;
         auto it = std::find_if(f.begin(), f.end(), [&](const auto& kv) { return kv.first == key; });
         if (raw == kDrop) {
             if (it != f.end()) f.erase(it);
