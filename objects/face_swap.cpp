@@ -872,6 +872,7 @@ inline void adjacent_column_pass(const AdjacentJob& j, int i0, int i1) {
             k_lo = gh - 1 - r_hi, k_hi = gh - 1 - r_lo;
         }
         bool any = false;
+        double vmin = std::numeric_limits<double>::infinity(), vmax = -vmin;
         for (int k = k_lo; k <= k_hi; ++k) {
             const int r = gh - 1 - k;
             if (c < ws.mid_lo[size_t(r)] || c > ws.mid_hi[size_t(r)]) {
@@ -885,8 +886,15 @@ inline void adjacent_column_pass(const AdjacentJob& j, int i0, int i1) {
             any |= s.c.a != 0;
             pos[size_t(k)] = s.v;
             attr[size_t(k)] = {s.d, s.g};
+            if (s.c.a != 0) vmin = std::min(vmin, s.v), vmax = std::max(vmax, s.v);
         }
         if (!any) continue;
+        // With a need: every span and point of the line lies within the range of its samples' positions, so a line
+        // whose samples reach no needed pixel draws none (the pixels first_pixel .. last_pixel of that range, as
+        // for a row). In views where the adjacent faces land inside the face's own silhouette, most lines.
+        if (j.need && std::isfinite(vmin) && std::isfinite(vmax) &&
+            !j.need->any(c, first_pixel(vmin), last_pixel(vmax)))
+            continue;
         auto connected = [&](int a, int b) {
             return !(threshold > 0.0) || std::abs(attr[size_t(a)].g - attr[size_t(b)].g) <= threshold;
         };
