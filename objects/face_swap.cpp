@@ -525,9 +525,10 @@ inline int last_pixel(double hi) {
 // such a pixel is not one it keeps). The whole line's order is kept across ranges: every range's part before `split`
 // from the first range on, then every range's part from `split` on, from the last range back, then the span joining
 // the two parts (warp_line_to's order).
-template <class A, class Put, class Connected>
+template <class A, class Put, class Connected, class Wanted = AllPixels>
 void warp_line_ranges(const LineInput<double, A>& in, int split, int clip_lo, int clip_hi,
-                      std::span<const std::pair<int, int>> ranges, Put&& put, Connected&& connected) {
+                      std::span<const std::pair<int, int>> ranges, Put&& put, Connected&& connected,
+                      Wanted&& wanted = {}) {
     const double lo_clip = clip_lo, hi_clip = clip_hi;
     auto point = [&](int k) {
         const double p = in.pos[k];
@@ -550,7 +551,7 @@ void warp_line_ranges(const LineInput<double, A>& in, int split, int clip_lo, in
         lo = std::max(lo, lo_clip);
         hi = std::min(hi, hi_clip);
         if (!(lo <= hi)) return;
-        raster_span_pixels(pa, in.color[a], in.attr[a], pb, in.color[b], in.attr[b], int(lo), int(hi), put);
+        raster_span_pixels(pa, in.color[a], in.attr[a], pb, in.color[b], in.attr[b], int(lo), int(hi), put, wanted);
     };
     auto part = [&](int first, int last, int step) {
         int prev = -1;
@@ -580,12 +581,12 @@ void warp_line_ranges(const LineInput<double, A>& in, int split, int clip_lo, in
 }
 
 // The same over the samples k_lo .. k_hi (k_hi < 0: to the end).
-template <class A, class Put, class Connected>
+template <class A, class Put, class Connected, class Wanted = AllPixels>
 void warp_line_clipped(const LineInput<double, A>& in, int split, int clip_lo, int clip_hi, Put&& put,
-                       Connected&& connected, int k_lo = 0, int k_hi = -1) {
+                       Connected&& connected, int k_lo = 0, int k_hi = -1, Wanted&& wanted = {}) {
     const std::pair<int, int> range{k_lo, k_hi < 0 ? in.n - 1 : k_hi};
     warp_line_ranges(in, split, clip_lo, clip_hi, std::span<const std::pair<int, int>>(&range, 1),
-                     std::forward<Put>(put), std::forward<Connected>(connected));
+                     std::forward<Put>(put), std::forward<Connected>(connected), std::forward<Wanted>(wanted));
 }
 
 constexpr int kRowChunk = kAdjacentChunk;
@@ -836,13 +837,15 @@ inline void adjacent_row_pass(const AdjacentJob& j, int r0, int r1) {
             };
             warp_line_to(in, j.split_u, j.n1, put, connected);
         } else {
+            auto wanted = [&](int x) { return lines[x] != 0; };
             auto put = [&](int x, Rgba8 c, const SwapAttr& a) {
-                if (!lines[x]) return;
+                if (!wanted(x)) return;  // a point (spans interpolate only the wanted pixels)
                 o[x] = {a.v, a.d, a.g, c};
                 wlo = std::min(wlo, x);
                 whi = std::max(whi, x);
             };
-            warp_line_ranges(in, j.split_u, cl, ch, std::span<const std::pair<int, int>>(s.ranges), put, connected);
+            warp_line_ranges(in, j.split_u, cl, ch, std::span<const std::pair<int, int>>(s.ranges), put, connected,
+                             wanted);
         }
         lo = wlo, hi = whi;
     }
@@ -913,11 +916,12 @@ inline void adjacent_column_pass(const AdjacentJob& j, int i0, int i1) {
         } else {
             const uint8_t* m = j.need->at + c * j.need->step_line;
             const std::ptrdiff_t step = j.need->step_pos;
+            auto wanted = [&](int k) { return m[k * step] != 0; };
             auto put_needed = [&](int k, Rgba8 col, const ColAttr& a) {
-                if (m[k * step]) put(k, col, a);
+                if (wanted(k)) put(k, col, a);  // a point (spans interpolate only the needed pixels)
             };
             warp_line_clipped(in, j.split_v, j.need->lo[size_t(c)], j.need->hi[size_t(c)], put_needed, connected, k_lo,
-                              k_hi);
+                              k_hi, wanted);
         }
     }
 }

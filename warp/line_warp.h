@@ -81,13 +81,20 @@ inline void raster_point(P p, Rgba8 c, const A& attr, int n, Put&& put) {
     put(int(p), c, attr);
 }
 
+struct AllPixels {
+    bool operator()(int) const { return true; }
+};
+
 // Pixels x0 .. x1 of the span from pa to pb (pa != pb), colour and attribute interpolated at each centre. A pixel's
 // value depends on x alone, so any part of a span gives the same pixels as the whole (the fast kernels' backward
-// rows, warp/simd/avx512_line.h, draw only the parts no later span covers).
-template <class P, class A, class Put>
-inline void raster_span_pixels(P pa, Rgba8 ca, const A& aa, P pb, Rgba8 cb, const A& ab, int x0, int x1, Put&& put) {
+// rows, warp/simd/avx512_line.h, draw only the parts no later span covers), and so does any subset: with `wanted`,
+// only the pixels it accepts are interpolated and put (objects/face_swap.cpp: the pixels an object reads).
+template <class P, class A, class Put, class Wanted = AllPixels>
+inline void raster_span_pixels(P pa, Rgba8 ca, const A& aa, P pb, Rgba8 cb, const A& ab, int x0, int x1, Put&& put,
+                               Wanted&& wanted = {}) {
     const P inv = P(1) / (pb - pa);
     for (int x = x0; x <= x1; ++x) {
+        if (!wanted(x)) continue;
         P t = (P(x) + P(0.5) - pa) * inv;
         t = std::clamp(t, P(0), P(1));
         const Rgba8 c{lerp8(ca.r, cb.r, t), lerp8(ca.g, cb.g, t), lerp8(ca.b, cb.b, t), 255};
