@@ -186,8 +186,10 @@ void parallel_ranges(int n, int threads, const std::function<void(int, int)>& bo
 // range holds a needed pixel of line c (a span's pixels have their centres in it, a point's pixel holds it: pixels
 // floor(lo) .. floor(hi)). Every span or point of the column pass that touches a needed pixel then has both its
 // samples drawn as in the whole warp, and no sample left out can start a run (a point) at a needed pixel; the column
-// pass draws only the needed pixels. The ranges are bounded per row without dividing per texel: each coordinate is
-// (P + k Z) / (1 + k3 Z) with P and Z two of G's column, row and displacement terms, monotone in each on a box where
+// pass draws only the needed pixels (spans interpolate only those), and not at all on a line whose gathered samples'
+// positions (the range every span and point of the line lies in) reach no needed pixel. The ranges are bounded per
+// row without dividing per texel: each coordinate is (P + k Z) / (1 + k3 Z) with P and Z two of G's column, row and
+// displacement terms, monotone in each on a box where
 // the denominator is positive, so its extremes over the row are at the corners of the box of the row's P and Z
 // (widened by far more than the rounding; a row whose box reaches a denominator <= 0 is bounded texel by texel).
 // Within a row that draws, the same bound per chunk of kAdjacentChunk texels (read with one neighbour on each side)
