@@ -211,7 +211,8 @@ void AdjacentNeed::index(int threads, std::array<bool, 2> orientations) {
                 }
             }
             for (int b = 0; b < nb; ++b) {
-                // The first and last needed pixel of the line (std::find on bytes is a vectorized search).
+                // The first and last needed pixel of the line: a search from each end that stops at the first one
+                // (the loop it replaced tested every pixel with two branches).
                 const uint8_t* first = std::find_if(v[b], v[b] + width, [](uint8_t q) { return q != 0; });
                 int last = -1;
                 for (int x = width - 1; x >= 0 && first != v[b] + width; --x)
