@@ -47,6 +47,9 @@ HWY_INLINE Rgba8 unpack(uint32_t u) { return {uint8_t(u), uint8_t(u >> 8), uint8
 struct RowOut {
     uint32_t* c;
     float* v;
+    // Copy runs of a vector of spans one pixel wide on pixel centres (zero displacement) instead of shading them
+    // (PrewarpOptions::copy_still_runs; CopyStill). The row is the same either way.
+    bool copy = false;
 };
 
 // The spans of lanes `span` (pa != pb, from sample a to sample b) into row `out`: each lane's pixels lo .. hi as
@@ -252,6 +255,34 @@ HWY_INLINE void DrawGroup(DF df, const float* pos, const uint32_t* col, const fl
               up, out, before, cl, ch);
 }
 
+// The spans ending at samples b .. b + N - 1 (the lanes of one vector), each from the sample on its other side (d =
+// -1: the left part's spans s - 1 -> s; d = +1: the right part's s + 1 -> s), if each is one pixel wide on a pixel
+// centre: neighbouring positions exactly 1 apart, sample s on a centre, every pixel inside the line. Span s then
+// writes the one pixel pos[s] - 0.5 with t = 1 exactly (raster_span: (pb - pa) * (1 / (pb - pa))), that is sample s's
+// colour (lerp8 at t = 1) and attribute (attr_lerp: a * 0 + b), and the N spans write pixels x0 .. x0 + N - 1: copied
+// at memory speed. Zero displacement gives such runs (the paper, section 5: skipping the transformation of still
+// texels; the AVX-512 kernels' `ident` runs, warp/simd/avx512_line.h). Returns false, having written nothing,
+// otherwise.
+template <class DF, class Before>
+HWY_INLINE bool CopyStill(DF df, const float* pos, const uint32_t* col, const float* attr, int b, int d, int n_out,
+                          RowOut out, const Before& before) {
+    const hn::RebindToSigned<DF> di;
+    const int N = int(hn::Lanes(df));
+    const auto ps = hn::LoadU(df, pos + b), pn = hn::LoadU(df, pos + b + d);
+    const auto step = d < 0 ? hn::Sub(ps, pn) : hn::Sub(pn, ps);
+    const auto c = hn::Sub(ps, hn::Set(df, 0.5f));
+    if (!hn::AllTrue(df, hn::And(hn::Eq(step, hn::Set(df, 1.0f)), hn::Eq(hn::Floor(c), c)))) return false;
+    const float x0f = pos[b] - 0.5f;
+    if (!(x0f >= 0.0f && x0f + float(N) <= float(n_out))) return false;
+    const int x0 = int(x0f);
+    before(x0, x0 + N - 1);
+    const auto alpha = hn::Set(di, int32_t(0xFF000000u));
+    hn::StoreU(hn::Or(hn::LoadU(di, reinterpret_cast<const int32_t*>(col + b)), alpha), di,
+               reinterpret_cast<int32_t*>(out.c + x0));
+    hn::StoreU(hn::LoadU(df, attr + b), df, out.v + x0);
+    return true;
+}
+
 template <class Range = NoRange>
 void WarpRow(const float* pos, const uint32_t* col, const float* attr, int n, int split, int n_out, RowOut out,
              const Range& range = {}) {
@@ -293,6 +324,11 @@ void WarpRow(const float* pos, const uint32_t* col, const float* attr, int n, in
     int prev = -1, k = 0;
     while (k < split) {
         if (prev == k - 1 && prev >= 0 && k + N <= split) {
+            if (out.copy && CopyStill(df, pos, col, attr, k, -1, n_out, out, before)) {
+                k += N;
+                prev = k - 1;
+                continue;
+            }
             bool up;
             const int m = GroupPrefix(df, pos + k - 1, pos + k, true, up);
             if (m) {
@@ -312,6 +348,11 @@ void WarpRow(const float* pos, const uint32_t* col, const float* attr, int n, in
     while (k >= split) {
         if (prev == k + 1 && k - N + 1 >= split) {
             const int b = k - N + 1;  // lanes: samples b .. k, each after sample + 1; processing order from lane N - 1
+            if (out.copy && CopyStill(df, pos, col, attr, b, +1, n_out, out, before)) {
+                k -= N;
+                prev = k + 1;
+                continue;
+            }
             bool up;
             const int m = GroupPrefix(df, pos + b + 1, pos + b, false, up);
             if (m) {

@@ -39,7 +39,7 @@ void HorizontalSteps(const fast::TwoPassJob& job, int s0, int s1, uint32_t* band
             backward = WarpRowBackward(s.pos, s.color, s.v, w, job.split_u, ow, RowOut{rc, rv}) && !job.redo_forwards;
             if (!backward) std::memset(rc, 0, size_t(ow) * 4);  // only with redo_forwards (WarpRowBackward says why)
         }
-        if (!backward) WarpRow(s.pos, s.color, s.v, w, job.split_u, ow, RowOut{rc, rv});
+        if (!backward) WarpRow(s.pos, s.color, s.v, w, job.split_u, ow, RowOut{rc, rv, job.copy_still});
     }
     if (dropped) *job.dropped += dropped;
 }
