@@ -9,8 +9,9 @@
 // threshold (paper section 4.1.1): the avx512 two-pass kernels only (warp/simd/avx512_two_pass.h, TwoPassJob::breaks
 // and threshold). Everything else stays with the generic implementation, which remains the reference.
 //
-// Still texels (PrewarpOptions::copy_still_runs): the row warps copy runs of 16 spans one pixel wide on pixel
-// centres (what zero displacement gives) instead of interpolating them; with the option off they interpolate them
+// Still texels (PrewarpOptions::copy_still_runs): the row warps copy runs of spans one pixel wide on pixel centres
+// (what zero displacement gives: 16 spans at a time on avx512, a vector's worth on the Highway targets, CopyStill)
+// instead of interpolating them; with the option off they interpolate them
 // too, so that the copy can be measured; the two-pass vertical pass copies blocks of still pixels, 16 columns by
 // consecutive rows (schedule.cpp, vertical_with_still). The output is the same either way. The copies are not
 // counted (PrewarpStats::still_copied stays 0 here; tests/objects/skips_test.cpp relies on that).
