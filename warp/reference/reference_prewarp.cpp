@@ -4,7 +4,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <atomic>
@@ -14,6 +13,7 @@
 
 #include "warp/coverage_line.h"
 #include "warp/line_warp.h"
+#include "warp/task_arenas.h"
 
 namespace rtm {
 
@@ -355,8 +355,7 @@ void run(int threads, int n, int grain, const Body& body) {
                           [&](const tbb::blocked_range<int>& r) { body(r.begin(), r.end()); });
     };
     if (threads > 0) {
-        tbb::task_arena arena(threads);
-        arena.execute(loop);
+        task_arena_for(threads).execute(loop);  // the kept arena of this thread count (warp/task_arenas.h)
     } else {
         loop();
     }
