@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#include "warp/simd/avx512_tables.h"
+#include "warp/simd/fast_tables.h"
 #include "warp/simd/hwy_two_pass.h"
 
 namespace rtm {

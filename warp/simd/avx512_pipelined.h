@@ -18,7 +18,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "warp/simd/avx512_tables.h"
+#include "warp/simd/fast_tables.h"
 #include "warp/simd/kernel_policy.h"
 #include "warp/image.h"
 #include "warp/prewarp.h"

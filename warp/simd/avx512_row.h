@@ -3,7 +3,7 @@
 #pragma once
 
 #include "warp/simd/avx512_line.h"
-#include "warp/simd/avx512_tables.h"
+#include "warp/simd/fast_tables.h"
 #include "warp/prewarp.h"
 #include "warp/relief_texture.h"
 

@@ -22,7 +22,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "warp/simd/avx512_tables.h"
+#include "warp/simd/fast_tables.h"
 #include "warp/simd/kernel_policy.h"
 #include "warp/image.h"
 #include "warp/prewarp.h"

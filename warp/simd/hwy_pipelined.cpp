@@ -278,7 +278,7 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
     RowRange range{std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
     // Row j set up; returns the texels dropped.
     auto prepare = [&](int j) {
-        const long long dropped = PrepareRow(t, tab, job.extent, h - 1 - j, s);
+        const long long dropped = PrepareRow(t, tab, *job.tables, job.extent, h - 1 - j, s);
         if (track)
             for (int x = 0; x < w; ++x)
                 if (std::isfinite(s.pos[x]) && std::isfinite(s.v[x])) {

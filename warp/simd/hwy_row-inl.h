@@ -24,6 +24,7 @@
 #include "warp/prewarp.h"
 #include "warp/relief_texture.h"
 #include "warp/tables.h"
+#include "warp/simd/fast_tables.h"
 #include "warp/simd/hwy_columns-inl.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -82,13 +83,12 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
     HWY_ALIGN int32_t lane_x[HWY_MAX_BYTES / 4], lane_h[HWY_MAX_BYTES / 4], lane_on[HWY_MAX_BYTES / 4];
     hn::Store(xlo, di, lane_x);
     hn::Store(xhi, di, lane_h);
-    hn::Store(hn::VecFromMask(di, todo), di, lane_on);
-    int first = N, lastl = -1;
-    for (int i = 0; i < N; ++i)
-        if (lane_on[i]) {
-            if (first == N) first = i;
-            lastl = i;
-        }
+    // The first and last lanes with pixels, from the mask's bits (at most 64 lanes of 32 bits: SVE's 2048 bits).
+    uint8_t mask_bytes[8] = {};
+    hn::StoreMaskBits(di, todo, mask_bytes);
+    uint64_t mask_bits = 0;
+    for (int i = 0; i < 8; ++i) mask_bits |= uint64_t(mask_bytes[i]) << (8 * i);
+    const int first = __builtin_ctzll(mask_bits), lastl = 63 - __builtin_clzll(mask_bits);
     const int xa = lane_x[first], xb = lane_h[lastl];
     before(xa, xb);
     const int len = xb - xa + 1;
@@ -120,6 +120,10 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
             if (j + N <= len) {
                 hn::StoreU(col, di, reinterpret_cast<int32_t*>(out.c + xa + j));
                 hn::StoreU(v, df, out.v + xa + j);
+            } else if (kMaskedStore) {  // a masked store instruction: no pixel past the run is touched
+                const auto m = hn::FirstN(di, size_t(len - j));
+                hn::BlendedStore(col, m, di, reinterpret_cast<int32_t*>(out.c + xa + j));
+                hn::BlendedStore(v, hn::RebindMask(df, m), df, out.v + xa + j);
             } else {  // the last pixels one by one (SSE4's and NEON's BlendedStore store the whole vector)
                 HWY_ALIGN int32_t tc[HWY_MAX_BYTES / 4] = {};
                 HWY_ALIGN float tv[HWY_MAX_BYTES / 4] = {};
@@ -505,15 +509,19 @@ inline bool WarpRowBackward(const float* pos, const uint32_t* col, const float* 
 
 // The reference's row_samples (lookup-table path) of storage row r into s: position (NaN where the texel does not
 // take part, which WarpRow treats as the reference treats an invalid sample), final row coordinate and colour
-// (alpha 255) of every texel. Returns the texels dropped (not empty, but 1 + k3*d <= 0).
-inline long long PrepareRow(const ReliefTexture& t, const PrewarpTables& tab, const PrewarpExtent& e, int r,
-                            const RowScratch& s) {
+// (alpha 255) of every texel. Returns the texels dropped (not empty, but 1 + k3*d <= 0). `ft` holds K1 with NaN at
+// the levels that cannot be pre-warped (k1n: (u_s + NaN) * R + margin is NaN, not finite, as the reference's
+// invalid sample) and the identity levels (zero displacement: K1 = K2 = +-0, R = 1).
+inline long long PrepareRow(const ReliefTexture& t, const PrewarpTables& tab, const fast::FastTables& ft,
+                            const PrewarpExtent& e, int r, const RowScratch& s) {
     const int w = t.width, h = t.height;
     const float vs = float(h - 1 - r) + 0.5f;
     const ReliefTexel* src = &t.texels[size_t(r) * size_t(w)];
     const float ou = float(e.left), ov = float(e.bottom);
     const float nan = std::numeric_limits<float>::quiet_NaN();
     long long dropped = 0;
+    if (ft.any_dropped)
+        for (int x = 0; x < w; ++x) dropped += ft.dropped[src[x].q];
     // A vector of texels at a time: the tables' entries gathered by displacement index, the same float operations.
     const hn::ScalableTag<float> df;
     const hn::RebindToSigned<decltype(df)> di;
@@ -521,27 +529,31 @@ inline long long PrepareRow(const ReliefTexture& t, const PrewarpTables& tab, co
     using VI = hn::Vec<decltype(di)>;
     const int N = int(hn::Lanes(df));
     static_assert(sizeof(ReliefTexel) == 4 && offsetof(ReliefTexel, q) == 3, "texels are r, g, b, q bytes");
-    // valid[q] read as the low byte of 4 bytes from valid + q: the 3 bytes past valid[255] lie in `still`.
-    static_assert(offsetof(PrewarpTables, still) == offsetof(PrewarpTables, valid) + 256);
-    const int32_t* valid4 = reinterpret_cast<const int32_t*>(tab.valid.data());
-    const VF half = hn::Set(df, 0.5f), vvs = hn::Set(df, vs), vou = hn::Set(df, ou), vov = hn::Set(df, ov);
-    const VF vnan = hn::Set(df, nan);
+    const VF half = hn::Set(df, 0.5f), vou = hn::Set(df, ou), vov = hn::Set(df, ov);
+    const VF vvs = hn::Set(df, vs);
     const VI byte = hn::Set(di, 0xFF), rgb = hn::Set(di, 0xFFFFFF), alpha = hn::Set(di, int32_t(0xFF000000u));
-    const VI empty = hn::Set(di, int32_t(kEmptyIndex)), izero = hn::Zero(di);
     const VI iota = hn::Iota(di, 0);
+    // Texels at zero displacement (the brick wall's bricks, paper section 5): (u_s + +-0) * 1 + ou is u_s + ou
+    // exactly (u_s >= 0.5, never zero), and v likewise: a vector of them needs no lookup (the AVX-512 row set-up's
+    // shortcut, warp/simd/avx512_row.h).
+    const bool any_id = ft.identity_lo <= ft.identity_hi;
+    const VI id_lo = hn::Set(di, ft.identity_lo), id_hi = hn::Set(di, ft.identity_hi);
+    const VF still_v = hn::Add(vvs, vov);
     int x = 0;
     for (; x + N <= w; x += N) {
         const VI tx = hn::LoadU(di, reinterpret_cast<const int32_t*>(src + x));
         const VI q = hn::And(hn::ShiftRight<24>(tx), byte);
         hn::StoreU(hn::Or(hn::And(tx, rgb), alpha), di, reinterpret_cast<int32_t*>(s.color + x));
-        const VF k1 = hn::GatherIndex(df, tab.k1d.data(), q), k2 = hn::GatherIndex(df, tab.k2d.data(), q);
-        const VF rcp = hn::GatherIndex(df, tab.rcp.data(), q);
-        const auto valid = hn::Ne(hn::And(hn::GatherOffset(di, valid4, q), byte), izero);
         const VF us = hn::Add(hn::ConvertTo(df, hn::Add(hn::Set(di, x), iota)), half);
-        hn::StoreU(hn::IfThenElse(hn::RebindMask(df, valid), hn::Add(hn::Mul(hn::Add(us, k1), rcp), vou), vnan), df,
-                   s.pos + x);
+        if (any_id && hn::AllFalse(di, hn::Or(hn::Lt(q, id_lo), hn::Gt(q, id_hi)))) {
+            hn::StoreU(hn::Add(us, vou), df, s.pos + x);
+            hn::StoreU(still_v, df, s.v + x);
+            continue;
+        }
+        const VF k1 = hn::GatherIndex(df, ft.k1n, q), k2 = hn::GatherIndex(df, tab.k2d.data(), q);
+        const VF rcp = hn::GatherIndex(df, tab.rcp.data(), q);
+        hn::StoreU(hn::Add(hn::Mul(hn::Add(us, k1), rcp), vou), df, s.pos + x);
         hn::StoreU(hn::Add(hn::Mul(hn::Add(vvs, k2), rcp), vov), df, s.v + x);
-        dropped += (long long)hn::CountTrue(di, hn::AndNot(valid, hn::Ne(q, empty)));
     }
     for (; x < w; ++x) {
         const ReliefTexel tx = src[x];
@@ -549,7 +561,6 @@ inline long long PrepareRow(const ReliefTexture& t, const PrewarpTables& tab, co
         s.color[size_t(x)] = pack({tx.r, tx.g, tx.b, 255});
         s.pos[size_t(x)] = tab.valid[tx.q] ? (us + tab.k1d[tx.q]) * tab.rcp[tx.q] + ou : nan;
         s.v[size_t(x)] = (vs + tab.k2d[tx.q]) * tab.rcp[tx.q] + ov;
-        dropped += tx.q != kEmptyIndex && !tab.valid[tx.q];
     }
     return dropped;
 }

@@ -105,6 +105,11 @@ FastTables make_fast_tables(const PrewarpTables& tab) {
         t.any_dropped = t.any_dropped || t.dropped[q];
         const bool id = ok && tab.k1d[q] == 0.0f && tab.k2d[q] == 0.0f && tab.rcp[q] == 1.0f;
         t.identity[q] = id ? 0x80 : 0;
+        t.k1n[q] = v[0];
+        if (id && !t.any_identity)
+            t.identity_lo = t.identity_hi = q;
+        else if (id && t.identity_hi == q - 1)
+            t.identity_hi = q;
         t.any_identity = t.any_identity || id;
     }
     return t;
@@ -613,11 +618,12 @@ PrewarpStats fast_prewarp(Isa isa, const ReliefTexture& relief, const PrewarpCoe
                                   tables, ws, out, true);
 #endif
     } else if (options.method == Reconstruction::pipelined) {
-        stats = fast_pipelined(simd::hwy_pipelined_kernels(isa), relief, k, options, e, ref_tables, fast::FastTables{},
-                               ws, out);
+        const fast::FastTables tables = fast::make_fast_tables(ref_tables);
+        stats = fast_pipelined(simd::hwy_pipelined_kernels(isa), relief, k, options, e, ref_tables, tables, ws, out);
     } else {
-        stats = fast_two_pass(simd::hwy_two_pass_kernels(isa), relief, k, options, e, ref_tables, fast::FastTables{},
-                              ws, out, false);
+        const fast::FastTables tables = fast::make_fast_tables(ref_tables);
+        stats = fast_two_pass(simd::hwy_two_pass_kernels(isa), relief, k, options, e, ref_tables, tables, ws, out,
+                              false);
     }
     stats.isa = isa;
     return stats;

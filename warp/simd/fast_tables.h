@@ -1,4 +1,5 @@
-// Per-view tables of the fast pre-warp kernels (warp/simd/schedule.h), built from the reference's PrewarpTables.
+// Per-view tables of the fast pre-warp kernels (warp/simd/schedule.h), built from the reference's PrewarpTables: the
+// AVX-512 kernels read the byte planes, the Highway kernels k1n and the identity range.
 #pragma once
 
 #include <cstdint>
@@ -17,6 +18,13 @@ struct alignas(64) FastTables {
     // 0x80 for a level whose K1 and K2 are +-0 and R is 1 (zero displacement): (u_s + K1) * R + margin is then
     // u_s + margin exactly (likewise v), and a chunk of such texels skips the lookups (prepare_row). 64-aligned.
     uint8_t identity[256];
+    // K1 with NaN at every level that cannot be pre-warped (and at 255), as the planes hold it: the Highway row
+    // set-up gathers it, R and K2 (three gathers a vector of texels, where K1, R, K2 and `valid` took four).
+    alignas(64) float k1n[256];
+    // The first run of consecutive identity levels, [identity_lo, identity_hi] (empty, lo > hi, when there is
+    // none): a vector of texels whose levels all lie in it skips the Highway row set-up's gathers. A monotonic
+    // quantizer has at most one level at zero displacement; a flat relief may have all of them.
+    int identity_lo = 1, identity_hi = 0;
     bool any_dropped = false;
     bool any_identity = false;
 };
