@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "warp/line_warp.h"
+#include "warp/simd/schedule.h"
 
 #include "warp/simd/avx512_target_begin.h"
 #include "warp/simd/avx512_line.h"
@@ -353,11 +354,12 @@ RowTask part_task(const fast::PipelinedJob& job, int part, int r0, int r1, int x
 }
 
 // Prepares row j and warps it into the row buffer, the emissions in columns [x0, x1) going to `emit`; returns the
-// texels prepare_row dropped.
+// texels prepare_row dropped. Row `next` (the one warped after it) is prefetched.
 template <class E>
-long long warp_row(const fast::PipelinedJob& job, PipeScratch& sc, int j, int x0, int x1, const E& emit) {
+long long warp_row(const fast::PipelinedJob& job, PipeScratch& sc, int j, int next, int x0, int x1, const E& emit) {
     const ReliefTexture& t = *job.relief;
     const int ow = job.out->width;
+    prefetch_relief_row(t, t.height - 1 - next);
     const long long d = prepare_row(t, *job.tables, job.extent, ow, t.height - 1 - j, sc.line.soa);
     LineOut lo{sc.row_c, sc.row_v, ow, x0, x1 - 1};
     lo.copy = job.copy_still;
@@ -402,7 +404,7 @@ __attribute__((noinline)) void reverse_rows(const fast::PipelinedJob& job, PipeS
     auto warp = [&](int j, EmitLog& log) {
         std::memset(sc.fin_ok + x0, 0, size_t(x1 - x0));
         log.n = 0;
-        const long long d = warp_row(job, sc, j, x0, x1, Logger{sc, log});
+        const long long d = warp_row(job, sc, j, j - step, x0, x1, Logger{sc, log});
         if (x0 == 0) dropped += d;
     };
     const int last = k.end - step;
@@ -466,7 +468,7 @@ RowRange run_rows(const fast::PipelinedJob& job, const RowTask& k, uint32_t* pix
     if (k.first != part.first) {
         // The row before, drawn into no output rows (y0 to y0).
         std::memset(sc.cur_ok + k.x0, 0, size_t(k.x1 - k.x0));
-        warp_row(job, sc, k.first - k.step, k.x0, k.x1, Emitter{sc, ColumnOut{pixels, ow, oh, y0, y0}});
+        warp_row(job, sc, k.first - k.step, k.first, k.x0, k.x1, Emitter{sc, ColumnOut{pixels, ow, oh, y0, y0}});
         swap_rows(sc);
     }
     long long dropped = 0;
@@ -480,7 +482,7 @@ RowRange run_rows(const fast::PipelinedJob& job, const RowTask& k, uint32_t* pix
         // Every 4th row measures how many pixels its spans cover per column (at most oh each).
         sc.measure = job.reverse == KernelChoice::automatic && (j & 3) == 0 && j + k.step != k.end;
         sc.drawn = _mm512_setzero_ps();
-        const long long d = warp_row(job, sc, j, k.x0, k.x1, emit);
+        const long long d = warp_row(job, sc, j, j + k.step, k.x0, k.x1, emit);
         if (k.x0 == 0) dropped += d;
         const bool rev = sc.measure && _mm512_reduce_add_ps(sc.drawn) > kReverseDrawn * float(k.x1 - k.x0);
         sc.measure = false;

@@ -25,6 +25,7 @@
 #include <cstring>
 
 #include "warp/line_warp.h"
+#include "warp/simd/schedule.h"
 
 #include "warp/simd/avx512_target_begin.h"
 #include "warp/simd/avx512_line.h"
@@ -124,6 +125,7 @@ void horizontal_steps(const TwoPassJob& job, int s0, int s1, uint32_t* band_c, f
         uint32_t* rc = band_c + size_t(st - s0) * stride;
         float* rv = band_v + size_t(st - s0) * stride;
         const int r = step_row(job, st);
+        if (st + 1 < t.height) prefetch_relief_row(t, step_row(job, st + 1));
         dropped += prepare_row(t, *job.tables, job.extent, ow, r, s);
         // Marked discontinuities: a row with marks loses the spans across them, and its samples are no longer one
         // connected path, which the backward order requires (warp_line_reverse): such rows go forwards.

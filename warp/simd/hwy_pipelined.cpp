@@ -17,6 +17,7 @@
 #include "warp/line_warp.h"
 #include "warp/simd/hwy_pipelined.h"
 #include "warp/simd/hwy_row-inl.h"
+#include "warp/simd/schedule.h"
 #include "warp/tables.h"
 
 // Target-independent helpers, compiled on the first of foreach_target's passes (the per-target code below uses them).
@@ -276,8 +277,9 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
     float* rv = b.rv;
     std::fill(b.prev_ok + x0, b.prev_ok + x1, 0);
     RowRange range{std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
-    // Row j set up; returns the texels dropped.
-    auto prepare = [&](int j) {
+    // Row j set up, row `next` (the one set up after it) prefetched; returns the texels dropped.
+    auto prepare = [&](int j, int next) {
+        prefetch_relief_row(t, h - 1 - next);
         const long long dropped = PrepareRow(t, tab, *job.tables, job.extent, h - 1 - j, s);
         if (track)
             for (int x = 0; x < w; ++x)
@@ -289,7 +291,7 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
     };
     // Row j, drawing into v-rows [ya, yb); returns the texels dropped.
     auto row = [&](int j, int ya, int yb, float* drawn) {
-        const long long dropped = prepare(j);
+        const long long dropped = prepare(j, j + p.step);
         std::fill(b.cur_ok + x0, b.cur_ok + x1, 0);
         const Emitter emit{b, ColumnTarget{pixels, ow, oh, ya, yb}, x0, x1, drawn};
         WarpRow(s.pos, s.color, s.v, w, job.split_u, ow, RowOut{rc, rv, job.copy_still}, Coalescer<Emitter>{emit});
@@ -320,7 +322,7 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
         const ColumnsWritten cw{r.lo.data(), r.hi.data(), r.bits_on.data(), r.bits.data(), r.nw};
         const ColumnTarget o{pixels, ow, oh, p.y0, p.y1};
         auto warp = [&](int j, EmitLog& log) {
-            const long long d = prepare(j);
+            const long long d = prepare(j, j - p.step);
             if (x0 == 0) dropped += d;
             std::fill(r.fin_ok.data() + x0, r.fin_ok.data() + x1, 0);
             log.n = 0;

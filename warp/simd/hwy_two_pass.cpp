@@ -12,6 +12,7 @@
 #include "warp/line_warp.h"
 #include "warp/simd/hwy_row-inl.h"
 #include "warp/simd/hwy_two_pass.h"
+#include "warp/simd/schedule.h"
 #include "warp/tables.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -28,6 +29,7 @@ void HorizontalSteps(const fast::TwoPassJob& job, int s0, int s1, uint32_t* band
     long long dropped = 0;
     for (int st = s0; st < s1; ++st) {
         const int r = fast::step_row(job, st);
+        if (st + 1 < t.height) prefetch_relief_row(t, fast::step_row(job, st + 1));
         dropped += PrepareRow(t, *job.ref_tables, *job.tables, job.extent, r, s);
         uint32_t* rc = band_c + size_t(st - s0) * stride;
         float* rv = band_v + size_t(st - s0) * stride;

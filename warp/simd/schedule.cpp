@@ -601,6 +601,13 @@ PrewarpStats fast_pipelined(const simd::PipelinedKernels& kernels, const ReliefT
 
 }  // namespace
 
+void prefetch_relief_row(const ReliefTexture& relief, int r) {
+    if (r < 0 || r >= relief.height) return;
+    const char* p = reinterpret_cast<const char*>(relief.texels.data() + size_t(r) * size_t(relief.width));
+    const size_t bytes = size_t(relief.width) * sizeof(ReliefTexel);
+    for (size_t b = 0; b < bytes; b += 64) __builtin_prefetch(p + b, 0, 3);  // 64: a cache line
+}
+
 PrewarpStats fast_prewarp(Isa isa, const ReliefTexture& relief, const PrewarpCoefficients& k,
                           const PrewarpOptions& options, const PrewarpExtent& e, PrewarpWorkspace& ws,
                           ImageRGBA8& out) {

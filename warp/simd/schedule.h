@@ -44,6 +44,12 @@ PrewarpStats fast_prewarp(Isa isa, const ReliefTexture& relief, const PrewarpCoe
                           const PrewarpOptions& options, const PrewarpExtent& extent, PrewarpWorkspace& workspace,
                           ImageRGBA8& out);
 
+// Asks the CPU to bring storage row r of the relief into the cache (nothing where r is not a row of it): each kernel
+// calls it for the row it sets up next, a row ahead. The hardware prefetchers did not keep up with the row set-ups'
+// reads of the texels: the AVX-512 two-pass brick wall 1024^2 (one thread) took 3.4-3.8 ms without, 2.6-2.7 with
+// (docs/perf-history.md, "Prefetching the next row").
+void prefetch_relief_row(const ReliefTexture& relief, int r);
+
 // True when this CPU can run the hand-written AVX-512 kernels (the avx512 target).
 bool fast_prewarp_available();
 
