@@ -104,8 +104,36 @@ HWY_INLINE hn::Vec<DI> Lerp8Channel(DI di, hn::Vec<DI> ca, hn::Vec<DI> cb, hn::V
 template <class DF, class DI>
 HWY_INLINE hn::Vec<DI> Lerp8At(DF df, DI di, hn::Vec<DF> tt, hn::Vec<DI> ca, hn::Vec<DI> cb) {
     const hn::Vec<DI> wt = Lerp8Weight(df, di, tt);
+#if RTM_HWY_X86_VECTORS
+    // x86: each channel's pair (a, b) as two 16-bit halves of a lane (two byte shuffles), times the pair
+    // (2^14 - w, w) summed by one pairwise multiply-add (pmaddwd, which ReorderWidenMulAccumulate is on x86: the
+    // products stay in their lane), + 2^13, >> 14: the same integers as the formula below (a, b <= 255 and the
+    // weights <= 16383 fit 16 bits, the sums 23), without its 32-bit multiplications.
+    const hn::Repartition<int16_t, DI> d16;
+    const hn::Repartition<uint8_t, DI> d8;
+    const auto wp = hn::BitCast(d16, hn::Or(hn::Sub(hn::Set(di, 16384), wt), hn::ShiftLeft<16>(wt)));
+    alignas(16) static constexpr uint8_t kPick[3][2][16] = {
+        {{0, 128, 128, 128, 4, 128, 128, 128, 8, 128, 128, 128, 12, 128, 128, 128},
+         {128, 128, 0, 128, 128, 128, 4, 128, 128, 128, 8, 128, 128, 128, 12, 128}},
+        {{1, 128, 128, 128, 5, 128, 128, 128, 9, 128, 128, 128, 13, 128, 128, 128},
+         {128, 128, 1, 128, 128, 128, 5, 128, 128, 128, 9, 128, 128, 128, 13, 128}},
+        {{2, 128, 128, 128, 6, 128, 128, 128, 10, 128, 128, 128, 14, 128, 128, 128},
+         {128, 128, 2, 128, 128, 128, 6, 128, 128, 128, 10, 128, 128, 128, 14, 128}}};
+    const auto round = hn::Set(di, 8192);
+    auto channel = [&](int c) {
+        const auto pa = hn::TableLookupBytesOr0(ca, hn::BitCast(di, hn::LoadDup128(d8, kPick[c][0])));
+        const auto pb = hn::TableLookupBytesOr0(cb, hn::BitCast(di, hn::LoadDup128(d8, kPick[c][1])));
+        hn::Vec<DI> unused;
+        return hn::ReorderWidenMulAccumulate(di, hn::BitCast(d16, hn::Or(pa, pb)), wp, round, unused);
+    };
+    // Channel c's byte is bits 14 .. 21 of its sum.
+    const auto mask_g = hn::Set(di, 0xFF00), mask_b = hn::Set(di, 0xFF0000);
+    return hn::Or(hn::Or(hn::ShiftRight<14>(channel(0)), hn::And(hn::ShiftRight<6>(channel(1)), mask_g)),
+                  hn::Or(hn::And(hn::ShiftLeft<2>(channel(2)), mask_b), hn::Set(di, int32_t(0xFF000000u))));
+#else
     return hn::Or(hn::Or(Lerp8Channel<0>(di, ca, cb, wt), hn::ShiftLeft<8>(Lerp8Channel<8>(di, ca, cb, wt))),
                   hn::Or(hn::ShiftLeft<16>(Lerp8Channel<16>(di, ca, cb, wt)), hn::Set(di, int32_t(0xFF000000u))));
+#endif
 }
 
 // Colours of raster_span(pv, pc, v, c) at the pixel centres yc (per lane), as raster_span_pixels computes them:
