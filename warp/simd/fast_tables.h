@@ -21,6 +21,9 @@ struct alignas(64) FastTables {
     // K1 with NaN at every level that cannot be pre-warped (and at 255), as the planes hold it: the Highway row
     // set-up gathers it, R and K2 (three gathers a vector of texels, where K1, R, K2 and `valid` took four).
     alignas(64) float k1n[256];
+    // The same three tables per level, k1n, K2, R and a zero: one 16-byte load a texel (the AVX2 row set-up loads
+    // them so and transposes, where three gathers cost more).
+    alignas(64) float level[256][4];
     // The first run of consecutive identity levels, [identity_lo, identity_hi] (empty, lo > hi, when there is
     // none): a vector of texels whose levels all lie in it skips the Highway row set-up's gathers. A monotonic
     // quantizer has at most one level at zero displacement; a flat relief may have all of them.

@@ -550,8 +550,25 @@ inline long long PrepareRow(const ReliefTexture& t, const PrewarpTables& tab, co
             hn::StoreU(still_v, df, s.v + x);
             continue;
         }
+#if HWY_TARGET == HWY_AVX2
+        // Each texel's (K1, K2, R) as one 16-byte load, texels i and i + 4 in one register, then a 4x4 transpose
+        // within each 128-bit half: fewer operations than three 8-lane gathers.
+        HWY_ALIGN int32_t qi[8];
+        hn::Store(q, di, qi);
+        const float* lv = &ft.level[0][0];
+        auto pair = [&](int i) {
+            return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_load_ps(lv + 4 * qi[i])),
+                                        _mm_load_ps(lv + 4 * qi[i + 4]), 1);
+        };
+        const __m256 r0 = pair(0), r1 = pair(1), r2 = pair(2), r3 = pair(3);
+        const __m256 t0 = _mm256_unpacklo_ps(r0, r1), t1 = _mm256_unpackhi_ps(r0, r1);
+        const __m256 t2 = _mm256_unpacklo_ps(r2, r3), t3 = _mm256_unpackhi_ps(r2, r3);
+        const VF k1{_mm256_shuffle_ps(t0, t2, 0x44)}, k2{_mm256_shuffle_ps(t0, t2, 0xEE)};
+        const VF rcp{_mm256_shuffle_ps(t1, t3, 0x44)};
+#else
         const VF k1 = hn::GatherIndex(df, ft.k1n, q), k2 = hn::GatherIndex(df, tab.k2d.data(), q);
         const VF rcp = hn::GatherIndex(df, tab.rcp.data(), q);
+#endif
         hn::StoreU(hn::Add(hn::Mul(hn::Add(us, k1), rcp), vou), df, s.pos + x);
         hn::StoreU(hn::Add(hn::Mul(hn::Add(vvs, k2), rcp), vov), df, s.v + x);
     }

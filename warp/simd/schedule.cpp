@@ -106,6 +106,7 @@ FastTables make_fast_tables(const PrewarpTables& tab) {
         const bool id = ok && tab.k1d[q] == 0.0f && tab.k2d[q] == 0.0f && tab.rcp[q] == 1.0f;
         t.identity[q] = id ? 0x80 : 0;
         t.k1n[q] = v[0];
+        t.level[q][0] = v[0], t.level[q][1] = v[1], t.level[q][2] = v[2], t.level[q][3] = 0.0f;
         if (id && !t.any_identity)
             t.identity_lo = t.identity_hi = q;
         else if (id && t.identity_hi == q - 1)
