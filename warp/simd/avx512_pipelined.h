@@ -29,7 +29,6 @@ namespace rtm::fast {
 struct PipelinedJob {
     const ReliefTexture* relief = nullptr;
     const FastTables* tables = nullptr;
-    const PrewarpTables* ref_tables = nullptr;  // the reference's tables (the Highway kernel)
     PrewarpExtent extent;
     int split_u = 0, split_v = 0;  // split_index of the epipole along rows and columns (source)
     int ysplit = 0;                // split of the output rows between the parts (v order)

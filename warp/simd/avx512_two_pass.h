@@ -33,7 +33,7 @@ namespace rtm::fast {
 struct TwoPassJob {
     const ReliefTexture* relief = nullptr;
     const FastTables* tables = nullptr;
-    const PrewarpTables* ref_tables = nullptr;  // the reference's tables (the Highway kernels)
+    const PrewarpTables* ref_tables = nullptr;  // the reference's tables (displ: marked rows' displacements)
     PrewarpExtent extent;
     int split_u = 0, split_v = 0;  // split_index of the epipole along rows and columns (source)
     ImageRGBA8* out = nullptr;     // out width x out height

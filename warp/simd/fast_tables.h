@@ -1,5 +1,5 @@
 // Per-view tables of the fast pre-warp kernels (warp/simd/schedule.h), built from the reference's PrewarpTables: the
-// AVX-512 kernels read the byte planes, the Highway kernels k1n and the identity range.
+// AVX-512 kernels read the byte planes, the Highway kernels `level` and the identity range.
 #pragma once
 
 #include <cstdint>
@@ -18,11 +18,9 @@ struct alignas(64) FastTables {
     // 0x80 for a level whose K1 and K2 are +-0 and R is 1 (zero displacement): (u_s + K1) * R + margin is then
     // u_s + margin exactly (likewise v), and a chunk of such texels skips the lookups (prepare_row). 64-aligned.
     uint8_t identity[256];
-    // K1 with NaN at every level that cannot be pre-warped (and at 255), as the planes hold it: the Highway row
-    // set-up gathers it, R and K2 (three gathers a vector of texels, where K1, R, K2 and `valid` took four).
-    alignas(64) float k1n[256];
-    // The same three tables per level, k1n, K2, R and a zero: one 16-byte load a texel (the AVX2 row set-up loads
-    // them so and transposes, where three gathers cost more).
+    // Per level: K1 (NaN at every level that cannot be pre-warped, and at 255, as the planes hold it), K2, R and a
+    // zero, for the Highway row set-up: one 16-byte load a texel on AVX2 (then a transpose), three gathers on the
+    // other targets, where K1, R, K2 and `valid` took four.
     alignas(64) float level[256][4];
     // The first run of consecutive identity levels, [identity_lo, identity_hi] (empty, lo > hi, when there is
     // none): a vector of texels whose levels all lie in it skips the Highway row set-up's gathers. A monotonic

@@ -268,7 +268,6 @@ constexpr float kReverseDrawn = 3.0f;
 RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0, int x1, uint32_t* pixels,
                  bool track) {
     const ReliefTexture& t = *job.relief;
-    const PrewarpTables& tab = *job.ref_tables;
     const int w = t.width, h = t.height, ow = job.out->width, oh = job.out->height;
     const PartRows p = part_rows(job, part);
     PipeBuffers b = task_buffers(job);
@@ -280,7 +279,7 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
     // Row j set up, row `next` (the one set up after it) prefetched; returns the texels dropped.
     auto prepare = [&](int j, int next) {
         prefetch_relief_row(t, h - 1 - next);
-        const long long dropped = PrepareRow(t, tab, *job.tables, job.extent, h - 1 - j, s);
+        const long long dropped = PrepareRow(t, *job.tables, job.extent, h - 1 - j, s);
         if (track)
             for (int x = 0; x < w; ++x)
                 if (std::isfinite(s.pos[x]) && std::isfinite(s.v[x])) {

@@ -23,7 +23,7 @@
 namespace rtm::simd {
 
 // The Highway pipelined kernel compiled for `isa` (avx2, sse4, neon, sve); null pointers for any other target or one
-// this build did not compile. The job's ref_tables must be set.
+// this build did not compile. The job's tables must be set.
 PipelinedKernels hwy_pipelined_kernels(Isa isa);
 
 }  // namespace rtm::simd

@@ -509,16 +509,15 @@ inline bool WarpRowBackward(const float* pos, const uint32_t* col, const float* 
 
 // The reference's row_samples (lookup-table path) of storage row r into s: position (NaN where the texel does not
 // take part, which WarpRow treats as the reference treats an invalid sample), final row coordinate and colour
-// (alpha 255) of every texel. Returns the texels dropped (not empty, but 1 + k3*d <= 0). `ft` holds K1 with NaN at
-// the levels that cannot be pre-warped (k1n: (u_s + NaN) * R + margin is NaN, not finite, as the reference's
-// invalid sample) and the identity levels (zero displacement: K1 = K2 = +-0, R = 1).
-inline long long PrepareRow(const ReliefTexture& t, const PrewarpTables& tab, const fast::FastTables& ft,
-                            const PrewarpExtent& e, int r, const RowScratch& s) {
+// (alpha 255) of every texel. Returns the texels dropped (not empty, but 1 + k3*d <= 0). `ft` holds each level's K1
+// (NaN at the levels that cannot be pre-warped: (u_s + NaN) * R + margin is NaN, not finite, as the reference's
+// invalid sample), K2 and R (FastTables::level) and the identity levels (zero displacement: K1 = K2 = +-0, R = 1).
+inline long long PrepareRow(const ReliefTexture& t, const fast::FastTables& ft, const PrewarpExtent& e, int r,
+                            const RowScratch& s) {
     const int w = t.width, h = t.height;
     const float vs = float(h - 1 - r) + 0.5f;
     const ReliefTexel* src = &t.texels[size_t(r) * size_t(w)];
     const float ou = float(e.left), ov = float(e.bottom);
-    const float nan = std::numeric_limits<float>::quiet_NaN();
     long long dropped = 0;
     if (ft.any_dropped)
         for (int x = 0; x < w; ++x) dropped += ft.dropped[src[x].q];
@@ -566,8 +565,9 @@ inline long long PrepareRow(const ReliefTexture& t, const PrewarpTables& tab, co
         const VF k1{_mm256_shuffle_ps(t0, t2, 0x44)}, k2{_mm256_shuffle_ps(t0, t2, 0xEE)};
         const VF rcp{_mm256_shuffle_ps(t1, t3, 0x44)};
 #else
-        const VF k1 = hn::GatherIndex(df, ft.k1n, q), k2 = hn::GatherIndex(df, tab.k2d.data(), q);
-        const VF rcp = hn::GatherIndex(df, tab.rcp.data(), q);
+        const VI q4 = hn::ShiftLeft<2>(q);  // four floats a level
+        const VF k1 = hn::GatherIndex(df, &ft.level[0][0], q4), k2 = hn::GatherIndex(df, &ft.level[0][1], q4);
+        const VF rcp = hn::GatherIndex(df, &ft.level[0][2], q4);
 #endif
         hn::StoreU(hn::Add(hn::Mul(hn::Add(us, k1), rcp), vou), df, s.pos + x);
         hn::StoreU(hn::Add(hn::Mul(hn::Add(vvs, k2), rcp), vov), df, s.v + x);
@@ -576,8 +576,9 @@ inline long long PrepareRow(const ReliefTexture& t, const PrewarpTables& tab, co
         const ReliefTexel tx = src[x];
         const float us = float(x) + 0.5f;
         s.color[size_t(x)] = pack({tx.r, tx.g, tx.b, 255});
-        s.pos[size_t(x)] = tab.valid[tx.q] ? (us + tab.k1d[tx.q]) * tab.rcp[tx.q] + ou : nan;
-        s.v[size_t(x)] = (vs + tab.k2d[tx.q]) * tab.rcp[tx.q] + ov;
+        const float* lv = ft.level[tx.q];
+        s.pos[size_t(x)] = (us + lv[0]) * lv[2] + ou;  // NaN where the level cannot be pre-warped
+        s.v[size_t(x)] = (vs + lv[1]) * lv[2] + ov;
     }
     return dropped;
 }

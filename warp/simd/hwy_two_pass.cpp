@@ -30,7 +30,7 @@ void HorizontalSteps(const fast::TwoPassJob& job, int s0, int s1, uint32_t* band
     for (int st = s0; st < s1; ++st) {
         const int r = fast::step_row(job, st);
         if (st + 1 < t.height) prefetch_relief_row(t, fast::step_row(job, st + 1));
-        dropped += PrepareRow(t, *job.ref_tables, *job.tables, job.extent, r, s);
+        dropped += PrepareRow(t, *job.tables, job.extent, r, s);
         uint32_t* rc = band_c + size_t(st - s0) * stride;
         float* rv = band_v + size_t(st - s0) * stride;
         std::memset(rc, 0, size_t(ow) * 4);

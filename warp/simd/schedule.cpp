@@ -105,7 +105,6 @@ FastTables make_fast_tables(const PrewarpTables& tab) {
         t.any_dropped = t.any_dropped || t.dropped[q];
         const bool id = ok && tab.k1d[q] == 0.0f && tab.k2d[q] == 0.0f && tab.rcp[q] == 1.0f;
         t.identity[q] = id ? 0x80 : 0;
-        t.k1n[q] = v[0];
         t.level[q][0] = v[0], t.level[q][1] = v[1], t.level[q][2] = v[2], t.level[q][3] = 0.0f;
         if (id && !t.any_identity)
             t.identity_lo = t.identity_hi = q;
@@ -558,8 +557,7 @@ void pipelined_in_row_chunks(const simd::PipelinedKernels& kernels, const fast::
 
 PrewarpStats fast_pipelined(const simd::PipelinedKernels& kernels, const ReliefTexture& relief,
                             const PrewarpCoefficients& k, const PrewarpOptions& options, const PrewarpExtent& e,
-                            const PrewarpTables& ref_tables, const fast::FastTables& tables, PrewarpWorkspace& ws,
-                            ImageRGBA8& out) {
+                            const fast::FastTables& tables, PrewarpWorkspace& ws, ImageRGBA8& out) {
     const int w = relief.width, h = relief.height;
     const int ow = w + e.left + e.right, oh = h + e.bottom + e.top;
     std::atomic<long long> dropped{0};
@@ -572,7 +570,6 @@ PrewarpStats fast_pipelined(const simd::PipelinedKernels& kernels, const ReliefT
     job.copy_still = options.copy_still_runs;
     job.reverse = simd::testing::kernel_policy().pipelined_reverse;
     job.tables = &tables;
-    job.ref_tables = &ref_tables;
     job.extent = e;
     job.split_u = split_index(k.epipole_u, w);
     job.split_v = split_index(k.epipole_v, h);
@@ -613,23 +610,21 @@ PrewarpStats fast_prewarp(Isa isa, const ReliefTexture& relief, const PrewarpCoe
                           const PrewarpOptions& options, const PrewarpExtent& e, PrewarpWorkspace& ws,
                           ImageRGBA8& out) {
     const PrewarpTables ref_tables = PrewarpTables::build(k, relief.quant);
+    const fast::FastTables tables = fast::make_fast_tables(ref_tables);
     PrewarpStats stats;
     if (isa == Isa::avx512) {
 #if RTM_AVX512_KERNELS
-        const fast::FastTables tables = fast::make_fast_tables(ref_tables);
         if (options.method == Reconstruction::pipelined)
             stats = fast_pipelined({&fast::pipelined_part, &fast::pipelined_chunk, &fast::pipelined_composite,
                                     &fast::pipelined_seam},
-                                   relief, k, options, e, ref_tables, tables, ws, out);
+                                   relief, k, options, e, tables, ws, out);
         else
             stats = fast_two_pass({&fast::horizontal_steps, &fast::vertical_steps}, relief, k, options, e, ref_tables,
                                   tables, ws, out, true);
 #endif
     } else if (options.method == Reconstruction::pipelined) {
-        const fast::FastTables tables = fast::make_fast_tables(ref_tables);
-        stats = fast_pipelined(simd::hwy_pipelined_kernels(isa), relief, k, options, e, ref_tables, tables, ws, out);
+        stats = fast_pipelined(simd::hwy_pipelined_kernels(isa), relief, k, options, e, tables, ws, out);
     } else {
-        const fast::FastTables tables = fast::make_fast_tables(ref_tables);
         stats = fast_two_pass(simd::hwy_two_pass_kernels(isa), relief, k, options, e, ref_tables, tables, ws, out,
                               false);
     }
