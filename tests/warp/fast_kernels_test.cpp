@@ -451,19 +451,59 @@ TEST_P(FastKernels, StillRunCopiesAreInvisible) {
     }
 }
 
+TEST_P(FastKernels, UniformShiftsOffPixelCentresAreNotCopies) {
+    // A relief at one displacement seen from very far along an oblique direction: 1 + k3*d rounds to 1 in float, so
+    // every row is the one below it shifted by the same K2 texels, and each column's samples lie exactly one row
+    // apart (v - pv == 1), as a still step's do, but off the pixel centres: the column spans interpolate (t =
+    // the fraction) and must not be taken for copies (the pipelined kernels' StillStep also checks the centre).
+    const int w = 96, h = 80;
+    const ReliefGeometry g = unit_width_geometry(w);
+    const double d = 0.05;
+    const ReliefTexture t = test::make_test_relief(
+        w, h, -d, d, [&](int, int) { return d; }, g);
+    PrewarpWorkspace ws;
+    ImageRGBA8 ref, fast;
+    int shifted = 0;
+    for (const double frac : {0.25, 0.5, -0.75, -0.3}) {
+        // K2 = k2 * d = e_v * k3 * d texels, k3 = 1 / dot(c, f) = -1 / dist: e_v = -K2 * dist / d. Rows shifted
+        // down (the eye far below: the top part, v decreasing along each column) and up (the bottom part).
+        const double dist = 1e9, ev = (frac > 0 ? 2.0 + frac : frac - 2.0) * dist / d;
+        const glm::dvec3 eye = g.origin + g.a * (0.4 * w) - g.b * ev + g.f() * dist;
+        const PrewarpCoefficients k = compute_coefficients(g, eye);
+        SCOPED_TRACE("frac " + std::to_string(frac) + " " + k.to_string());
+        ASSERT_EQ(float(1.0 / (1.0 + k.k3 * d)), 1.0f);  // the premise: R is 1 in the kernels' float tables
+        const double shift = std::abs(k.k2 * d);
+        shifted += std::abs(shift - std::round(shift)) > 0.1;
+        PrewarpOptions o;
+        o.method = method();
+        o.isa = Isa::generic;
+        o.threads = 1;
+        prewarp(t, k, o, ws, ref);
+        o.isa = isa();
+        for (int threads : {1, 2}) {
+            o.threads = threads;
+            prewarp(t, k, o, ws, fast);
+            ASSERT_EQ(first_difference(ref, fast), "") << "threads " << threads;
+        }
+    }
+    EXPECT_EQ(shifted, 4);  // every view shifts the rows by a fraction of a texel
+}
+
 TEST_P(FastKernels, StillBlocksMatchTheReference) {
     // The paper's brick wall (section 5): bricks at zero displacement, wider than a group of 16 columns and often
     // taller than a band of 32 rows, between recessed mortar (max <= 0), or with a few texels raised above zero
     // (max > 0, raised texels that overwrite still ones) and empty texels; eyes in front and behind, near, far and
     // grazing, the epipole inside (both parts of the vertical pass) and outside; margins on and off; 1 to 3
     // threads. The two-pass vertical pass copies such still pixels in blocks (warp/simd/schedule.cpp,
-    // vertical_with_still): the output must stay the reference's, and the copy must happen.
+    // vertical_with_still), the pipelined kernels a vector of columns at a time: the output must stay the
+    // reference's, and the two-pass copy must happen.
     const uint64_t seed = test::test_seed(80031);
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> U(0.0, 1.0);
     auto pick = [&](int n) { return int(rng() % uint64_t(n)); };
-    // The pipelined kernels do not copy in blocks (yet): fewer cases there, a check that nothing changed.
-    const int cases = test::sweep_cases(method() == Reconstruction::two_pass ? 240 : 40);
+    // The pipelined kernels copy still steps a vector of columns at a time (StillStep in
+    // warp/simd/hwy_columns-inl.h, still_step in warp/simd/avx512_pipelined.cpp), forwards and in reverse mode.
+    const int cases = test::sweep_cases(method() == Reconstruction::two_pass ? 240 : 160);
     PrewarpWorkspace ws_ref, ws_fast;
     ImageRGBA8 ref, fast;
     const long long copies_before = simd::testing::vertical_still_copies();

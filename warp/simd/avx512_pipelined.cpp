@@ -157,12 +157,31 @@ PipeScratch& pipe_scratch() {
     return s;
 }
 
+// Whether every lane of `fin` is a still step: connected (pok) to the column's previous sample exactly one row
+// before (|v - pv| == 1), the new sample on the centre of v-row y = v - 0.5, the same y in every lane, inside
+// [y0, y1). raster_span then writes the one pixel y of each column with t = 1 exactly, lerp8 at t = 1 gives the
+// new colour: the step is a copy (the Highway kernels' StillStep, warp/simd/hwy_columns-inl.h, says why).
+inline bool still_step(const ColumnOut& o, __mmask16 fin, __mmask16 pok, __m512 pv, __m512 v, int& y) {
+    if (pok != fin) return false;
+    const float v0 = _mm_cvtss_f32(_mm512_castps512_ps128(_mm512_permutexvar_ps(_mm512_set1_epi32(int(_tzcnt_u32(fin))),
+                                                                                v)));
+    const __mmask16 step = _mm512_mask_cmp_ps_mask(fin, _mm512_abs_ps(_mm512_sub_ps(v, pv)), _mm512_set1_ps(1.0f),
+                                                   _CMP_EQ_OQ);
+    if ((step & _mm512_mask_cmp_ps_mask(fin, v, _mm512_set1_ps(v0), _CMP_EQ_OQ)) != fin) return false;
+    const float yf = v0 - 0.5f;
+    if (!(yf >= float(o.y0) && yf < float(o.y1)) || std::floor(yf) != yf) return false;
+    y = int(yf);
+    return float(y) + 0.5f == v0;  // the pixel centre the span's arithmetic computes is v itself
+}
+
 // What the reference's put() does for each pixel the row warp emits, for columns [xa, xb] at once: connect the
 // column's previous sample to the new one with raster_span (or start with raster_point), writing only output
 // v-rows [y0, y1), and make the new sample the column's current one.
+// With `copy` (PrewarpOptions::copy_still_runs), still steps are copies (still_step).
 struct Emitter {
     PipeScratch& sc;
     ColumnOut o;
+    bool copy = false;
 
     void operator()(int xa, int xb) const {
         for (int x = xa; x <= xb; x += 16) {
@@ -178,7 +197,11 @@ struct Emitter {
             _mm512_mask_storeu_ps(sc.cur_v + x, fin, v);
             _mm512_mask_storeu_epi32(sc.cur_c + x, fin, c);
             _mm_mask_storeu_epi8(sc.cur_ok + x, fin, _mm_set1_epi8(1));
-            column_spans(o, x, fin, pok, pv, pc, v, c);
+            int ys;
+            if (copy && still_step(o, fin, pok, pv, v, ys))
+                _mm512_mask_storeu_epi32(o.vline(ys) + x, fin, _mm512_or_si512(c, _mm512_set1_epi32(int(0xFF000000u))));
+            else
+                column_spans(o, x, fin, pok, pv, pc, v, c);
             if (sc.measure) [[unlikely]]
                 sc.drawn = _mm512_mask_add_ps(sc.drawn, pok, sc.drawn,
                                               _mm512_min_ps(_mm512_abs_ps(_mm512_sub_ps(v, pv)), sc.cap));
@@ -257,8 +280,27 @@ __attribute__((noinline)) void column_bits(const ColumnOut& o, PipeScratch& sc, 
 }
 
 // column_spans in reverse mode: writes only the pixels no emission replayed before has written, and records them.
-inline void column_spans_rev(const ColumnOut& o, PipeScratch& sc, int x, __mmask16 fin, __mmask16 pok, __m512 pv,
-                             __m512i pc, __m512 v, __m512i c) {
+// With `copy`, still steps (still_step) whose row lies in, or next to, every column's interval (no bitmask) are one
+// masked row store of the lanes whose interval does not hold the row yet.
+inline void column_spans_rev(const ColumnOut& o, PipeScratch& sc, int x, bool copy, __mmask16 fin, __mmask16 pok,
+                             __m512 pv, __m512i pc, __m512 v, __m512i c) {
+    int ys;
+    if (copy && still_step(o, fin, pok, pv, v, ys)) {
+        const __m512i y = _mm512_set1_epi32(ys), one = _mm512_set1_epi32(1);
+        const __m512i clo = _mm512_loadu_si512(sc.clo + x), chi = _mm512_loadu_si512(sc.chi + x);
+        const __m128i cb = _mm_loadu_si128(reinterpret_cast<const __m128i*>(sc.cbits + x));
+        const __mmask16 emp = _mm512_cmpgt_epi32_mask(clo, chi);
+        const __mmask16 inside = __mmask16(~emp) & _mm512_cmple_epi32_mask(clo, y) & _mm512_cmple_epi32_mask(y, chi);
+        const __mmask16 next_to = emp | _mm512_cmpeq_epi32_mask(y, _mm512_sub_epi32(clo, one)) |
+                                  _mm512_cmpeq_epi32_mask(y, _mm512_add_epi32(chi, one));
+        if (!(_mm_test_epi8_mask(cb, cb) & fin) && ((inside | next_to) & fin) == fin) {
+            const __mmask16 go = fin & __mmask16(~inside);
+            _mm512_mask_storeu_epi32(sc.clo + x, go, _mm512_mask_mov_epi32(_mm512_min_epi32(y, clo), emp, y));
+            _mm512_mask_storeu_epi32(sc.chi + x, go, _mm512_mask_mov_epi32(_mm512_max_epi32(y, chi), emp, y));
+            _mm512_mask_storeu_epi32(o.vline(ys) + x, go, _mm512_or_si512(c, _mm512_set1_epi32(int(0xFF000000u))));
+            return;
+        }
+    }
     const auto [span, point, ylo, yhi] = column_rows(o, fin, pok, pv, v);
     const __mmask16 todo = (span | point) & _mm512_cmple_epi32_mask(ylo, yhi);
     if (!todo) return;
@@ -424,7 +466,7 @@ __attribute__((noinline)) void reverse_rows(const fast::PipelinedJob& job, PipeS
             const int x = log.x[i];
             const __mmask16 fin = log.fin[i];
             const __m128i okb = _mm_loadu_si128(reinterpret_cast<const __m128i*>(pok + x));
-            column_spans_rev(o, sc, x, fin, fin & _mm_test_epi8_mask(okb, okb), _mm512_loadu_ps(pv + x),
+            column_spans_rev(o, sc, x, job.copy_still, fin, fin & _mm_test_epi8_mask(okb, okb), _mm512_loadu_ps(pv + x),
                              _mm512_loadu_si512(pc + x), _mm512_load_ps(log.chunk[i].v),
                              _mm512_load_si512(log.chunk[i].c));
         }
@@ -464,7 +506,7 @@ RowRange run_rows(const fast::PipelinedJob& job, const RowTask& k, uint32_t* pix
     // The output lines 8 rows ahead of the ones written are prefetched, as in the two-pass kernel: bumps 4096^2, one
     // thread (an output of 64 MiB, past the caches), median of 7 pre-warps, 3 interleaved runs: 129 to 133 -> 113
     // to 118 ms; 2, 16 and 32 rows ahead in between; 256^2 and 1024^2 within the noise.
-    const Emitter emit{sc, ColumnOut{pixels, ow, oh, y0, y1, 8 * k.step}};
+    const Emitter emit{sc, ColumnOut{pixels, ow, oh, y0, y1, 8 * k.step}, job.copy_still};
     if (k.first != part.first) {
         // The row before, drawn into no output rows (y0 to y0).
         std::memset(sc.cur_ok + k.x0, 0, size_t(k.x1 - k.x0));

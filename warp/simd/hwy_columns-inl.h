@@ -23,6 +23,7 @@
 #include <hwy/highway.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 
@@ -316,14 +317,41 @@ HWY_INLINE void ColumnRows(DF df, const ColumnTarget& o, MF fin, MF pok, hn::Vec
     yhi = hn::IfThenElse(pointi, ylo, hn::ConvertTo(di, hi));
 }
 
+// Whether every lane of a vector is a still step: connected (pok) to the column's previous sample exactly one row
+// before (|v - pv| == 1: below it in the bottom part, above it in the top part), the new sample on the centre of
+// v-row y = v - 0.5, the same y in every lane, inside [y0, y1). raster_span(pv, pc, v, c) then writes the one pixel y
+// of each column with t = (y + 0.5 - pv) * (1 / (v - pv)) = 1 exactly (+-1 over +-1), lerp8 at t = 1 (weight
+// 2^14 - 1: (a + (2^14 - 1) b + 2^13) >> 14 = b) gives c, alpha 255: the step is a copy of c into row y. Zero
+// displacement gives such steps (the paper, section 5: still texels need no warp; the two-pass kernels copy blocks of
+// them in their vertical pass, vertical_with_still in warp/simd/schedule.cpp).
+template <class DF, class MF>
+HWY_INLINE bool StillStep(DF df, const ColumnTarget& o, MF pok, hn::Vec<DF> pv, hn::Vec<DF> v, int& y) {
+    if (!hn::AllTrue(df, pok)) return false;
+    const float v0 = hn::GetLane(v);
+    const auto step = hn::Eq(hn::Abs(hn::Sub(v, pv)), hn::Set(df, 1.0f));
+    if (!hn::AllTrue(df, hn::And(step, hn::Eq(v, hn::Set(df, v0))))) return false;
+    const float yf = v0 - 0.5f;
+    if (!(yf >= float(o.y0) && yf < float(o.y1)) || std::floor(yf) != yf) return false;
+    y = int(yf);
+    return float(y) + 0.5f == v0;  // the pixel centre the span's arithmetic computes is v itself
+}
+
 // Columns x .. x + N - 1 (`full`: all of them in the caller's columns): in lanes `fin` a new sample (final row
 // coordinate v, packed colour c) arrives; in lanes `pok` (a subset) the column's previous sample (pv, pc) is
 // connected to it, raster_span(pv, pc, v, c) along the column; in the other lanes of `fin` the new sample starts a
 // run, raster_point(v, c). Only pixels in v-rows [y0, y1) are written.
+//
+// With `copy` (PrewarpOptions::copy_still_runs; the pipelined kernel's), a `full` vector of still steps (StillStep)
+// is one row store.
 template <class DF, class MF>
-HWY_INLINE void ColumnDraw(DF df, const ColumnTarget& o, int x, bool full, MF fin, MF pok, hn::Vec<DF> pv,
+HWY_INLINE void ColumnDraw(DF df, const ColumnTarget& o, int x, bool full, bool copy, MF fin, MF pok, hn::Vec<DF> pv,
                            hn::Vec<hn::RebindToSigned<DF>> pc, hn::Vec<DF> v, hn::Vec<hn::RebindToSigned<DF>> c) {
     const hn::RebindToSigned<DF> di;
+    int ys;
+    if (copy && full && StillStep(df, o, pok, pv, v, ys)) {
+        hn::StoreU(hn::Or(c, hn::Set(di, int32_t(0xFF000000u))), di, reinterpret_cast<int32_t*>(o.vline(ys) + x));
+        return;
+    }
     auto spani = hn::FirstN(di, 0), pointi = spani;
     hn::Vec<decltype(di)> ylo, yhi;
     ColumnRows(df, o, fin, pok, pv, v, spani, pointi, ylo, yhi);
@@ -411,12 +439,35 @@ HWY_NOINLINE void ColumnBits(DF df, const ColumnTarget& o, const ColumnsWritten&
 // replayed before wrote in its column, and records them. Where the rows extend the column's interval (below it,
 // above it, or both), the lanes go together (ColumnPixels); elsewhere (rows apart from the interval, or a column
 // already on a bitmask) ColumnBits.
+//
+// With `copy`, a `full` vector of still steps (StillStep: one row y in every column) whose row lies in, or next to,
+// the interval of every column (no bitmask) is one row store of the lanes whose interval does not hold y yet.
 template <class DF, class MF>
-HWY_INLINE void ColumnDrawRev(DF df, const ColumnTarget& o, const ColumnsWritten& cw, int x, bool full, MF fin, MF pok,
-                              hn::Vec<DF> pv, hn::Vec<hn::RebindToSigned<DF>> pc, hn::Vec<DF> v,
+HWY_INLINE void ColumnDrawRev(DF df, const ColumnTarget& o, const ColumnsWritten& cw, int x, bool full, bool copy,
+                              MF fin, MF pok, hn::Vec<DF> pv, hn::Vec<hn::RebindToSigned<DF>> pc, hn::Vec<DF> v,
                               hn::Vec<hn::RebindToSigned<DF>> c) {
     const hn::RebindToSigned<DF> di;
     using VI = hn::Vec<decltype(di)>;
+    int ys;
+    if (copy && full && StillStep(df, o, pok, pv, v, ys)) {
+        const VI y = hn::Set(di, ys), one = hn::Set(di, 1);
+        const VI clo = hn::LoadU(di, cw.lo + x), chi = hn::LoadU(di, cw.hi + x);
+        const auto emp = hn::Gt(clo, chi);
+        const auto inside = hn::AndNot(emp, hn::Not(hn::Or(hn::Lt(y, clo), hn::Gt(y, chi))));
+        const auto next_to = hn::Or(emp, hn::Or(hn::Eq(y, hn::Sub(clo, one)), hn::Eq(y, hn::Add(chi, one))));
+        if (hn::AllFalse(di, hn::Ne(hn::LoadU(di, cw.bits_on + x), hn::Zero(di))) &&
+            hn::AllTrue(di, hn::Or(inside, next_to))) {
+            hn::StoreU(hn::IfThenElse(emp, y, hn::Min(clo, y)), di, cw.lo + x);
+            hn::StoreU(hn::IfThenElse(emp, y, hn::Max(chi, y)), di, cw.hi + x);
+            const VI cy = hn::Or(c, hn::Set(di, int32_t(0xFF000000u)));
+            int32_t* row = reinterpret_cast<int32_t*>(o.vline(ys) + x);
+            if (hn::AllFalse(di, inside))
+                hn::StoreU(cy, di, row);
+            else if (!hn::AllTrue(di, inside))
+                hn::BlendedStore(cy, hn::Not(inside), di, row);  // `full`: the whole vector is the caller's
+            return;
+        }
+    }
     auto spani = hn::FirstN(di, 0), pointi = spani;
     VI ylo, yhi;
     ColumnRows(df, o, fin, pok, pv, v, spani, pointi, ylo, yhi);

@@ -140,6 +140,7 @@ struct Emitter {
     ColumnTarget o;
     int x0, x1;
     float* drawn = nullptr;
+    bool copy = false;  // PrewarpOptions::copy_still_runs: still steps are copies (ColumnDraw)
 
     void operator()(int xa, int xb) const {
         const hn::ScalableTag<float> df;
@@ -163,7 +164,7 @@ struct Emitter {
             hn::BlendedStore(v, fin, df, b.cur_v + x);
             hn::BlendedStore(c, fini, di, reinterpret_cast<int32_t*>(b.cur_c + x));
             hn::BlendedStore(hn::Set(di, -1), fini, di, b.cur_ok + x);
-            ColumnDraw(df, o, x, x + N <= x1, fin, pok, pv, pc, v, c);
+            ColumnDraw(df, o, x, x + N <= x1, copy, fin, pok, pv, pc, v, c);
             if (drawn) [[unlikely]] {
                 const VF d = hn::Min(hn::Abs(hn::Sub(v, pv)), hn::Set(df, float(o.oh)));
                 *drawn += hn::GetLane(hn::SumOfLanes(df, hn::IfThenElseZero(pok, d)));
@@ -313,7 +314,7 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
     auto row = [&](int j, int ya, int yb, float* drawn) {
         const long long dropped = prepare(j, j + p.step);
         std::fill(b.cur_ok + x0, b.cur_ok + x1, 0);
-        const Emitter emit{b, ColumnTarget{pixels, ow, oh, ya, yb}, x0, x1, drawn};
+        const Emitter emit{b, ColumnTarget{pixels, ow, oh, ya, yb}, x0, x1, drawn, job.copy_still};
         WarpRow(s.pos, s.color, s.v, w, job.split_u, ow, RowOut{rc, rv, job.copy_still}, Coalescer<Emitter>{emit});
         std::swap(b.prev_c, b.cur_c);
         std::swap(b.prev_v, b.cur_v);
@@ -333,6 +334,8 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
         if (measure && drawn > kReverseDrawn * float(x1 - x0)) from = j + p.step;
     }
     const bool seam = r1 == p.count;
+    if (getenv("RTM_DEBUG_FROM"))
+        fprintf(stderr, "part %d rows %d-%d reverse from row %d (ja %d jb %d)\n", part, r0, r1, from, ja, jb);
     if (from != jb) {
         ReverseBuffers& r = reverse_buffers();
         r.reserve(ow, oh);
@@ -374,7 +377,7 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
                 const auto v = hn::LoadU(df, log.v.data() + i * N);
                 const auto fin = hn::IsFinite(v);
                 const auto ok = hn::And(fin, hn::RebindMask(df, hn::Ne(hn::LoadU(di, pok + x), hn::Zero(di))));
-                ColumnDrawRev(df, o, cw, x, x + int(N) <= x1, fin, ok, hn::LoadU(df, pv + x),
+                ColumnDrawRev(df, o, cw, x, x + int(N) <= x1, job.copy_still, fin, ok, hn::LoadU(df, pv + x),
                               hn::LoadU(di, reinterpret_cast<const int32_t*>(pc + x)), v,
                               hn::LoadU(di, reinterpret_cast<const int32_t*>(log.c.data() + i * N)));
             }

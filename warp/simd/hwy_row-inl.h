@@ -618,7 +618,7 @@ HWY_INLINE void ColumnStep(const Columns& col, const ColumnTarget& o, const uint
         const VI pc = hn::MaskedLoad(mi, di, reinterpret_cast<const int32_t*>(col.c + x));
         hn::BlendedStore(v, hn::RebindMask(df, fin), df, col.v + x);
         hn::BlendedStore(c, fin, di, reinterpret_cast<int32_t*>(col.c + x));
-        ColumnDraw(df, o, x, x + N <= x1, hn::RebindMask(df, fin), hn::RebindMask(df, pok), pv, pc, v, c);
+        ColumnDraw(df, o, x, x + N <= x1, false, hn::RebindMask(df, fin), hn::RebindMask(df, pok), pv, pc, v, c);
     }
 }
 

@@ -11,12 +11,14 @@
 //
 // Still texels (PrewarpOptions::copy_still_runs): the row warps copy runs of spans one pixel wide on pixel centres
 // (what zero displacement gives: 16 spans at a time on avx512, a vector's worth on the Highway targets, CopyStill)
-// instead of interpolating them; with the option off they interpolate them
-// too, so that the copy can be measured; the two-pass vertical pass copies blocks of still pixels, 16 columns by
-// consecutive rows (schedule.cpp, vertical_with_still). The row set-ups skip the table lookups of still texels
-// whatever the option (64 texels at a time on avx512, a vector on the Highway targets: FastTables' identity levels,
-// warp/simd/fast_tables.h). The output is the same either way. The copies are not
-// counted (PrewarpStats::still_copied stays 0 here; tests/objects/skips_test.cpp relies on that).
+// instead of interpolating them; with the option off they interpolate them too, so that the copy can be measured.
+// The two-pass vertical pass copies blocks of still pixels, 16 columns by consecutive rows (schedule.cpp,
+// vertical_with_still); the pipelined kernels copy a vector of columns whose column spans are still steps (one pixel
+// on a centre, t = 1: StillStep in warp/simd/hwy_columns-inl.h, still_step in warp/simd/avx512_pipelined.cpp),
+// forwards and in reverse mode. The row set-ups skip the table lookups of still texels whatever the option (64
+// texels at a time on avx512, a vector on the Highway targets: FastTables' identity levels,
+// warp/simd/fast_tables.h). The output is the same either way. The copies are not counted
+// (PrewarpStats::still_copied stays 0 here; tests/objects/skips_test.cpp relies on that).
 //
 // Scheduling lives here, kernels in warp/simd/avx512_two_pass.cpp and warp/simd/avx512_pipelined.cpp: a kernel takes a
 // range of rows or columns and every output pixel is computed by exactly one call, or (the pipelined kernel's row
