@@ -108,7 +108,7 @@ HWY_INLINE hn::Vec<DI> Lerp8Channel(DI di, hn::Vec<DI> ca, hn::Vec<DI> cb, hn::V
 // 128-bit block in two halves), each pixel's weight in its 4 words, one subtraction, multiplication and addition a
 // half, and the bytes packed back (packus: the sums are in [0, 255]): 15 operations where the 32-bit multiply-adds
 // of each channel took 23 (bumps 1024^2 two-pass: lerp8 is about 40% of the row warp and of the vertical pass).
-// The fourth byte comes out as lerp8 of the fourth bytes; the caller sets alpha.
+// The fourth byte, lerp8 of the fourth bytes, is replaced by alpha 255.
 alignas(16) static constexpr uint8_t kWeightWords[2][16] = {{0, 1, 0, 1, 0, 1, 0, 1, 4, 5, 4, 5, 4, 5, 4, 5},
                                                             {8, 9, 8, 9, 8, 9, 8, 9, 12, 13, 12, 13, 12, 13, 12, 13}};
 HWY_INLINE hn::Vec128<int32_t> Lerp8Channels16(hn::Vec128<int32_t> ca, hn::Vec128<int32_t> cb, hn::Vec128<int32_t> wt) {
