@@ -334,8 +334,6 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
         if (measure && drawn > kReverseDrawn * float(x1 - x0)) from = j + p.step;
     }
     const bool seam = r1 == p.count;
-    if (getenv("RTM_DEBUG_FROM"))
-        fprintf(stderr, "part %d rows %d-%d reverse from row %d (ja %d jb %d)\n", part, r0, r1, from, ja, jb);
     if (from != jb) {
         ReverseBuffers& r = reverse_buffers();
         r.reserve(ow, oh);
