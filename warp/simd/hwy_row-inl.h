@@ -53,6 +53,39 @@ struct RowOut {
     bool copy = false;
 };
 
+#if HWY_TARGET == HWY_AVX2
+// Compression of 8 lanes on AVX2 for SpanLanes: for each mask of 8 bits, the indices of the set lanes in order (then
+// the others), a nibble each. Highway 1.0.3's Compress keeps the same table as a local constexpr array, which GCC 12
+// copies onto the stack (1 KiB, rep movs) on every call: 40% of the row warp's samples when it was tried here
+// (bumps 1024^2 two-pass, 8 -> 12 ms).
+struct Compress8Table {
+    uint32_t packed[256];
+    constexpr Compress8Table() : packed() {
+        for (int m = 0; m < 256; ++m) {
+            uint32_t p = 0;
+            int k = 0;
+            for (int i = 0; i < 8; ++i)
+                if (m >> i & 1) p |= uint32_t(i) << (4 * k++);
+            for (int i = 0; i < 8; ++i)
+                if (!(m >> i & 1)) p |= uint32_t(i) << (4 * k++);
+            packed[m] = p;
+        }
+    }
+};
+inline constexpr Compress8Table kCompress8;
+
+// The lanes of v where `bits` is set, moved to the lowest lanes in order, stored at p (the other lanes not written:
+// a masked store); returns how many.
+HWY_INLINE int CompressStore8(__m256i v, unsigned bits, int32_t* p) {
+    const __m256i idx = _mm256_srlv_epi32(_mm256_set1_epi32(int32_t(kCompress8.packed[bits])),
+                                          _mm256_setr_epi32(0, 4, 8, 12, 16, 20, 24, 28));
+    const int n = __builtin_popcount(bits);
+    const __m256i keep = _mm256_cmpgt_epi32(_mm256_set1_epi32(n), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+    _mm256_maskstore_epi32(p, keep, _mm256_permutevar8x32_epi32(v, idx));
+    return n;
+}
+#endif
+
 // The spans of lanes `span` (pa != pb, from sample a to sample b) into row `out`: each lane's pixels lo .. hi as
 // raster_span computes them (centres in (pa, pb] or [pb, pa), clamped to [0, n_out)), only those in [cl, ch] (the
 // caller's clip range, within [0, n_out); the backward rows draw only the pixels no later span covers), colour by
@@ -61,7 +94,8 @@ struct RowOut {
 // their pixels are disjoint, in lane order, and together one run xa .. xb, handed to before(xa, xb) before any of them
 // is written. Where the run is at most 4 vectors long (spans of a pixel or two, the usual case), each pixel of it looks
 // up its lane (the lane whose pixels contain it) and the run is computed and stored a vector of pixels at a time;
-// otherwise the first pixel of every lane, then the second of those that have one, ..., stored lane by lane.
+// otherwise the first pixel of every lane, then the second of those that have one, ..., stored lane by lane. On AVX2,
+// lanes of at most two pixels each (bumps) go span by span, compressed into place (below).
 template <class DF, class DI, class MF, class Before>
 HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb, hn::Vec<DI> ca, hn::Vec<DI> cb,
                           hn::Vec<DF> va, hn::Vec<DF> vb, bool fwd, RowOut out, const Before& before, int cl, int ch) {
@@ -92,6 +126,54 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
     const int xa = lane_x[first], xb = lane_h[lastl];
     before(xa, xb);
     const int len = xb - xa + 1;
+#if HWY_TARGET == HWY_AVX2
+    // Every lane's span one or two pixels wide (bumps: nearly every group): the lanes' first pixels, then their
+    // second ones where they have one, a vector each from the lanes' own samples (no lookup), the two interleaved
+    // into pixel order and compressed into place with masked stores (the AVX-512 kernels' spans of up to two pixels,
+    // warp/simd/avx512_line.h). The centre of lo + 1 is that of lo plus 1, exactly (pixel indices are below 2^22).
+    if (hn::AllTrue(di, hn::Or(hn::Not(todo), hn::Lt(hn::Sub(xhi, xlo), hn::Set(di, 2))))) {
+        const VF xc = hn::Add(lo, half);
+        auto at = [&](VF c, VI & col, VF & v) HWY_ATTR __attribute__((always_inline)) {
+            VF tt = hn::Mul(hn::Sub(c, pa), inv);
+            tt = hn::IfThenElse(hn::Lt(tt, zero), zero, hn::IfThenElse(hn::Lt(one, tt), one, tt));  // std::clamp
+            col = Lerp8At(df, di, tt, ca, cb);
+            v = hn::Add(hn::Mul(va, hn::Sub(one, tt)), hn::Mul(vb, tt));  // attr_lerp, no contraction
+        };
+        int32_t* oc = reinterpret_cast<int32_t*>(out.c + xa);
+        float* ov = out.v + xa;
+        VI c1;
+        VF v1;
+        at(xc, c1, v1);
+        const auto two = hn::And(todo, hn::Lt(xlo, xhi));
+        const unsigned b1 = unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(hn::VecFromMask(di, todo).raw)));
+        if (hn::AllFalse(di, two)) {
+            CompressStore8(c1.raw, b1, oc);
+            CompressStore8(_mm256_castps_si256(v1.raw), b1, reinterpret_cast<int32_t*>(ov));
+            return;
+        }
+        VI c2;
+        VF v2;
+        at(hn::Add(xc, one), c2, v2);
+        // (a0 b0 a1 b1 a2 b2 a3 b3) and (a4 b4 .. a7 b7): the unpacks work within 128-bit blocks.
+        auto zip = [](__m256i a, __m256i b, __m256i& l, __m256i& h) {
+            const __m256i ul = _mm256_unpacklo_epi32(a, b), uh = _mm256_unpackhi_epi32(a, b);
+            l = _mm256_permute2x128_si256(ul, uh, 0x20);
+            h = _mm256_permute2x128_si256(ul, uh, 0x31);
+        };
+        __m256i cl4, ch4, vl4, vh4, ml4, mh4;
+        zip(c1.raw, c2.raw, cl4, ch4);
+        zip(_mm256_castps_si256(v1.raw), _mm256_castps_si256(v2.raw), vl4, vh4);
+        zip(hn::VecFromMask(di, todo).raw, hn::VecFromMask(di, two).raw, ml4, mh4);  // the masks the same way
+        const unsigned bl = unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(ml4)));
+        const unsigned bh = unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(mh4)));
+        int32_t* ovi = reinterpret_cast<int32_t*>(ov);
+        const int n1 = CompressStore8(cl4, bl, oc);
+        CompressStore8(vl4, bl, ovi);
+        CompressStore8(ch4, bh, oc + n1);
+        CompressStore8(vh4, bh, ovi + n1);
+        return;
+    }
+#endif
     // Measured (thread CPU time, bumps 1024^2 two-pass, samples in the row warp): AVX2 about even with the lane by
     // lane loop below, SSE4 8% slower; so only from 8 lanes on.
     if (N >= 8 && len <= 4 * N) {
