@@ -51,6 +51,7 @@ struct RowOut {
     // Copy runs of a vector of spans one pixel wide on pixel centres (zero displacement) instead of shading them
     // (PrewarpOptions::copy_still_runs; CopyStill). The row is the same either way.
     bool copy = false;
+    int width = 0;  // pixels in the row (WarpRow and WarpRowBackward set it from their n_out)
 };
 
 #if HWY_TARGET == HWY_AVX2
@@ -84,6 +85,27 @@ HWY_INLINE int CompressStore8(__m256i v, unsigned bits, int32_t* p) {
     _mm256_maskstore_epi32(p, keep, _mm256_permutevar8x32_epi32(v, idx));
     return n;
 }
+#endif
+
+#if HWY_TARGET == HWY_SSE4 || HWY_TARGET == HWY_NEON
+// Compression of 4 lanes of 32 bits for SpanLanes: for each mask of 4 bits, the byte indices that move the set lanes
+// to the lowest lanes in order (the others after them). (Highway 1.0.3's Compress keeps its table as a local constexpr
+// array, which GCC 12 copies onto the stack on every call: see Compress8Table.)
+struct Compress4Table {
+    uint8_t idx[16][16];
+    constexpr Compress4Table() : idx() {
+        for (int m = 0; m < 16; ++m) {
+            int k = 0;
+            for (int pass = 0; pass < 2; ++pass)
+                for (int i = 0; i < 4; ++i)
+                    if (((m >> i) & 1) == (pass == 0 ? 1 : 0)) {
+                        for (int b = 0; b < 4; ++b) idx[m][4 * k + b] = uint8_t(4 * i + b);
+                        ++k;
+                    }
+        }
+    }
+};
+alignas(16) inline constexpr Compress4Table kCompress4;
 #endif
 
 // The spans of lanes `span` (pa != pb, from sample a to sample b) into row `out`: each lane's pixels lo .. hi as
@@ -171,6 +193,57 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
         CompressStore8(vl4, bl, ovi);
         CompressStore8(ch4, bh, oc + n1);
         CompressStore8(vh4, bh, ovi + n1);
+        return;
+    }
+#elif HWY_TARGET == HWY_SSE4 || HWY_TARGET == HWY_NEON
+    // The same with 4 lanes, where no masked store exists: the run's pixels go out in whole-vector stores (the first
+    // at xa, the second right after the first one's pixels, overwriting what the first wrote past them), and the at
+    // most 4 pixels past the run that the stores overwrite are read before and written back after, all inside the row
+    // (the caller's, written by this thread alone); otherwise the lane by lane loop below.
+    if (xb + 4 < out.width && hn::AllTrue(di, hn::Or(hn::Not(todo), hn::Lt(hn::Sub(xhi, xlo), hn::Set(di, 2))))) {
+        const hn::Repartition<uint8_t, DI> du8;
+        const VF xc = hn::Add(lo, half);
+        auto at = [&](VF c, VI & col, VF & v) HWY_ATTR __attribute__((always_inline)) {
+            VF tt = hn::Mul(hn::Sub(c, pa), inv);
+            tt = hn::IfThenElse(hn::Lt(tt, zero), zero, hn::IfThenElse(hn::Lt(one, tt), one, tt));  // std::clamp
+            col = Lerp8At(df, di, tt, ca, cb);
+            v = hn::Add(hn::Mul(va, hn::Sub(one, tt)), hn::Mul(vb, tt));  // attr_lerp, no contraction
+        };
+        auto bits4 = [&](VI m) HWY_ATTR __attribute__((always_inline)) {
+            uint8_t b[8] = {};
+            hn::StoreMaskBits(di, hn::MaskFromVec(m), b);
+            return unsigned(b[0]) & 15u;
+        };
+        // Lanes `bits` of v to the lowest lanes, stored whole at p; returns how many.
+        auto put = [&](VI v, unsigned bits, int32_t* p) HWY_ATTR __attribute__((always_inline)) {
+            const auto idx = hn::Load(du8, kCompress4.idx[bits]);
+            hn::StoreU(hn::BitCast(di, hn::TableLookupBytes(hn::BitCast(du8, v), idx)), di, p);
+            return int(hwy::PopCount(bits));
+        };
+        int32_t* oc = reinterpret_cast<int32_t*>(out.c + xa);
+        int32_t* ov = reinterpret_cast<int32_t*>(out.v + xa);
+        const VI keep_c = hn::LoadU(di, oc + len), keep_v = hn::LoadU(di, ov + len);
+        VI c1, c2;
+        VF v1, v2;
+        at(xc, c1, v1);
+        const auto two = hn::And(todo, hn::Lt(xlo, xhi));
+        const VI t1 = hn::VecFromMask(di, todo);
+        if (hn::AllFalse(di, two)) {
+            const unsigned b = bits4(t1);
+            put(c1, b, oc);
+            put(hn::BitCast(di, v1), b, ov);
+        } else {
+            at(hn::Add(xc, one), c2, v2);
+            const VI t2 = hn::VecFromMask(di, two);
+            const unsigned bl = bits4(hn::InterleaveLower(di, t1, t2)), bh = bits4(hn::InterleaveUpper(di, t1, t2));
+            const VI w1 = hn::BitCast(di, v1), w2 = hn::BitCast(di, v2);
+            const int n1 = put(hn::InterleaveLower(di, c1, c2), bl, oc);
+            put(hn::InterleaveLower(di, w1, w2), bl, ov);
+            put(hn::InterleaveUpper(di, c1, c2), bh, oc + n1);
+            put(hn::InterleaveUpper(di, w1, w2), bh, ov + n1);
+        }
+        hn::StoreU(keep_c, di, oc + len);
+        hn::StoreU(keep_v, di, ov + len);
         return;
     }
 #endif
@@ -372,6 +445,7 @@ HWY_INLINE bool CopyStill(DF df, const float* pos, const uint32_t* col, const fl
 template <class Range = NoRange>
 void WarpRow(const float* pos, const uint32_t* col, const float* attr, int n, int split, int n_out, RowOut out,
              const Range& range = {}) {
+    out.width = n_out;
     const hn::ScalableTag<float> df;
     const int N = int(hn::Lanes(df));
     constexpr bool kRange = !std::is_same_v<Range, NoRange>;
@@ -503,6 +577,7 @@ inline bool RowFoldsOver(const float* pos, int n, int split, bool any_row) {
 // row pixels a texel); measured in docs/perf-history.md.
 inline bool WarpRowBackward(const float* pos, const uint32_t* col, const float* attr, int n, int split, int n_out,
                             RowOut out) {
+    out.width = n_out;
     const hn::ScalableTag<float> df;
     const int N = int(hn::Lanes(df));
     int w_lo = 0, w_hi = -1;
