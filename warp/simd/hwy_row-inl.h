@@ -148,24 +148,29 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
     const int xa = lane_x[first], xb = lane_h[lastl];
     before(xa, xb);
     const int len = xb - xa + 1;
+#if HWY_TARGET == HWY_AVX2 || HWY_TARGET == HWY_SSE4 || HWY_TARGET == HWY_NEON
+    // The span-by-span paths below: every lane's span one or two pixels wide, and each lane's colour and attribute at
+    // pixel centres c (raster_span's t, lerp8, attr_lerp).
+    const bool narrow = hn::AllTrue(di, hn::Or(hn::Not(todo), hn::Lt(hn::Sub(xhi, xlo), hn::Set(di, 2))));
+    const VF xc0 = hn::Add(lo, half);  // the centre of lo + 1 is xc0 + 1 exactly (pixel indices below 2^22)
+    auto at = [&](VF c, VI & col, VF & v) HWY_ATTR __attribute__((always_inline)) {
+        VF tt = hn::Mul(hn::Sub(c, pa), inv);
+        tt = hn::IfThenElse(hn::Lt(tt, zero), zero, hn::IfThenElse(hn::Lt(one, tt), one, tt));  // std::clamp
+        col = Lerp8At(df, di, tt, ca, cb);
+        v = hn::Add(hn::Mul(va, hn::Sub(one, tt)), hn::Mul(vb, tt));  // attr_lerp, no contraction
+    };
+#endif
 #if HWY_TARGET == HWY_AVX2
     // Every lane's span one or two pixels wide (bumps: nearly every group): the lanes' first pixels, then their
     // second ones where they have one, a vector each from the lanes' own samples (no lookup), the two interleaved
     // into pixel order and compressed into place with masked stores (the AVX-512 kernels' spans of up to two pixels,
-    // warp/simd/avx512_line.h). The centre of lo + 1 is that of lo plus 1, exactly (pixel indices are below 2^22).
-    if (hn::AllTrue(di, hn::Or(hn::Not(todo), hn::Lt(hn::Sub(xhi, xlo), hn::Set(di, 2))))) {
-        const VF xc = hn::Add(lo, half);
-        auto at = [&](VF c, VI & col, VF & v) HWY_ATTR __attribute__((always_inline)) {
-            VF tt = hn::Mul(hn::Sub(c, pa), inv);
-            tt = hn::IfThenElse(hn::Lt(tt, zero), zero, hn::IfThenElse(hn::Lt(one, tt), one, tt));  // std::clamp
-            col = Lerp8At(df, di, tt, ca, cb);
-            v = hn::Add(hn::Mul(va, hn::Sub(one, tt)), hn::Mul(vb, tt));  // attr_lerp, no contraction
-        };
+    // warp/simd/avx512_line.h).
+    if (narrow) {
         int32_t* oc = reinterpret_cast<int32_t*>(out.c + xa);
         float* ov = out.v + xa;
         VI c1;
         VF v1;
-        at(xc, c1, v1);
+        at(xc0, c1, v1);
         const auto two = hn::And(todo, hn::Lt(xlo, xhi));
         const unsigned b1 = unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(hn::VecFromMask(di, todo).raw)));
         if (hn::AllFalse(di, two)) {
@@ -175,7 +180,7 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
         }
         VI c2;
         VF v2;
-        at(hn::Add(xc, one), c2, v2);
+        at(hn::Add(xc0, one), c2, v2);
         // (a0 b0 a1 b1 a2 b2 a3 b3) and (a4 b4 .. a7 b7): the unpacks work within 128-bit blocks.
         auto zip = [](__m256i a, __m256i b, __m256i& l, __m256i& h) {
             const __m256i ul = _mm256_unpacklo_epi32(a, b), uh = _mm256_unpackhi_epi32(a, b);
@@ -200,15 +205,8 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
     // at xa, the second right after the first one's pixels, overwriting what the first wrote past them), and the at
     // most 4 pixels past the run that the stores overwrite are read before and written back after, all inside the row
     // (the caller's, written by this thread alone); otherwise the lane by lane loop below.
-    if (xb + 4 < out.width && hn::AllTrue(di, hn::Or(hn::Not(todo), hn::Lt(hn::Sub(xhi, xlo), hn::Set(di, 2))))) {
+    if (xb + 4 < out.width && narrow) {
         const hn::Repartition<uint8_t, DI> du8;
-        const VF xc = hn::Add(lo, half);
-        auto at = [&](VF c, VI & col, VF & v) HWY_ATTR __attribute__((always_inline)) {
-            VF tt = hn::Mul(hn::Sub(c, pa), inv);
-            tt = hn::IfThenElse(hn::Lt(tt, zero), zero, hn::IfThenElse(hn::Lt(one, tt), one, tt));  // std::clamp
-            col = Lerp8At(df, di, tt, ca, cb);
-            v = hn::Add(hn::Mul(va, hn::Sub(one, tt)), hn::Mul(vb, tt));  // attr_lerp, no contraction
-        };
         auto bits4 = [&](VI m) HWY_ATTR __attribute__((always_inline)) {
             uint8_t b[8] = {};
             hn::StoreMaskBits(di, hn::MaskFromVec(m), b);
@@ -225,7 +223,7 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
         const VI keep_c = hn::LoadU(di, oc + len), keep_v = hn::LoadU(di, ov + len);
         VI c1, c2;
         VF v1, v2;
-        at(xc, c1, v1);
+        at(xc0, c1, v1);
         const auto two = hn::And(todo, hn::Lt(xlo, xhi));
         const VI t1 = hn::VecFromMask(di, todo);
         if (hn::AllFalse(di, two)) {
@@ -233,7 +231,7 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
             put(c1, b, oc);
             put(hn::BitCast(di, v1), b, ov);
         } else {
-            at(hn::Add(xc, one), c2, v2);
+            at(hn::Add(xc0, one), c2, v2);
             const VI t2 = hn::VecFromMask(di, two);
             const unsigned bl = bits4(hn::InterleaveLower(di, t1, t2)), bh = bits4(hn::InterleaveUpper(di, t1, t2));
             const VI w1 = hn::BitCast(di, v1), w2 = hn::BitCast(di, v2);
