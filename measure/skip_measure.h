@@ -50,8 +50,8 @@ struct StillWallMeasurement {
     bool same_as_reference = false;
 };
 
-// Runs the rounds for two-pass and pipelined at 1 and 2 threads, on the automatic target and, when it is another
-// this CPU has, avx2 (the Highway kernels); a few seconds at 1024^2.
+// Runs the rounds for two-pass and pipelined at 1 and 2 threads, on the automatic target and, where this CPU has
+// them, avx512-hwy (when the automatic target is avx512) and avx2 (when it is another); a few seconds at 1024^2.
 std::vector<StillWallMeasurement> measure_still_wall(int size, int rounds,
                                                      const std::function<void(const std::string&)>& progress);
 

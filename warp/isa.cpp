@@ -12,11 +12,12 @@ namespace rtm {
 
 namespace {
 
-constexpr Isa kAll[] = {Isa::avx512, Isa::avx2, Isa::sse4, Isa::neon, Isa::sve, Isa::generic};
+constexpr Isa kAll[] = {Isa::avx512, Isa::avx512_hwy, Isa::avx2, Isa::sse4, Isa::neon, Isa::sve, Isa::generic};
 
 // The Highway targets that stand for `isa` (0 for avx512 and generic, which Highway does not run here).
 int64_t hwy_bits(Isa isa) {
     switch (isa) {
+        case Isa::avx512_hwy: return HWY_AVX3_DL;
         case Isa::avx2: return HWY_AVX2;
         case Isa::sse4: return HWY_SSE4;
         case Isa::neon: return HWY_NEON;
@@ -31,6 +32,7 @@ const char* isa_name(Isa isa) {
     switch (isa) {
         case Isa::automatic: return "auto";
         case Isa::avx512: return "avx512";
+        case Isa::avx512_hwy: return "avx512-hwy";
         case Isa::avx2: return "avx2";
         case Isa::sse4: return "sse4";
         case Isa::neon: return "neon";
@@ -64,6 +66,9 @@ bool isa_supported(Isa isa) {
         case Isa::automatic:
         case Isa::generic: return true;
         case Isa::avx512: return fast::cpu_supported();
+        // Highway's AVX3_DL target, with the AVX-512 VNNI the kernels use besides (Highway 1.0.3 checks AVX-VNNI).
+        case Isa::avx512_hwy:
+            return fast::cpu_supported() && (hwy::SupportedTargets() & simd::hwy_compiled_targets() & HWY_AVX3_DL);
         default: return (hwy::SupportedTargets() & simd::hwy_compiled_targets() & hwy_bits(isa)) != 0;
     }
 }

@@ -1347,6 +1347,13 @@ TEST(FastKernelCoverage, MarkedReliefsOnlyOnTheAvx512TwoPassKernels) {
 }
 
 // Every SIMD target this machine supports with both reconstructions.
+// A target's name as a test name (letters, digits and underscores: avx512-hwy is avx512_hwy).
+std::string test_name(Isa isa) {
+    std::string s = isa_name(isa);
+    std::replace(s.begin(), s.end(), '-', '_');
+    return s;
+}
+
 std::vector<MethodTarget> method_targets() {
     std::vector<MethodTarget> v;
     for (Isa isa : supported_isas()) {
@@ -1359,7 +1366,7 @@ std::vector<MethodTarget> method_targets() {
 
 INSTANTIATE_TEST_SUITE_P(Targets, FastKernels, ::testing::ValuesIn(method_targets()), [](const auto& info) {
     return std::string(info.param.method == Reconstruction::two_pass ? "TwoPass_" : "Pipelined_") +
-           isa_name(info.param.isa);
+           test_name(info.param.isa);
 });
 
 // Every SIMD target this machine supports.
@@ -1371,9 +1378,9 @@ std::vector<Isa> simd_targets() {
 }
 
 INSTANTIATE_TEST_SUITE_P(Targets, PipelinedReverseFastKernels, ::testing::ValuesIn(simd_targets()),
-                         [](const auto& info) { return std::string(isa_name(info.param)); });
+                         [](const auto& info) { return test_name(info.param); });
 INSTANTIATE_TEST_SUITE_P(Targets, TwoPassReverseFastKernels, ::testing::ValuesIn(simd_targets()),
-                         [](const auto& info) { return std::string(isa_name(info.param)); });
+                         [](const auto& info) { return test_name(info.param); });
 
 }  // namespace
 }  // namespace rtm

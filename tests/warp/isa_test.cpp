@@ -35,7 +35,8 @@ protected:
 };
 
 TEST_F(IsaTest, NamesRoundTrip) {
-    for (Isa i : {Isa::automatic, Isa::avx512, Isa::avx2, Isa::sse4, Isa::neon, Isa::sve, Isa::generic}) {
+    for (Isa i :
+         {Isa::automatic, Isa::avx512, Isa::avx512_hwy, Isa::avx2, Isa::sse4, Isa::neon, Isa::sve, Isa::generic}) {
         Isa back = Isa::generic;
         ASSERT_TRUE(parse_isa(isa_name(i), back)) << isa_name(i);
         EXPECT_EQ(back, i);
@@ -45,7 +46,7 @@ TEST_F(IsaTest, NamesRoundTrip) {
     EXPECT_FALSE(parse_isa("", x));
     EXPECT_FALSE(parse_isa("AVX2", x));
     EXPECT_EQ(x, Isa::sse4);
-    EXPECT_EQ(isa_names(), "avx512, avx2, sse4, neon, sve, generic");
+    EXPECT_EQ(isa_names(), "avx512, avx512-hwy, avx2, sse4, neon, sve, generic");
 }
 
 TEST_F(IsaTest, GenericIsAlwaysSupportedAndLast) {

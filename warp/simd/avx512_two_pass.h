@@ -38,13 +38,12 @@ struct TwoPassJob {
     int split_u = 0, split_v = 0;  // split_index of the epipole along rows and columns (source)
     ImageRGBA8* out = nullptr;     // out width x out height
     // Per output column (out width entries, rounded up to 16; 64-byte aligned): the last sample the column
-    // received (final row coordinate, colour, floor and ceil) and, one bit per column, whether it has one; and the
-    // last sample of
-    // the bottom part (colour alpha 0 where none), for the span across the epipole.
+    // received (final row coordinate, colour, floor and ceil of its v - 0.5 clamped to [-1, out height]) and whether
+    // it has one (col_ok: one bit a column for these kernels; the Highway kernels, warp/simd/hwy_two_pass.h, read the
+    // same memory as one int32_t a column, -1 where it has one and 0 elsewhere); and the last sample of the bottom
+    // part (colour alpha 0 where none), for the span across the epipole.
     float* col_v = nullptr;
     uint32_t* col_c = nullptr;
-    // Floor and ceil of its v - 0.5, clamped to [-1, out height]. The Highway kernels (warp/simd/hwy_two_pass.h)
-    // keep instead, in col_fl, -1 where the column has a sample and 0 elsewhere.
     int32_t* col_fl = nullptr;
     int32_t* col_ce = nullptr;
     uint16_t* col_ok = nullptr;
@@ -71,6 +70,12 @@ struct TwoPassJob {
 inline int step_row(const TwoPassJob& job, int s) {
     const int h = job.relief->height;
     return s < job.split_v ? h - 1 - s : s - job.split_v;
+}
+
+// Output v-line of step s (the intermediate row's own line: where the row's still texels land).
+inline int step_line(const TwoPassJob& job, int s) {
+    const int j = s < job.split_v ? s : job.relief->height - 1 - (s - job.split_v);
+    return j + job.extent.bottom;
 }
 
 // Steps [s0, s1) warped horizontally into band rows 0 .. s1 - s0 - 1 (colour and v, `stride` elements apart).

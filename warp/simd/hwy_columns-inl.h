@@ -136,6 +136,46 @@ HWY_INLINE hn::Vec256<int32_t> Lerp8Channels16(hn::Vec256<int32_t> ca, hn::Vec25
     return hn::Vec256<int32_t>{_mm256_or_si256(_mm256_packus_epi16(rlo, rhi), _mm256_set1_epi32(int32_t(0xFF000000u)))};
 }
 #endif
+#if HWY_TARGET <= HWY_AVX3_DL
+// AVX-512 VBMI/VNNI: each channel a (2^14 - w) + b w + 2^13 as one dot product of the 16-bit pair (a, b) with
+// (2^14 - w, w), accumulated onto 2^13 (vpdpwssd); the pairs made by byte permutes of the two colours (invariant
+// along a column's pixels: the compiler keeps them out of the loops), bits 14..21 of the sums packed by bit-field
+// selects (vpmultishiftqb), the blue sum carrying 0xFF << 22 into the alpha byte (the sums stay below 2^22).
+struct PairIndices512 {
+    alignas(64) uint8_t idx[3][64] = {};
+    constexpr PairIndices512() {
+        for (int c = 0; c < 3; ++c)
+            for (int j = 0; j < 64; j += 4) {
+                idx[c][j] = uint8_t(j + c);           // a (the first table of the two-register permute)
+                idx[c][j + 2] = uint8_t(64 + j + c);  // b
+            }
+    }
+};
+alignas(64) static constexpr PairIndices512 kPairs512{};
+// acc + a.x * b.x + a.y * b.y in each 32-bit lane of 16-bit pairs x, y (vpdpwssd). In assembly: Highway 1.0.3's
+// AVX3_DL target enables avxvnni, not avx512vnni, so the intrinsic does not compile there (the CPU has it:
+// isa_supported checks avx512vnni).
+HWY_INLINE __m512i DotPairs(__m512i acc, __m512i a, __m512i b) {
+    asm("vpdpwssd %2, %1, %0" : "+v"(acc) : "v"(a), "v"(b));
+    return acc;
+}
+HWY_INLINE hn::Vec512<int32_t> Lerp8Channels16(hn::Vec512<int32_t> ca, hn::Vec512<int32_t> cb, hn::Vec512<int32_t> wt) {
+    const __mmask64 even16 = 0x5555555555555555ull;
+    const __m512i pr = _mm512_maskz_permutex2var_epi8(even16, ca.raw, _mm512_load_si512(kPairs512.idx[0]), cb.raw);
+    const __m512i pg = _mm512_maskz_permutex2var_epi8(even16, ca.raw, _mm512_load_si512(kPairs512.idx[1]), cb.raw);
+    const __m512i pb = _mm512_maskz_permutex2var_epi8(even16, ca.raw, _mm512_load_si512(kPairs512.idx[2]), cb.raw);
+    // (2^14 - w, w) as one 32-bit value: w (2^16 - 1) + 2^14 (2^14 - w > 0: no borrow into w's half).
+    const __m512i ww = _mm512_add_epi32(_mm512_mullo_epi32(wt.raw, _mm512_set1_epi32(0xFFFF)),
+                                        _mm512_set1_epi32(0x4000));
+    const __m512i r = DotPairs(_mm512_set1_epi32(8192), pr, ww);
+    const __m512i g = DotPairs(_mm512_set1_epi32(8192), pg, ww);
+    const __m512i b = DotPairs(_mm512_set1_epi32(8192 | (0xFF << 22)), pb, ww);
+    const __m512i sel = _mm512_set1_epi64(0x362E2E2E160E0E0Eull);  // bit offsets 14, 14, 14, 22, 46, 46, 46, 54
+    const __m512i rr = _mm512_maskz_multishift_epi64_epi8(0x1111111111111111ull, sel, r);
+    const __m512i rg = _mm512_mask_multishift_epi64_epi8(rr, 0x2222222222222222ull, sel, g);
+    return hn::Vec512<int32_t>{_mm512_mask_multishift_epi64_epi8(rg, 0xCCCCCCCCCCCCCCCCull, sel, b)};
+}
+#endif
 #endif
 
 // lerp8 of packed colours ca -> cb at parameters tt in [0, 1] or NaN (per lane): the weight of Lerp8Weight, each
@@ -158,10 +198,24 @@ template <class DF>
 HWY_INLINE hn::Vec<hn::RebindToSigned<DF>> SpanColour(DF df, hn::Vec<DF> yc, hn::Vec<DF> pv, hn::Vec<DF> inv,
                                                       hn::Vec<hn::RebindToSigned<DF>> pc,
                                                       hn::Vec<hn::RebindToSigned<DF>> c) {
+#if RTM_HWY_X86_VECTORS
+    // lerp8's weight straight from inv * 2^13 (the AVX-512 kernels' span_weight, warp/simd/avx512_line.h): w = 2n + 1
+    // with n = int(max(min((yc - pv) * (inv * 2^13), 8191), 0)), which equals min(int(t * 2^14) | 1, 2^14 - 1) for
+    // t = clamp((yc - pv) * inv, 0, 1): scaling by a power of two commutes with the rounding of the product and with
+    // the clamp (where the product is subnormal t * 2^13 < 1 either way; where inv * 2^13 overflows, t is 0 or 1
+    // either way: yc - pv is never 0 inside a span), x86's minimum gives 8191 for NaN as lerp8 does, and
+    // int(2x) | 1 = 2 int(x) + 1. Five operations where the clamp and Lerp8Weight take nine (inv * 2^13 is the
+    // same for every pixel of a span: the compiler keeps it out of the loops).
+    const hn::RebindToSigned<DF> di;
+    const hn::Vec<DF> s = hn::Mul(hn::Sub(yc, pv), hn::Mul(inv, hn::Set(df, 8192.0f)));
+    const auto n = TruncateInRange(di, hn::Max(hn::Min(s, hn::Set(df, 8191.0f)), hn::Zero(df)));
+    return Lerp8Channels16(pc, c, hn::Add(hn::Add(n, n), hn::Set(di, 1)));
+#else
     const hn::Vec<DF> zero = hn::Zero(df), one = hn::Set(df, 1.0f);
     hn::Vec<DF> tt = hn::Mul(hn::Sub(yc, pv), inv);
     tt = hn::IfThenElse(hn::Lt(tt, zero), zero, hn::IfThenElse(hn::Lt(one, tt), one, tt));  // std::clamp
     return Lerp8At(df, hn::RebindToSigned<DF>(), tt, pc, c);
+#endif
 }
 
 // Writes the lanes `on` of col to pixels (x + lane, v-row y[lane]), one at a time.
@@ -204,6 +258,26 @@ HWY_INLINE void StoreRows(DI di, const ColumnTarget& o, int x, bool full, MI act
     }
     StoreLanes(di, o, x, act, y, col);
 }
+
+#if HWY_TARGET <= HWY_AVX3
+// AVX-512: the two row stores without a branch on whether the second has lanes, and one scatter instead of the lanes
+// one by one (32-bit offsets from v-line 0 of column x: fast_prewarp_covers keeps the image under 2^31 - 16 pixels).
+HWY_INLINE void StoreRows(hn::Full512<int32_t>, const ColumnTarget& o, int x, bool, hn::Mask512<int32_t> act,
+                          hn::Vec512<int32_t> y, hn::Vec512<int32_t> col) {
+    const __mmask16 a = act.raw;
+    const int yf = _mm512_cvtsi512_si32(_mm512_permutexvar_epi32(_mm512_set1_epi32(int(_tzcnt_u32(a))), y.raw));
+    const __m512i d = _mm512_sub_epi32(y.raw, _mm512_set1_epi32(yf));
+    if (_mm512_mask_cmpgt_epu32_mask(a, d, _mm512_set1_epi32(1)) == 0) {
+        _mm512_mask_storeu_epi32(o.vline(yf) + x, a & _mm512_cmpeq_epi32_mask(d, _mm512_setzero_si512()), col.raw);
+        _mm512_mask_storeu_epi32(o.vline(std::min(yf + 1, o.oh - 1)) + x,
+                                 a & _mm512_cmpeq_epi32_mask(d, _mm512_set1_epi32(1)), col.raw);
+        return;
+    }
+    const __m512i iota = _mm512_set_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0);
+    const __m512i off = _mm512_add_epi32(_mm512_mullo_epi32(y.raw, _mm512_set1_epi32(-o.ow)), iota);
+    _mm512_mask_i32scatter_epi32(o.vline(0) + x, a, off, col.raw, 4);
+}
+#endif
 
 // Long spans, lanes `lng`, rows ylo .. yhi: row by row over the rows they cover together, one masked store a row (so
 // that each line of the output is touched once rather than once per column); where the lanes' rows are sparse (the

@@ -475,6 +475,9 @@ PipelinedKernels hwy_pipelined_kernels(Isa isa) {
 #define RTM_HWY_PIPELINED(NS) \
     { &NS::PipelinedPart, &NS::PipelinedChunk, &NS::Composite, &seam }
     switch (isa) {
+#if HWY_TARGETS & HWY_AVX3_DL
+        case Isa::avx512_hwy: return RTM_HWY_PIPELINED(N_AVX3_DL);
+#endif
 #if HWY_TARGETS & HWY_AVX2
         case Isa::avx2: return RTM_HWY_PIPELINED(N_AVX2);
 #endif

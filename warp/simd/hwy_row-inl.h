@@ -148,7 +148,7 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
     const int xa = lane_x[first], xb = lane_h[lastl];
     before(xa, xb);
     const int len = xb - xa + 1;
-#if HWY_TARGET == HWY_AVX2 || HWY_TARGET == HWY_SSE4 || HWY_TARGET == HWY_NEON
+#if HWY_TARGET <= HWY_AVX2 || HWY_TARGET == HWY_SSE4 || HWY_TARGET == HWY_NEON
     // The span-by-span paths below: every lane's span one or two pixels wide, and each lane's colour and attribute at
     // pixel centres c (raster_span's t, lerp8, attr_lerp).
     const bool narrow = hn::AllTrue(di, hn::Or(hn::Not(todo), hn::Lt(hn::Sub(xhi, xlo), hn::Set(di, 2))));
@@ -198,6 +198,42 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
         CompressStore8(vl4, bl, ovi);
         CompressStore8(ch4, bh, oc + n1);
         CompressStore8(vh4, bh, ovi + n1);
+        return;
+    }
+#elif HWY_TARGET <= HWY_AVX3
+    // The same with 16 lanes: two-register permutes interleave, compress moves the lanes into place (in registers:
+    // the compressing store to memory is slow on Zen 4), masked stores write them.
+    if (narrow) {
+        int32_t* oc = reinterpret_cast<int32_t*>(out.c + xa);
+        int32_t* ov = reinterpret_cast<int32_t*>(out.v + xa);
+        auto put = [](__m512i v, unsigned bits, int32_t* p) HWY_ATTR __attribute__((always_inline)) {
+            const __mmask16 m = __mmask16(bits);
+            _mm512_mask_storeu_epi32(p, __mmask16(_bzhi_u32(0xFFFFu, unsigned(_mm_popcnt_u32(bits)))),
+                                     _mm512_maskz_compress_epi32(m, v));
+            return int(_mm_popcnt_u32(bits));
+        };
+        VI c1;
+        VF v1;
+        at(xc0, c1, v1);
+        const auto two = hn::And(todo, hn::Lt(xlo, xhi));
+        const unsigned b1 = unsigned(todo.raw);
+        if (hn::AllFalse(di, two)) {
+            put(c1.raw, b1, oc);
+            put(_mm512_castps_si512(v1.raw), b1, ov);
+            return;
+        }
+        VI c2;
+        VF v2;
+        at(hn::Add(xc0, one), c2, v2);
+        // (a0 b0 a1 b1 .. a7 b7) and (a8 b8 .. a15 b15), the masks' bits the same way.
+        const __m512i lo_idx = _mm512_set_epi32(23, 7, 22, 6, 21, 5, 20, 4, 19, 3, 18, 2, 17, 1, 16, 0);
+        const __m512i hi_idx = _mm512_set_epi32(31, 15, 30, 14, 29, 13, 28, 12, 27, 11, 26, 10, 25, 9, 24, 8);
+        const unsigned bits = _pdep_u32(b1, 0x55555555u) | _pdep_u32(unsigned(two.raw), 0xAAAAAAAAu);
+        const __m512i w1 = _mm512_castps_si512(v1.raw), w2 = _mm512_castps_si512(v2.raw);
+        const int n1 = put(_mm512_permutex2var_epi32(c1.raw, lo_idx, c2.raw), bits & 0xFFFFu, oc);
+        put(_mm512_permutex2var_epi32(w1, lo_idx, w2), bits & 0xFFFFu, ov);
+        put(_mm512_permutex2var_epi32(c1.raw, hi_idx, c2.raw), bits >> 16, oc + n1);
+        put(_mm512_permutex2var_epi32(w1, hi_idx, w2), bits >> 16, ov + n1);
         return;
     }
 #elif HWY_TARGET == HWY_SSE4 || HWY_TARGET == HWY_NEON
@@ -738,19 +774,26 @@ inline long long PrepareRow(const ReliefTexture& t, const fast::FastTables& ft, 
     return dropped;
 }
 
-// The state of the output columns: each column's last sample (final row coordinate, packed colour) and, in ok, -1
-// where it has one and 0 elsewhere. Arrays of the output width, readable a whole vector past it.
+// The state of the output columns: each column's last sample (final row coordinate, packed colour, and floor and
+// ceil of its v - 0.5 clamped to [-1, out height]) and, in ok, -1 where it has one and 0 elsewhere. Arrays of the
+// output width, readable a whole vector past it.
 struct Columns {
     float* v;
     int32_t* ok;
     uint32_t* c;
+    int32_t* fl;
+    int32_t* ce;
 };
 
 // The column step of one row of pixels rc (packed colour, alpha 0 where not written) and rv (final row
 // coordinate) for columns [x0, x1): in every column whose pixel was written with a finite row coordinate, the span
 // from the column's last sample to it (raster_span) or, where the column had none, the point (raster_point), only
-// their pixels in v-rows [y0, y1) (ColumnDraw); the column keeps it as its last sample, and the others lose theirs.
+// their pixels in v-rows [0, oh); the column keeps it as its last sample, and the others lose theirs.
 // rc and rv are read a whole vector past x1.
+//
+// raster_span's rows floor(pv - 0.5) + 1 .. floor(v - 0.5) (v > pv) or ceil(v - 0.5) .. ceil(pv - 0.5) - 1 (v < pv),
+// clamped to [0, oh - 1], in integers from floor and ceil of v - 0.5 kept with each sample (clamping to [-1, oh]
+// first commutes with floor and ceil and changes no row in [0, oh - 1]): each step rounds its new samples only.
 HWY_INLINE void ColumnStep(const Columns& col, const ColumnTarget& o, const uint32_t* rc, const float* rv, int x0,
                            int x1) {
     const hn::ScalableTag<float> df;
@@ -758,7 +801,9 @@ HWY_INLINE void ColumnStep(const Columns& col, const ColumnTarget& o, const uint
     using VF = hn::Vec<decltype(df)>;
     using VI = hn::Vec<decltype(di)>;
     const int N = int(hn::Lanes(df));
-    const VI alpha = hn::Set(di, int32_t(0xFF000000u)), izero = hn::Zero(di);
+    const VI alpha = hn::Set(di, int32_t(0xFF000000u)), izero = hn::Zero(di), ione = hn::Set(di, 1);
+    const VI last = hn::Set(di, o.oh - 1);
+    const VF half = hn::Set(df, 0.5f), lo_clamp = hn::Set(df, -1.0f), hi_clamp = hn::Set(df, float(o.oh));
     for (int x = x0; x < x1; x += N) {
         const auto mi = hn::RebindMask(di, hn::FirstN(df, size_t(x1 - x)));
         const auto m = hn::RebindMask(df, mi);
@@ -771,9 +816,35 @@ HWY_INLINE void ColumnStep(const Columns& col, const ColumnTarget& o, const uint
         if (hn::AllFalse(di, fin)) continue;
         const VF pv = hn::MaskedLoad(m, df, col.v + x);
         const VI pc = hn::MaskedLoad(mi, di, reinterpret_cast<const int32_t*>(col.c + x));
-        hn::BlendedStore(v, hn::RebindMask(df, fin), df, col.v + x);
+        const VI pf = hn::MaskedLoad(mi, di, col.fl + x), pe = hn::MaskedLoad(mi, di, col.ce + x);
+        const VF cl = hn::Min(hn::Max(hn::Sub(v, half), lo_clamp), hi_clamp);  // v finite where it counts
+        const VI f = hn::ConvertTo(di, hn::Floor(cl)), e = hn::ConvertTo(di, hn::Ceil(cl));
+        const auto finf = hn::RebindMask(df, fin);
+        hn::BlendedStore(v, finf, df, col.v + x);
         hn::BlendedStore(c, fin, di, reinterpret_cast<int32_t*>(col.c + x));
-        ColumnDraw(df, o, x, x + N <= x1, false, hn::RebindMask(df, fin), hn::RebindMask(df, pok), pv, pc, v, c);
+        hn::BlendedStore(f, fin, di, col.fl + x);
+        hn::BlendedStore(e, fin, di, col.ce + x);
+        const auto pokf = hn::RebindMask(df, pok);
+        const auto inc = hn::RebindMask(di, hn::And(pokf, hn::Gt(v, pv)));
+        const auto dec = hn::RebindMask(di, hn::And(pokf, hn::Lt(v, pv)));
+        VI ylo = hn::Max(hn::IfThenElse(inc, hn::Add(pf, ione), e), izero);
+        VI yhi = hn::Min(hn::IfThenElse(inc, f, hn::Sub(pe, ione)), last);
+        const auto span = hn::AndNot(hn::Gt(ylo, yhi), hn::Or(inc, dec));
+        const bool full = x + N <= x1;
+        const VF inv = hn::Div(hn::Set(df, 1.0f), hn::Sub(v, pv));
+        const auto point = hn::AndNot(pok, fin);
+        if (!hn::AllFalse(di, point)) [[unlikely]] {
+            // A column that had no sample starts a run: raster_point(v, c), row int(v) where 0 <= v < oh.
+            const auto pin = hn::And(point, hn::RebindMask(di, hn::And(hn::Ge(v, hn::Zero(df)), hn::Lt(v, hi_clamp))));
+            const VI vi = hn::ConvertTo(di, v);
+            ylo = hn::IfThenElse(pin, vi, ylo);
+            yhi = hn::IfThenElse(pin, vi, yhi);
+            const auto todo = hn::Or(span, pin);
+            if (!hn::AllFalse(di, todo)) ColumnPixels(df, o, x, full, todo, span, pin, ylo, yhi, pv, inv, pc, v, c);
+            continue;
+        }
+        if (!hn::AllFalse(di, span))
+            ColumnPixels(df, o, x, full, span, span, hn::FirstN(di, 0), ylo, yhi, pv, inv, pc, v, c);
     }
 }
 

@@ -51,7 +51,7 @@ void VerticalSteps(const fast::TwoPassJob& job, int s0, int s1, const uint32_t* 
                    size_t stride, int x0, int x1) {
     const int h = job.relief->height, ow = job.out->width, oh = job.out->height;
     uint32_t* out = reinterpret_cast<uint32_t*>(job.out->pixels.data());
-    int32_t* col_ok = job.col_fl;
+    int32_t* col_ok = reinterpret_cast<int32_t*>(job.col_ok);  // one int32 a column here
     if (s0 == 0) {
         for (int y = 0; y < oh; ++y) std::memset(out + size_t(y) * size_t(ow) + size_t(x0), 0, size_t(x1 - x0) * 4);
         std::fill(col_ok + x0, col_ok + x1, 0);
@@ -66,7 +66,7 @@ void VerticalSteps(const fast::TwoPassJob& job, int s0, int s1, const uint32_t* 
                 col_ok[x] = 0;
             }
         }
-        ColumnStep(Columns{job.col_v, col_ok, job.col_c}, ColumnTarget{out, ow, oh, 0, oh},
+        ColumnStep(Columns{job.col_v, col_ok, job.col_c, job.col_fl, job.col_ce}, ColumnTarget{out, ow, oh, 0, oh},
                    band_c + size_t(st - s0) * stride, band_v + size_t(st - s0) * stride, x0, x1);
     }
     if (s1 == h && job.split_v > 0 && job.split_v < h) {
@@ -80,6 +80,29 @@ void VerticalSteps(const fast::TwoPassJob& job, int s0, int s1, const uint32_t* 
     }
 }
 
+// The still-step test (hwy_two_pass.h, StillStepsFn), a vector of columns at a time.
+uint32_t StillSteps(const fast::TwoPassJob& job, int s0, int s1, const uint32_t* band_c, const float* band_v,
+                    size_t stride, int gx0, int width) {
+    const hn::ScalableTag<float> df;
+    const hn::RebindToSigned<decltype(df)> di;
+    const int N = int(hn::Lanes(df));
+    uint32_t bits = 0;
+    for (int st = s0; st < s1; ++st) {
+        const auto centre = hn::Set(df, float(fast::step_line(job, st)) + 0.5f);
+        const float* v = band_v + size_t(st - s0) * stride + gx0;
+        const int32_t* c = reinterpret_cast<const int32_t*>(band_c + size_t(st - s0) * stride + gx0);
+        bool all = true;
+        for (int x = 0; x < width && all; x += N) {
+            const auto in = hn::FirstN(df, size_t(width - x));
+            const auto still = hn::And(hn::Eq(hn::LoadU(df, v + x), centre),
+                                       hn::RebindMask(df, hn::Lt(hn::LoadU(di, c + x), hn::Zero(di))));
+            all = hn::AllTrue(df, hn::Or(still, hn::Not(in)));
+        }
+        bits |= uint32_t(all) << (st - s0);
+    }
+    return bits;
+}
+
 }  // namespace rtm::simd::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
 
@@ -88,25 +111,29 @@ namespace rtm::simd {
 
 TwoPassKernels hwy_two_pass_kernels(Isa isa) {
     switch (isa) {
+#if HWY_TARGETS & HWY_AVX3_DL
+        case Isa::avx512_hwy: return {&N_AVX3_DL::HorizontalSteps, &N_AVX3_DL::VerticalSteps, &N_AVX3_DL::StillSteps};
+#endif
 #if HWY_TARGETS & HWY_AVX2
-        case Isa::avx2: return {&N_AVX2::HorizontalSteps, &N_AVX2::VerticalSteps};
+        case Isa::avx2: return {&N_AVX2::HorizontalSteps, &N_AVX2::VerticalSteps, &N_AVX2::StillSteps};
 #endif
 #if HWY_TARGETS & HWY_SSE4
-        case Isa::sse4: return {&N_SSE4::HorizontalSteps, &N_SSE4::VerticalSteps};
+        case Isa::sse4: return {&N_SSE4::HorizontalSteps, &N_SSE4::VerticalSteps, &N_SSE4::StillSteps};
 #endif
 #if HWY_TARGETS & HWY_NEON
-        case Isa::neon: return {&N_NEON::HorizontalSteps, &N_NEON::VerticalSteps};
+        case Isa::neon: return {&N_NEON::HorizontalSteps, &N_NEON::VerticalSteps, &N_NEON::StillSteps};
 #endif
 #if HWY_TARGETS & HWY_SVE2
         case Isa::sve:
-            if (hwy::SupportedTargets() & HWY_SVE2) return {&N_SVE2::HorizontalSteps, &N_SVE2::VerticalSteps};
+            if (hwy::SupportedTargets() & HWY_SVE2)
+                return {&N_SVE2::HorizontalSteps, &N_SVE2::VerticalSteps, &N_SVE2::StillSteps};
 #if HWY_TARGETS & HWY_SVE
-            return {&N_SVE::HorizontalSteps, &N_SVE::VerticalSteps};
+            return {&N_SVE::HorizontalSteps, &N_SVE::VerticalSteps, &N_SVE::StillSteps};
 #else
             return {};
 #endif
 #elif HWY_TARGETS & HWY_SVE
-        case Isa::sve: return {&N_SVE::HorizontalSteps, &N_SVE::VerticalSteps};
+        case Isa::sve: return {&N_SVE::HorizontalSteps, &N_SVE::VerticalSteps, &N_SVE::StillSteps};
 #endif
         default: return {};
     }

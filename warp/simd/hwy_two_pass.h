@@ -1,5 +1,6 @@
 // The two-pass pre-warp kernels written once over Google Highway, compiled for every SIMD target of this
-// architecture but AVX-512 (x86-64: AVX2 and SSE4; ARM: NEON and SVE) and chosen at run time (warp/isa.h). Same
+// architecture (x86-64: AVX-512 with VBMI/VNNI, AVX2 and SSE4; ARM: NEON and SVE) and chosen at run time
+// (warp/isa.h). Same
 // contract as the hand-written AVX-512 kernels of warp/simd/avx512_two_pass.h, whose job they take and whose
 // scheduling (warp/simd/schedule.cpp) they share: the output of prewarp()'s two-pass lookup-table path bit for bit.
 //
@@ -13,8 +14,11 @@
 // Vertical steps: the columns advance together, as many in the lanes of a vector as the target has; each lane
 // computes what raster_span / raster_point compute for its column, operation by operation in float (no
 // contraction: the file is compiled with -ffp-contract=off, and SSE4 has no FMA anyway), and the colour with lerp8's
-// integer formula. Where the pixels go (warp/simd/hwy_columns-inl.h): two masked row stores a step where the lanes
-// share a row or the next (AVX2, SVE), lane by lane otherwise; spans of 5 pixels and more row by row over the lanes.
+// integer formula (on AVX-512 as the hand-written kernels compute it: VNNI dot products); each column keeps floor
+// and ceil of its last sample's v - 0.5 (ColumnStep), so a step rounds its new samples only. Where the pixels go
+// (warp/simd/hwy_columns-inl.h): two masked row stores a step where the lanes share a row or the next (AVX-512,
+// AVX2, SVE), otherwise one scatter (AVX-512) or lane by lane; spans of 5 pixels and more row by row over the lanes.
+// Still steps (zero displacement) are copied by the shared scheduling, tested by StillSteps a vector at a time.
 //
 // The building blocks (row set-up, row warp, column step) are shared with the Highway pipelined kernel
 // (warp/simd/hwy_row-inl.h, warp/simd/hwy_columns-inl.h, warp/simd/hwy_pipelined.h). Not yet here
@@ -34,10 +38,16 @@ namespace rtm::simd {
 // uses at the same time (one per band slot: the kernels then allocate nothing, whichever thread runs them).
 using HorizontalStepsFn = void (*)(const fast::TwoPassJob&, int, int, uint32_t*, float*, size_t, float* scratch);
 using VerticalStepsFn = void (*)(const fast::TwoPassJob&, int, int, const uint32_t*, const float*, size_t, int, int);
+// The still-step test of the vertical pass (warp/simd/schedule.cpp, vertical_with_still): bit i set where step
+// s0 + i holds in every column of [gx0, gx0 + width) (width <= 16) a written pixel (alpha 255) on the centre of its
+// own output line (v == fast::step_line + 0.5). Band rows are read a whole vector past gx0 + width.
+using StillStepsFn = uint32_t (*)(const fast::TwoPassJob&, int s0, int s1, const uint32_t* band_c, const float* band_v,
+                                  size_t stride, int gx0, int width);
 
 struct TwoPassKernels {
     HorizontalStepsFn horizontal = nullptr;
     VerticalStepsFn vertical = nullptr;
+    StillStepsFn still = nullptr;  // null: the plain C++ test
 };
 
 // The Highway kernels compiled for `isa` (avx2, sse4, neon, sve); null pointers for any other target or one this

@@ -1,6 +1,7 @@
 #include "warp/simd/schedule.h"
 
 #if RTM_AVX512_KERNELS
+#include <cstdlib>
 #include <immintrin.h>
 #endif
 #include <tbb/blocked_range.h>
@@ -191,18 +192,11 @@ namespace {
 // relief and view (the test is on the intermediate pixels themselves); the first step of each part is never
 // copied (a column starts afresh there, and the kernels keep the bottom part's last samples for the seam).
 
-// Output v-line of step st (the intermediate row's own line).
-inline int step_line(const fast::TwoPassJob& job, int st) {
-    const int j = st < job.split_v ? st : job.relief->height - 1 - (st - job.split_v);
-    return j + job.extent.bottom;
-}
+using fast::step_line;
 
 struct StillColumns {
     const simd::TwoPassKernels* kernels = nullptr;
     const fast::TwoPassJob* job = nullptr;
-    // The hand-written AVX-512 kernels keep floor and ceil of each column's v - 0.5 in col_fl and col_ce; the
-    // Highway kernels keep in col_fl whether the column has a sample (warp/simd/avx512_two_pass.h).
-    bool floor_ceil_state = false;
     // Per group of 16 columns: whether the last step handed to the vertical pass held still pixels in all its
     // columns (a band's first step continues the previous band's last).
     uint8_t* group_still = nullptr;
@@ -211,6 +205,7 @@ struct StillColumns {
 // Bit i: step s0 + i holds in every column of [gx0, gx0 + width) a written pixel on the centre of its own output
 // line. Alpha 255 is tested (the sign bit: written pixels have it, unwritten ones are 0), stricter than the
 // kernels' "alpha != 0": a pixel this turns down goes to the kernels, exact either way.
+// (The kernels' own test, TwoPassKernels::still, where they have one.)
 uint32_t still_steps(const fast::TwoPassJob& job, int s0, int s1, const uint32_t* band_c, const float* band_v,
                      size_t stride, int gx0, int width) {
     uint32_t bits = 0;
@@ -226,12 +221,14 @@ uint32_t still_steps(const fast::TwoPassJob& job, int s0, int s1, const uint32_t
 }
 
 #if RTM_AVX512_KERNELS
-// The same for 16 columns with AVX-512 (only where the AVX-512 kernels run: the CPU has been checked). The test in
-// plain C++ compiled for the baseline (SSE2) and a kernel call per group and run of steps made the brick wall
-// 1024^2 slower than the kernels on every step (3.9 against 3.4 ms, 1 thread).
+// The same with AVX-512, the hand-written kernels' TwoPassKernels::still (only where they run: the CPU has been
+// checked). The test in plain C++ compiled for the baseline (SSE2) and a kernel call per group and run of steps made
+// the brick wall 1024^2 slower than the kernels on every step (3.9 against 3.4 ms, 1 thread); so did it for the
+// Highway kernels (SSE4 bricks 1024^2 two-pass 8.0 -> 5.4 ms with a test of their own, hwy_two_pass.cpp).
 __attribute__((target("avx512f,avx512dq"))) uint32_t still_steps16(const fast::TwoPassJob& job, int s0, int s1,
                                                                    const uint32_t* band_c, const float* band_v,
-                                                                   size_t stride, int gx0) {
+                                                                   size_t stride, int gx0, int width) {
+    if (width != 16) return still_steps(job, s0, s1, band_c, band_v, stride, gx0, width);
     uint32_t bits = 0;
     for (int st = s0; st < s1; ++st) {
         const __m512 centre = _mm512_set1_ps(float(step_line(job, st)) + 0.5f);
@@ -279,13 +276,8 @@ void vertical_with_still(const StillColumns& sc, int s0, int s1, const uint32_t*
     uint32_t copy = 0;
     auto group_copy = [&](int g0) {
         const int width = std::min(16, x1 - g0);
-#if RTM_AVX512_KERNELS
-        const uint32_t still = width == 16 && sc.floor_ceil_state
-                                   ? still_steps16(job, s0, s1, band_c, band_v, stride, g0)
-                                   : still_steps(job, s0, s1, band_c, band_v, stride, g0, width);
-#else
-        const uint32_t still = still_steps(job, s0, s1, band_c, band_v, stride, g0, width);
-#endif
+        const uint32_t still = k.still ? k.still(job, s0, s1, band_c, band_v, stride, g0, width)
+                                       : still_steps(job, s0, s1, band_c, band_v, stride, g0, width);
         uint8_t& prev = sc.group_still[g0 >> 4];
         const uint32_t c = still & ((still << 1) | prev) & first_bits;
         prev = uint8_t((still >> (s1 - 1 - s0)) & 1u);
@@ -321,8 +313,7 @@ void vertical_with_still(const StillColumns& sc, int s0, int s1, const uint32_t*
                         job.col_v[x] = float(y) + 0.5f;
                         job.col_c[x] = c[x];
                     }
-                    if (sc.floor_ceil_state)
-                        for (int x = gx0; x < gx1; ++x) job.col_fl[x] = job.col_ce[x] = y;
+                    for (int x = gx0; x < gx1; ++x) job.col_fl[x] = job.col_ce[x] = y;
                     // And its carried displacement (a copied pixel is the same whether or not it was connected to
                     // the one before: a one-pixel span at t = 1 or a point on the same pixel).
                     if (job.threshold > 0.0f) {
@@ -344,7 +335,7 @@ void vertical_with_still(const StillColumns& sc, int s0, int s1, const uint32_t*
 PrewarpStats fast_two_pass(const simd::TwoPassKernels& kernels, const ReliefTexture& relief,
                            const PrewarpCoefficients& k, const PrewarpOptions& options, const PrewarpExtent& e,
                            const PrewarpTables& ref_tables, const fast::FastTables& tables, PrewarpWorkspace& ws,
-                           ImageRGBA8& out, bool floor_ceil_state) {
+                           ImageRGBA8& out) {
     const int w = relief.width, h = relief.height;
     const int ow = w + e.left + e.right, oh = h + e.bottom + e.top;
     std::atomic<long long> dropped{0};
@@ -404,7 +395,6 @@ PrewarpStats fast_two_pass(const simd::TwoPassKernels& kernels, const ReliefText
     StillColumns still;
     still.kernels = &kernels;
     still.job = &job;
-    still.floor_ceil_state = floor_ceil_state;
     still.group_still = reinterpret_cast<uint8_t*>(mc + size_t(4 + band * slots) * stride);
     auto vertical = [&](int b, int x0, int x1) {
         vertical_with_still(still, b * band, std::min(h, (b + 1) * band), band_c(b % slots), band_v(b % slots),
@@ -619,14 +609,13 @@ PrewarpStats fast_prewarp(Isa isa, const ReliefTexture& relief, const PrewarpCoe
                                     &fast::pipelined_seam},
                                    relief, k, options, e, tables, ws, out);
         else
-            stats = fast_two_pass({&fast::horizontal_steps, &fast::vertical_steps}, relief, k, options, e, ref_tables,
-                                  tables, ws, out, true);
+            stats = fast_two_pass({&fast::horizontal_steps, &fast::vertical_steps, &still_steps16}, relief, k, options,
+                                  e, ref_tables, tables, ws, out);
 #endif
     } else if (options.method == Reconstruction::pipelined) {
         stats = fast_pipelined(simd::hwy_pipelined_kernels(isa), relief, k, options, e, tables, ws, out);
     } else {
-        stats = fast_two_pass(simd::hwy_two_pass_kernels(isa), relief, k, options, e, ref_tables, tables, ws, out,
-                              false);
+        stats = fast_two_pass(simd::hwy_two_pass_kernels(isa), relief, k, options, e, ref_tables, tables, ws, out);
     }
     stats.isa = isa;
     return stats;
