@@ -66,7 +66,8 @@ bool isa_supported(Isa isa) {
         case Isa::automatic:
         case Isa::generic: return true;
         case Isa::avx512: return fast::cpu_supported();
-        // Highway's AVX3_DL target, with the AVX-512 VNNI the kernels use besides (Highway 1.0.3 checks AVX-VNNI).
+        // Highway's AVX3_DL target on a CPU with what the kernels use besides: AVX-512 VNNI, which Highway 1.0.3's
+        // AVX3_DL does not enable (it names avxvnni), and BMI2, both checked by fast::cpu_supported.
         case Isa::avx512_hwy:
             return fast::cpu_supported() && (hwy::SupportedTargets() & simd::hwy_compiled_targets() & HWY_AVX3_DL);
         default: return (hwy::SupportedTargets() & simd::hwy_compiled_targets() & hwy_bits(isa)) != 0;

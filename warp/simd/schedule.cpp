@@ -1,7 +1,6 @@
 #include "warp/simd/schedule.h"
 
 #if RTM_AVX512_KERNELS
-#include <cstdlib>
 #include <immintrin.h>
 #endif
 #include <tbb/blocked_range.h>
@@ -223,8 +222,8 @@ uint32_t still_steps(const fast::TwoPassJob& job, int s0, int s1, const uint32_t
 #if RTM_AVX512_KERNELS
 // The same with AVX-512, the hand-written kernels' TwoPassKernels::still (only where they run: the CPU has been
 // checked). The test in plain C++ compiled for the baseline (SSE2) and a kernel call per group and run of steps made
-// the brick wall 1024^2 slower than the kernels on every step (3.9 against 3.4 ms, 1 thread); so did it for the
-// Highway kernels (SSE4 bricks 1024^2 two-pass 8.0 -> 5.4 ms with a test of their own, hwy_two_pass.cpp).
+// the brick wall 1024^2 slower than the kernels on every step (3.9 against 3.4 ms, 1 thread); the Highway kernels
+// have a test of their own too (StillSteps, hwy_two_pass.cpp).
 __attribute__((target("avx512f,avx512dq"))) uint32_t still_steps16(const fast::TwoPassJob& job, int s0, int s1,
                                                                    const uint32_t* band_c, const float* band_v,
                                                                    size_t stride, int gx0, int width) {
