@@ -1,8 +1,9 @@
 # Install rules and the exported CMake package, all in one place:
 #   cmake --install build --prefix PREFIX
-# installs bin/rtm and bin/rtm-make-media, the static libraries as lib/librtm_<name>.a, their headers under
-# include/rtm/<name>/ (each library's include directory is include/rtm, so a header's own includes such as
-# "warp/image.h" resolve as in the source tree), include/rtm/rtm_version.h, and lib/cmake/rtm/ with rtmConfig.cmake,
+# installs bin/rtm and bin/rtm-make-media, lib/rtm/librtm_imageio.so (the image module they load), the static
+# libraries as lib/librtm_<name>.a, their headers under include/rtm/<name>/ (each library's include directory is
+# include/rtm, so a header's own includes such as "warp/image.h" resolve as in the source tree),
+# include/rtm/rtm_version.h, and lib/cmake/rtm/ with rtmConfig.cmake,
 # its version file and the exported targets: another project's find_package(rtm) then gives rtm::warp,
 # rtm::formats, rtm::texmap, rtm::procedural, rtm::truth, rtm::perpixel, rtm::objects, rtm::measure and rtm::mesh
 # (examples/prewarp_relief).
@@ -18,6 +19,8 @@ foreach(lib ${RTM_LIBRARIES})
 endforeach()
 
 install(TARGETS rtm rtm-make-media RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# The image module beside them, where formats/image_io.cpp looks (formats/CMakeLists.txt).
+install(TARGETS rtm_imageio LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/rtm)
 
 # rtm_flags and rtm_glad are exported only because the static libraries link them privately: a consumer gets
 # $<LINK_ONLY:...> of them, i.e. the glad loader's object code and the sanitizer link options of an RTM_SANITIZE

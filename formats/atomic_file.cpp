@@ -15,13 +15,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
-    std::string msg = path + ": " + what;
-    for (char& c : msg)
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-    throw IoError(msg);
-}
-
 std::string temp_name_for(const std::string& path) {
     static std::atomic<unsigned> counter{0};
     const fs::path p(path);
@@ -50,7 +43,7 @@ void AtomicFile::commit() {
         const int err = errno;
         std::error_code ignore;
         fs::remove(temp_, ignore);
-        fail(path_, std::string("cannot write: rename from temporary file failed: ") + std::strerror(err));
+        throw_io_error(path_, std::string("cannot write: rename from temporary file failed: ") + std::strerror(err));
     }
     committed_ = true;
 }
@@ -59,10 +52,10 @@ void write_text_atomically(const std::string& path, const std::string& text) {
     AtomicFile file(path);
     {
         std::ofstream out(file.temp_path(), std::ios::binary | std::ios::trunc);
-        if (!out) fail(path, std::string("cannot write: ") + std::strerror(errno));
+        if (!out) throw_io_error(path, std::string("cannot write: ") + std::strerror(errno));
         out << text;
         out.flush();
-        if (!out) fail(path, std::string("cannot write: ") + std::strerror(errno));
+        if (!out) throw_io_error(path, std::string("cannot write: ") + std::strerror(errno));
     }
     file.commit();
 }

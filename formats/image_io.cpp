@@ -1,467 +1,65 @@
-// Image files through OpenImageIO 2.4.
-//
-// Reading checks the file itself (exists, is a regular file, is not empty, no PNG chunk or OpenEXR attribute
-// claims more bytes than the file holds) and then the header's claimed size against kMaxImagePixels before any
-// pixel buffer is allocated (docs/DESIGN.md, "Input limits"). Alpha stays unassociated
-// ("oiio:UnassociatedAlpha"), so a PNG round trip is bit-exact and the colour of a texel with alpha 0 survives.
-//
-// Writing goes to a temporary file in the destination folder (same file system, so std::rename is atomic) and is
-// renamed over `path` only when the writer reports success; on any failure the temporary file is removed.
+// Image files: formats/image_io.h's functions, forwarded to the image backend (formats/image_backend.h). The backend
+// is the program's own copy of image_io_oiio.cpp if it links one, else the module librtm_imageio.so, loaded on the
+// first call (not at start: see image_backend.h for the cost that avoids).
 #include "formats/image_io.h"
 
-#include <OpenImageIO/imageio.h>
+#include <dlfcn.h>
 
-#include <algorithm>
 #include <atomic>
-#include <cctype>
-#include <cerrno>
-#include <cmath>
-#include <cstdint>
-#include <cstdio>
-#include <cstring>
+#include <cstdlib>
 #include <filesystem>
-#include <memory>
-#include <mutex>
-#include <new>
+#include <string>
 #include <system_error>
-#include <vector>
 
-#include <fcntl.h>
-#include <unistd.h>
+#include "formats/image_backend.h"
 
-#include "formats/atomic_file.h"
+// Weak: null unless the program links image_io_oiio.cpp itself (and then taken from an archive only when the program
+// asks for it, as formats/CMakeLists.txt says).
+extern "C" __attribute__((weak)) const rtm::ImageBackend* rtm_image_backend_v1();
+
+#ifndef RTM_IMAGEIO_MODULE_DIR
+#error "RTM_IMAGEIO_MODULE_DIR: the module's folder relative to the programs' folder (formats/CMakeLists.txt)"
+#endif
 
 namespace rtm {
 namespace {
 
-namespace fs = std::filesystem;
-
-static_assert(sizeof(Rgba8) == 4, "Rgba8 must be 4 tightly packed bytes");
-
-// The message is one line whatever the path holds: control characters (a newline in a file name, which a manifest
-// can ask for: found by fuzz/fuzz_relief_manifest) are shown as '?'.
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
-    std::string msg = path + ": " + what;
-    for (char& c : msg)
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-    throw IoError(msg);
-}
-
-// OpenImageIO accumulates one error per line; join them into one line.
-std::string one_line(const std::string& s) {
-    std::string out;
-    size_t start = 0;
-    while (start <= s.size()) {
-        size_t end = s.find('\n', start);
-        if (end == std::string::npos) end = s.size();
-        std::string line = s.substr(start, end - start);
-        while (!line.empty() && (line.back() == ' ' || line.back() == '.' || line.back() == '\r')) line.pop_back();
-        if (!line.empty()) out += (out.empty() ? "" : "; ") + line;
-        start = end + 1;
-    }
-    return out;
-}
-
 std::atomic<bool> g_quiet_stderr{false};
 
-// libpng reports a corrupt file through OpenImageIO's error handler (which we turn into the IoError message) and
-// then prints the same text as "libpng error: ..." on stderr itself, because OpenImageIO's handler returns. When the
-// program opted in (set_quiet_image_library_stderr), an OpenImageIO call runs inside one of these, with stderr
-// pointed at /dev/null; else it does nothing. The mutex keeps concurrent readers from restoring each other's
-// descriptor out of order.
-class QuietStderr {
-public:
-    QuietStderr() {
-        if (!g_quiet_stderr.load()) return;
-        lock_ = std::unique_lock<std::mutex>(mutex());
-        std::fflush(stderr);
-        saved_ = ::dup(STDERR_FILENO);
-        int devnull = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
-        if (saved_ >= 0 && devnull >= 0) ::dup2(devnull, STDERR_FILENO);
-        if (devnull >= 0) ::close(devnull);
-    }
-    ~QuietStderr() {
-        if (!lock_.owns_lock()) return;
-        std::fflush(stderr);
-        if (saved_ >= 0) {
-            ::dup2(saved_, STDERR_FILENO);
-            ::close(saved_);
-        }
-    }
-    QuietStderr(const QuietStderr&) = delete;
-    QuietStderr& operator=(const QuietStderr&) = delete;
-
-private:
-    static std::mutex& mutex() {
-        static std::mutex m;
-        return m;
-    }
-    std::unique_lock<std::mutex> lock_;
-    int saved_ = -1;
+struct LoadedBackend {
+    const ImageBackend* api = nullptr;
+    std::string error;  // why api is null
 };
 
-// Returns the file's size.
-std::uintmax_t check_readable_file(const std::string& path) {
-    std::error_code ec;
-    fs::file_status st = fs::status(path, ec);
-    if (ec || !fs::exists(st)) {
-        int err = ec ? ec.value() : ENOENT;
-        fail(path, std::string("cannot open: ") + std::strerror(err));
-    }
-    if (fs::is_directory(st)) fail(path, "is a directory");
-    if (!fs::is_regular_file(st)) fail(path, "is not a regular file");
-    auto size = fs::file_size(path, ec);
-    if (ec) fail(path, "cannot open: " + ec.message());
-    if (size == 0) fail(path, "file is empty");
-    return size;
-}
-
-// For a catch (...) around OpenImageIO: some of its readers throw on corrupt files instead of reporting an error
-// (the SGI reader's std::length_error, "vector::_M_default_append", found by fuzz/fuzz_relief_loader).
-std::string reader_exception() {
-    try {
-        throw;
-    } catch (const std::bad_alloc&) {
-        return "the reader ran out of memory (corrupt file?)";
-    } catch (const std::exception& e) {
-        return "the reader failed (" + one_line(e.what()) + "; corrupt file?)";
-    } catch (...) {
-        return "the reader failed (corrupt file?)";
-    }
-}
-
-// The claimed size of an image (from its header, or an OpenEXR data window) against the limits, before anything
-// allocates pixel memory.
-void check_claimed_size(const std::string& path, long long width, long long height, std::uintmax_t file_size) {
-    if (width <= 0 || height <= 0)
-        fail(path, "image header claims " + std::to_string(width) + "x" + std::to_string(height) +
-                       " pixels, expected a width and height of at least 1");
-    // Each side is below 2^33 here (a header's int, or an OpenEXR window's difference of two), so the product fits
-    // once both are within the limit.
-    if (width > kMaxImagePixels || height > kMaxImagePixels || width * height > kMaxImagePixels)
-        fail(path, "image claims " + std::to_string(width) + "x" + std::to_string(height) +
-                       " pixels, more than the limit of 16384x16384");
-    if (std::uintmax_t(width * height / kMaxPixelsPerFileByte) > file_size)
-        fail(path, "image claims " + std::to_string(width) + "x" + std::to_string(height) + " pixels, more than " +
-                       std::to_string(kMaxPixelsPerFileByte) + " per byte of a " + std::to_string(file_size) +
-                       "-byte file (truncated or corrupt)");
-}
-
-// Some decoders allocate, and clear, whatever a length field in the file claims before reading that many bytes:
-// libpng for an ancillary chunk (OpenImageIO 2.4 lets it go up to 2 GB), OpenEXR 3.1 for a header attribute. A
-// 348-byte PNG whose tEXt chunk claims 2016634473 bytes, and a 594-byte EXR whose string attribute claims 1.9 GB,
-// each made rtm touch 2 GB of memory (found by fuzz/fuzz_relief_loader). So, for these two formats (recognized by
-// their signature, whatever the file's extension), no such field may claim more bytes than the file has left.
-// PNG's IDAT is left to libpng, which streams it and says more about a file cut short in its pixel data.
-//
-// OpenEXR's header walk must follow the library's own: OpenEXR 3.1 reads a value of a known type by its type (a
-// "compression" is one byte, a channel list runs to its empty name) whatever the attribute's size field says, so a
-// walk that trusted the size fields lost step with the library and missed a string attribute claiming 1.9 GB behind a
-// channel list whose size field was short (found by the fuzzer after the first check). Here every known type's value
-// must take exactly the bytes its size field says (which every file OpenEXR writes does), so the two walks agree;
-// the data window, tile size and chunk count, from which the library sizes its tables, are held to the image limits.
-class ContainerCheck {
-public:
-    explicit ContainerCheck(const std::string& path) : path_(path), f_(std::fopen(path.c_str(), "rb"), &std::fclose) {
+LoadedBackend load_module() {
+    std::string path;
+    if (const char* env = std::getenv("RTM_IMAGEIO_MODULE"); env && *env) {
+        path = env;
+    } else {
         std::error_code ec;
-        size_ = fs::file_size(path, ec);
-        if (ec) f_.reset();
+        const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+        if (ec)
+            return {nullptr, "cannot find the running program to find " + std::string(kImageModuleName) +
+                                 " beside it (/proc/self/exe: " + ec.message() + "); set RTM_IMAGEIO_MODULE"};
+        path = (exe.parent_path() / RTM_IMAGEIO_MODULE_DIR / kImageModuleName).lexically_normal().string();
     }
-    void run() {
-        unsigned char magic[8];
-        if (!f_ || !read_at(0, magic, 8)) return;  // the reader reports what is wrong
-        if (std::memcmp(magic, "\x89PNG\r\n\x1a\n", 8) == 0) png();
-        if (std::memcmp(magic, "\x76\x2f\x31\x01", 4) == 0) exr(magic[5] & 0x10);  // flags: bit 12 = multi-part
+    void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!handle) {
+        const char* why = ::dlerror();
+        return {nullptr, "cannot load the image module (" + std::string(why ? why : path) +
+                             "); set RTM_IMAGEIO_MODULE to the path of " + kImageModuleName};
     }
-
-private:
-    bool read_at(std::uintmax_t pos, unsigned char* out, size_t n) {
-        if (pos + n > size_) return false;
-        if (pos != at_ && ::fseeko(f_.get(), off_t(pos), SEEK_SET) != 0) return false;
-        at_ = pos + n;
-        return std::fread(out, 1, n, f_.get()) == n;
-    }
-    static std::string printable(const std::string& name) {
-        std::string out;
-        for (char c : name) out += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
-        return out;
-    }
-    void check(const char* format, const char* what, const std::string& name, std::uintmax_t pos,
-               std::uintmax_t claimed, std::uintmax_t from) {
-        if (claimed <= size_ - std::min(size_, from)) return;
-        fail(path_, std::string("cannot read as an image: ") + format + " " + what + " \"" + printable(name) +
-                        "\" at byte " + std::to_string(pos) + " claims " + std::to_string(claimed) +
-                        " bytes, more than the " + std::to_string(size_ - std::min(size_, from)) +
-                        " left in the file (truncated or corrupt)");
-    }
-    void png() {
-        unsigned char h[8];
-        for (std::uintmax_t pos = 8; read_at(pos, h, 8);) {
-            const std::uintmax_t length = std::uintmax_t(h[0]) << 24 | std::uintmax_t(h[1]) << 16 |
-                                          std::uintmax_t(h[2]) << 8 | std::uintmax_t(h[3]);
-            const std::string type(reinterpret_cast<const char*>(h + 4), 4);
-            if (type == "IEND") return;
-            if (type != "IDAT") check("PNG", "chunk", type, pos, length, pos + 8);
-            pos += 12 + length;
-        }
-    }
-
-    // OpenEXR: little-endian 32-bit integers; strings end in \0 and hold at most 255 characters (Name::MAX_LENGTH).
-    static int32_t le32(const unsigned char* b) {
-        return int32_t(uint32_t(b[0]) | uint32_t(b[1]) << 8 | uint32_t(b[2]) << 16 | uint32_t(b[3]) << 24);
-    }
-    // Reads a string at `pos` (moved past it); false at the end of the file. A string without its \0 within 256
-    // bytes is refused: OpenEXR refuses it too, and the walk could not follow it.
-    bool read_string(std::uintmax_t& pos, std::string& out, const char* what) {
-        out.clear();
-        const std::uintmax_t start = pos;
-        for (unsigned char c; read_at(pos++, &c, 1);) {
-            if (c == 0) return true;
-            if (out.size() == 255)
-                fail(path_, std::string("cannot read as an image: OpenEXR ") + what + " at byte " +
-                                std::to_string(start) + " is longer than 255 characters (corrupt)");
-            out += char(c);
-        }
-        return false;
-    }
-    // The bytes OpenEXR 3.1 reads for a value of a fixed-size type, whatever the size field says; 0 for the others.
-    static int exr_fixed_size(const std::string& type) {
-        static const std::pair<const char*, int> kFixed[] = {{"box2i", 16},
-                                                             {"box2f", 16},
-                                                             {"chromaticities", 32},
-                                                             {"compression", 1},
-                                                             {"deepImageState", 1},
-                                                             {"double", 8},
-                                                             {"envmap", 1},
-                                                             {"float", 4},
-                                                             {"int", 4},
-                                                             {"keycode", 28},
-                                                             {"lineOrder", 1},
-                                                             {"m33d", 72},
-                                                             {"m33f", 36},
-                                                             {"m44d", 128},
-                                                             {"m44f", 64},
-                                                             {"rational", 8},
-                                                             {"tiledesc", 9},
-                                                             {"timecode", 8},
-                                                             {"v2d", 16},
-                                                             {"v2f", 8},
-                                                             {"v2i", 8},
-                                                             {"v3d", 24},
-                                                             {"v3f", 12},
-                                                             {"v3i", 12}};
-        for (const auto& [name, bytes] : kFixed)
-            if (type == name) return bytes;
-        return 0;
-    }
-    [[noreturn]] void exr_mismatch(const std::string& name, const std::string& type, std::uintmax_t at,
-                                   std::uintmax_t claimed, const std::string& takes) {
-        fail(path_, "cannot read as an image: OpenEXR attribute \"" + printable(name) + "\" (" + printable(type) +
-                        ") at byte " + std::to_string(at) + " has a size field of " + std::to_string(claimed) +
-                        " but its value takes " + takes + " (corrupt)");
-    }
-    // The bytes a value of a variable-size type takes as OpenEXR reads it, from `pos`; each length inside is held
-    // to the file. Returns the size field itself for types read by it (string, opaque, ...).
-    std::uintmax_t exr_value_bytes(const std::string& name, const std::string& type, std::uintmax_t at,
-                                   std::uintmax_t pos, std::uintmax_t claimed) {
-        const std::uintmax_t start = pos;
-        unsigned char b[16];
-        if (type == "chlist") {  // channels up to an empty name: name, then type, pLinear, 3 reserved, x and y sampling
-            for (std::string channel;;) {
-                if (!read_string(pos, channel, "channel name")) return pos - start;  // cut short: the reader says
-                if (channel.empty()) return pos - start;
-                pos += 16;
-            }
-        }
-        if (type == "preview") {  // width, height, then width x height RGBA bytes the library allocates
-            if (!read_at(pos, b, 8)) return claimed;
-            const std::uintmax_t w = uint32_t(le32(b)), h = uint32_t(le32(b + 4));
-            if ((w != 0 && h > size_ / w) || 8 + 4 * w * h != claimed)  // (the product is checked before it is taken)
-                exr_mismatch(name, type, at, claimed,
-                             "8 + 4 x " + std::to_string(w) + " x " + std::to_string(h) + " bytes (its pixels)");
-            return claimed;
-        }
-        if (type == "floatvector") return claimed / 4 * 4;  // whole floats only
-        if (type == "stringvector") {                       // (length, characters) pairs while the size field lasts
-            while (pos - start < claimed) {
-                if (!read_at(pos, b, 4)) return pos - start;
-                const int32_t n = le32(b);
-                if (n < 0) exr_mismatch(name, type, at, claimed, "a string of negative length " + std::to_string(n));
-                check("OpenEXR", "string in attribute", name, pos, std::uintmax_t(n), pos + 4);
-                pos += 4 + std::uintmax_t(n);
-            }
-            return pos - start;
-        }
-        return claimed;
-    }
-    // A header is a list of attributes (name\0 type\0 int32 size, then the value) ended by an empty name; a
-    // multi-part file has several headers, the list ended by an empty header.
-    void exr(bool multi_part) {
-        std::uintmax_t pos = 8;
-        std::string name, type;
-        do {
-            if (!read_string(pos, name, "attribute name") || name.empty()) return;
-            while (!name.empty()) {
-                const std::uintmax_t at = pos - name.size() - 1;
-                unsigned char n[4];
-                if (!read_string(pos, type, "attribute type") || !read_at(pos, n, 4)) return;
-                pos += 4;
-                const int32_t size_field = le32(n);
-                if (size_field < 0) return;  // OpenEXR refuses that itself
-                const std::uintmax_t claimed = std::uintmax_t(size_field);
-                check("OpenEXR", "attribute", name, at, claimed, pos);
-                const int fixed = exr_fixed_size(type);
-                const std::uintmax_t takes = fixed ? std::uintmax_t(fixed)
-                                                   : exr_value_bytes(name, type, at, pos, claimed);
-                if (takes != claimed) exr_mismatch(name, type, at, claimed, std::to_string(takes) + " bytes");
-                exr_limits(name, type, pos);
-                pos += claimed;
-                if (!read_string(pos, name, "attribute name")) return;
-            }
-        } while (multi_part);
-    }
-    // The attributes from which OpenEXR sizes its tables and buffers when the file is opened.
-    void exr_limits(const std::string& name, const std::string& type, std::uintmax_t pos) {
-        unsigned char b[16];
-        if (name == "dataWindow" && type == "box2i" && read_at(pos, b, 16)) {
-            const long long x0 = le32(b), y0 = le32(b + 4), x1 = le32(b + 8), y1 = le32(b + 12);
-            check_claimed_size(path_, x1 - x0 + 1, y1 - y0 + 1, size_);
-        } else if (name == "tiles" && type == "tiledesc" && read_at(pos, b, 8)) {
-            const long long tw = uint32_t(le32(b)), th = uint32_t(le32(b + 4));
-            if (tw > kMaxImagePixels || th > kMaxImagePixels || tw * th > kMaxImagePixels)
-                fail(path_, "cannot read as an image: OpenEXR tiles of " + std::to_string(tw) + "x" +
-                                std::to_string(th) + " pixels, more than the limit of 16384x16384");
-        } else if (name == "chunkCount" && type == "int" && read_at(pos, b, 4)) {
-            const int32_t chunks = le32(b);
-            if (chunks < 0 || std::uintmax_t(chunks) > size_ / 8)  // an 8-byte offset per chunk at least
-                fail(path_, "cannot read as an image: OpenEXR chunkCount " + std::to_string(chunks) +
-                                " does not fit in a " + std::to_string(size_) + "-byte file (corrupt)");
-        }
-    }
-
-    std::string path_;
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> f_;
-    std::uintmax_t size_ = 0;
-    std::uintmax_t at_ = 0;  // the stream's position
-};
-
-// An opened image whose size has been checked; `spec` describes subimage 0, mip level 0.
-struct OpenedImage {
-    std::unique_ptr<OIIO::ImageInput> in;
-    OIIO::ImageSpec spec;
-};
-
-OpenedImage open_checked(const std::string& path) {
-    const std::uintmax_t file_size = check_readable_file(path);
-    ContainerCheck(path).run();
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    std::unique_ptr<OIIO::ImageInput> in;
-    try {
-        QuietStderr quiet;
-        in = OIIO::ImageInput::open(path, &config);
-    } catch (...) {
-        fail(path, "cannot read as an image: " + reader_exception());
-    }
-    if (!in) {
-        std::string msg = one_line(OIIO::geterror());
-        fail(path, "cannot read as an image" + (msg.empty() ? std::string() : ": " + msg));
-    }
-    OIIO::ImageSpec spec = in->spec();
-    // Check the claimed size before anything allocates pixel memory.
-    if (spec.depth > 1) fail(path, "is a volume image (depth " + std::to_string(spec.depth) + "), not a 2-D image");
-    check_claimed_size(path, spec.width, spec.height, file_size);
-    if (spec.nchannels < 1) fail(path, "image has no channels");
-    return {std::move(in), spec};
+    auto entry = reinterpret_cast<const ImageBackend* (*)()>(::dlsym(handle, "rtm_image_backend_v1"));
+    if (!entry) return {nullptr, "the image module " + path + " is not this version's (no rtm_image_backend_v1)"};
+    return {entry(), {}};
 }
 
-// Reads the first `nch` channels of the whole image as `type` into `data`, whose pixels are `out_nch` >= nch
-// channels apart (the channels past nch are left as they are).
-void read_channels(const std::string& path, OpenedImage& im, int nch, int out_nch, OIIO::TypeDesc type, void* data) {
-    const OIIO::ImageSpec& s = im.spec;
-    const OIIO::stride_t out_pixel = OIIO::stride_t(out_nch) * OIIO::stride_t(type.size());
-    const OIIO::stride_t out_row = out_pixel * OIIO::stride_t(s.width);
-    bool ok = true;
-    try {
-        QuietStderr quiet;
-        if (s.tile_width == 0 && s.channelformats.empty() && s.format.size() > 0) {
-            // A scanline file: read in its own format a band of rows at a time, and converted here into place.
-            // OpenImageIO 2.4's read_image would convert through a 64 MB scratch buffer per call, whatever the
-            // image's size (ImageInput::read_scanlines allocates it for any requested format but the "native"
-            // UNKNOWN): untouched and cheap normally, but AddressSanitizer poisons all of it, which made every read
-            // of a small image cost milliseconds in the sanitizer suite and the fuzzers. Bands of about 4 MB.
-            const size_t file_row = s.scanline_bytes(true);  // all channels: what the reader decodes
-            const size_t in_row = size_t(s.width) * size_t(nch) * s.format.size();
-            const int band = int(std::clamp<size_t>((size_t(1) << 22) / std::max<size_t>(file_row, 1), 1,
-                                                    size_t(s.height)));
-            std::vector<unsigned char> buf(size_t(band) * in_row);
-            for (int y = 0; ok && y < s.height; y += band) {
-                const int rows = std::min(band, s.height - y);
-                ok = im.in->read_scanlines(0, 0, s.y + y, s.y + y + rows, s.z, 0, nch, OIIO::TypeDesc::UNKNOWN,
-                                           buf.data()) &&
-                     OIIO::convert_image(nch, s.width, rows, 1, buf.data(), s.format, OIIO::AutoStride,
-                                         OIIO::AutoStride, OIIO::AutoStride,
-                                         static_cast<unsigned char*>(data) + size_t(y) * size_t(out_row), type,
-                                         out_pixel, out_row, OIIO::AutoStride);
-            }
-        } else {
-            ok = im.in->read_image(0, 0, 0, nch, type, data, out_pixel, out_row);
-        }
-    } catch (...) {
-        fail(path, "cannot read pixels: " + reader_exception());
-    }
-    if (!ok) {
-        std::string msg = one_line(im.in->geterror());
-        fail(path, "cannot read pixels" + (msg.empty() ? std::string(" (file truncated or corrupt?)") : ": " + msg));
-    }
-    if (im.in->has_error()) fail(path, "cannot read pixels: " + one_line(im.in->geterror()));
-}
-
-// Writes `nch` channels of `type` from `data` with the format given by `path`'s extension, atomically.
-void write_atomic(const std::string& path, int width, int height, int nch, OIIO::TypeDesc file_type,
-                  OIIO::TypeDesc data_type, const void* data, bool has_alpha) {
-    if (width <= 0 || height <= 0)
-        fail(path, "cannot write an empty image (" + std::to_string(width) + "x" + std::to_string(height) + ")");
-    std::error_code ec;
-    if (fs::is_directory(path, ec)) fail(path, "is a directory");
-    fs::path parent = fs::path(path).parent_path();
-    if (!parent.empty() && !fs::is_directory(parent, ec))
-        fail(path, "cannot write: folder " + parent.string() + " does not exist");
-
-    // The plug-in is chosen by the destination's extension; the temporary file gets the same plug-in.
-    auto out = OIIO::ImageOutput::create(path);
-    if (!out) {
-        std::string msg = one_line(OIIO::geterror());
-        fail(path,
-             "cannot write: no image writer for this file name" + (msg.empty() ? std::string() : " (" + msg + ")"));
-    }
-    int channels = nch;
-    OIIO::stride_t xstride = OIIO::stride_t(nch) * OIIO::stride_t(data_type.size());
-    if (has_alpha && !out->supports("alpha")) channels = 3;  // e.g. JPEG: drop alpha, keep colour
-    OIIO::ImageSpec spec(width, height, channels, file_type);
-    if (has_alpha && channels == 4) {
-        spec.alpha_channel = 3;
-        spec.attribute("oiio:UnassociatedAlpha", 1);  // our data is not premultiplied; write it as is
-    }
-    AtomicFile file(path);  // the temporary file is removed on every failure
-    bool ok = false;
-    std::string msg;
-    {
-        QuietStderr quiet;
-        if (!out->open(file.temp_path(), spec)) {
-            msg = one_line(out->geterror());
-        } else {
-            ok = out->write_image(data_type, data, xstride);
-            if (!ok) msg = one_line(out->geterror());
-            if (!out->close() && ok) {
-                ok = false;
-                msg = one_line(out->geterror());
-            }
-        }
-        out.reset();
-    }
-    if (!ok) fail(path, "cannot write: " + msg);
-    file.commit();
+// `path`: the file the caller was about to read or write, for the error if there is no backend.
+const ImageBackend& backend(const std::string& path) {
+    static const LoadedBackend loaded = rtm_image_backend_v1 != nullptr ? LoadedBackend{rtm_image_backend_v1(), {}}
+                                                                        : load_module();
+    if (!loaded.api) throw_io_error(path, loaded.error);
+    return *loaded.api;
 }
 
 }  // namespace
@@ -469,51 +67,13 @@ void write_atomic(const std::string& path, int width, int height, int nch, OIIO:
 void set_quiet_image_library_stderr(bool on) { g_quiet_stderr = on; }
 bool quiet_image_library_stderr() { return g_quiet_stderr.load(); }
 
-ImageRGBA8 read_rgba8(const std::string& path) {
-    OpenedImage im = open_checked(path);
-    const int nch = std::min(im.spec.nchannels, 4);
-    ImageRGBA8 img(im.spec.width, im.spec.height);
-    // Straight into the RGBA pixels, then filled out in place: no second image-sized buffer.
-    read_channels(path, im, nch, 4, OIIO::TypeDesc::UINT8, img.pixels.data());
-    if (nch < 4) {
-        for (Rgba8& d : img.pixels) {
-            if (nch == 1) {
-                d = {d.r, d.r, d.r, 255};
-            } else if (nch == 2) {  // grey + alpha
-                d = {d.r, d.r, d.r, d.g};
-            } else {
-                d.a = 255;
-            }
-        }
-    }
-    return img;
-}
-
-ImageF read_gray(const std::string& path) {
-    OpenedImage im = open_checked(path);
-    ImageF img(im.spec.width, im.spec.height);
-    read_channels(path, im, 1, 1, OIIO::TypeDesc::FLOAT, img.pixels.data());
-    return img;
-}
-
+ImageRGBA8 read_rgba8(const std::string& path) { return backend(path).read_rgba8(path, g_quiet_stderr.load()); }
+ImageF read_gray(const std::string& path) { return backend(path).read_gray(path, g_quiet_stderr.load()); }
 void write_rgba8(const std::string& path, const ImageRGBA8& img) {
-    if (img.pixels.size() != size_t(std::max(img.width, 0)) * size_t(std::max(img.height, 0)))
-        fail(path, "cannot write: image claims " + std::to_string(img.width) + "x" + std::to_string(img.height) +
-                       " but holds " + std::to_string(img.pixels.size()) + " pixels");
-    write_atomic(path, img.width, img.height, 4, OIIO::TypeDesc::UINT8, OIIO::TypeDesc::UINT8, img.pixels.data(), true);
+    backend(path).write_rgba8(path, img, g_quiet_stderr.load());
 }
-
 void write_gray(const std::string& path, const ImageF& img) {
-    if (img.pixels.size() != size_t(std::max(img.width, 0)) * size_t(std::max(img.height, 0)))
-        fail(path, "cannot write: image claims " + std::to_string(img.width) + "x" + std::to_string(img.height) +
-                       " but holds " + std::to_string(img.pixels.size()) + " pixels");
-    std::vector<float> clamped(img.pixels.size());
-    for (size_t i = 0; i < clamped.size(); ++i) {
-        float v = img.pixels[i];
-        clamped[i] = std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f;
-    }
-    // 16 bits per sample; a format without 16-bit support (JPEG, ...) falls back to what it supports.
-    write_atomic(path, img.width, img.height, 1, OIIO::TypeDesc::UINT16, OIIO::TypeDesc::FLOAT, clamped.data(), false);
+    backend(path).write_gray(path, img, g_quiet_stderr.load());
 }
 
 }  // namespace rtm

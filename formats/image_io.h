@@ -1,4 +1,5 @@
-// Image files through OpenImageIO. Errors throw rtm::IoError whose message names the file and what is wrong.
+// Image files through OpenImageIO (formats/image_backend.h: loaded on first use). Errors throw rtm::IoError whose
+// message names the file and what is wrong.
 #pragma once
 
 #include <stdexcept>
@@ -11,6 +12,15 @@ namespace rtm {
 struct IoError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
+
+// Throws IoError "<path>: <what>", control characters shown as '?' so the message stays one line whatever the path
+// holds (a newline in a file name, which a manifest can ask for: found by fuzz/fuzz_relief_manifest).
+[[noreturn]] inline void throw_io_error(const std::string& path, const std::string& what) {
+    std::string msg = path + ": " + what;
+    for (char& c : msg)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    throw IoError(msg);
+}
 
 // Largest image a reader accepts (width*height), so a header claiming absurd sizes cannot make us allocate
 // tens of gigabytes: 16384 x 16384 texels.

@@ -29,12 +29,7 @@ std::string truncate(std::string s, size_t n) {
     return s;
 }
 
-void fail(const std::string& path, const std::string& what) {
-    std::string msg = path + ": " + what;
-    for (char& c : msg)
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-    throw IoError(msg);
-}
+void fail(const std::string& path, const std::string& what) { throw_io_error(path, what); }
 
 std::string fmt_double(double v) {
     if (std::isnan(v)) return "nan";

@@ -100,7 +100,7 @@ for t in $targets; do
   else
     status=1
     # The file's prefix says what happened: crash-, leak-, timeout-, oom-. (libFuzzer's own lines can be missing from
-    # the log when the finding came while OpenImageIO ran, with stderr sent to /dev/null: formats/image_io.cpp.)
+    # the log when the finding came while OpenImageIO ran, with stderr sent to /dev/null: formats/image_io_oiio.cpp.)
     echo "$t: FINDING (log: $B/logs/$t.log): $(ls "$B/findings/$t" | tr '\n' ' ')"
     grep -E 'FINDING|ERROR|SUMMARY|runtime error|Test unit written' "$B/logs/$t.log" | head -20 || true
   fi

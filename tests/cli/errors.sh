@@ -78,4 +78,21 @@ else
   fails=$((fails + 1))
 fi
 expect_ok render --relief "$R" --eye 0.5,0.5,3 --size 64x64 --output-scale 4 --out "$T/ok_render_s4.png"
+
+# The image module (formats/image_backend.h): rtm does not link OpenImageIO, loads the module on its first image
+# read, and says which module it could not load.
+if ldd "$RTM" | grep -q OpenImageIO; then
+  echo "FAIL: rtm links OpenImageIO at start: $(ldd "$RTM" | grep OpenImageIO)"
+  fails=$((fails + 1))
+fi
+RTM_IMAGEIO_MODULE=$T/no_module.so expect_ok --version
+RTM_IMAGEIO_MODULE=$T/no_module.so expect_fail 1 'c\.ppm: cannot load the image module \(.*no_module\.so' -- \
+  prewarp --relief "$R" --eye 0.5,0.5,3 --out "$T/o_mod.png"
+[ -e "$T/o_mod.png" ] && { echo "FAIL: o_mod.png written without an image module"; fails=$((fails + 1)); }
+printf 'not a module' >"$T/bad_module.so"
+RTM_IMAGEIO_MODULE=$T/bad_module.so expect_fail 1 'cannot load the image module \(.*bad_module\.so' -- \
+  prewarp --relief "$R" --eye 0.5,0.5,3 --out "$T/o_mod.png"
+other=$(ldd "$RTM" | awk '/libstdc\+\+/ {print $3}')  # a shared library, but not the image module
+RTM_IMAGEIO_MODULE=$other expect_fail 1 'module .*libstdc.* is not this version.s \(no rtm_image_backend_v1\)' -- \
+  prewarp --relief "$R" --eye 0.5,0.5,3 --out "$T/o_mod.png"
 finish

@@ -23,12 +23,15 @@ version=$(sed -n 's/^project(rtm VERSION \([0-9.]*\) .*/\1/p' "$SRC/CMakeLists.t
 PREFIX="$T/prefix"
 LIB=$(cache_value CMAKE_INSTALL_LIBDIR)  # lib, or lib/x86_64-linux-gnu when configured for the prefix /usr
 check "cmake --install" cmake --install "$BUILD" --prefix "$PREFIX"
-for f in bin/rtm bin/rtm-make-media "$LIB"/librtm_warp.a "$LIB"/librtm_formats.a "$LIB"/librtm_measure.a \
-  include/rtm/warp/prewarp.h include/rtm/formats/relief_manifest.h include/rtm/rtm_version.h \
+for f in bin/rtm bin/rtm-make-media "$LIB"/rtm/librtm_imageio.so "$LIB"/librtm_warp.a "$LIB"/librtm_formats.a \
+  "$LIB"/librtm_measure.a include/rtm/warp/prewarp.h include/rtm/formats/relief_manifest.h include/rtm/rtm_version.h \
   "$LIB"/cmake/rtm/rtmConfig.cmake "$LIB"/cmake/rtm/rtmConfigVersion.cmake "$LIB"/cmake/rtm/rtmTargets.cmake; do
   check "installed $f" test -f "$PREFIX/$f"
 done
 check "installed rtm --version" grep -qx "rtm $version" <("$PREFIX/bin/rtm" --version)
+# The installed rtm finds its image module in $PREFIX/$LIB/rtm (formats/image_backend.h).
+check "installed rtm reads and writes images" "$PREFIX/bin/rtm" prewarp --relief "$SRC/media/bumps.relief.json" \
+  --eye 0.3,0.4,1.5 --out "$T/installed.png"
 
 # The example, against the installed package only (not the build tree), with the build's compiler.
 gen=()
@@ -43,7 +46,9 @@ check "build examples/prewarp_relief" cmake --build "$T/example"
 
 EX="$T/example/prewarp_relief"
 for eye in 0.3,0.4,1.5 -0.6,0.1,0.8; do
-  check "prewarp_relief eye $eye" "$EX" "$SRC/media/bumps.relief.json" "$eye" "$T/example.png"
+  # The example links the image code itself (rtm::formats), so it needs no module: RTM_IMAGEIO_MODULE would fail it.
+  check "prewarp_relief eye $eye" env RTM_IMAGEIO_MODULE="$T/no_module.so" "$EX" "$SRC/media/bumps.relief.json" \
+    "$eye" "$T/example.png"
   expect_ok prewarp --relief "$SRC/media/bumps.relief.json" --eye "$eye" --out "$T/rtm.png"
   # idiff -a: every channel, alpha included; -fail 0 -warn 0: any differing pixel fails.
   check "example and rtm prewarp differ for eye $eye" idiff -q -a -fail 0 -warn 0 "$T/rtm.png" "$T/example.png"
