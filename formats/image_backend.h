@@ -2,9 +2,10 @@
 // formats/image_io_oiio.cpp over OpenImageIO, built as the module librtm_imageio.so.
 //
 // Why a module: Debian's OpenImageIO brings about 260 shared libraries (OpenCV, FFmpeg, GDAL, ...), and loading them
-// costs a process about 0.45 s at start (an empty program linked with OpenImageIO, measured on a Zen 5 guest). rtm and
-// the test programs load the module on the first image read or write instead, so a command that reads no image (a
-// manifest error, --help, a test that renders procedural media) starts without that cost.
+// costs a process about 0.35 s at start (an empty program linked with OpenImageIO, on a Zen 5 guest; rtm --help took
+// 0.45 s). rtm and the test programs load the module on the first image read or write instead, so a command that reads
+// no image (a manifest error, --help, a test that renders procedural media) starts without that cost
+// (docs/BENCHMARKS.md, "Start-up").
 //
 // The functions throw rtm::IoError as formats/image_io.h says; `quiet` is set_quiet_image_library_stderr's choice.
 #pragma once
