@@ -23,9 +23,9 @@ struct ImageBackend {
     void (*write_gray)(const std::string& path, const ImageF& img, bool quiet);
 };
 
-// Where rtm looks for the module (formats/image_io.cpp): $RTM_IMAGEIO_MODULE if set, else
-// RTM_IMAGEIO_MODULE_DIR (the library folder relative to the binaries' folder, "../lib/rtm" for the usual layout;
-// the build tree has the same layout) beside the running program.
+// Where rtm looks for the module (formats/image_io.cpp): $RTM_IMAGEIO_MODULE if set, else RTM_IMAGEIO_MODULE_DIR
+// (the library folder relative to the binaries' folder, "../lib/rtm" for the usual layout; the build tree has the
+// same layout) beside the running program, then where the build put it (for a program copied elsewhere).
 inline constexpr const char* kImageModuleName = "librtm_imageio.so";
 
 }  // namespace rtm

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <string>
 #include <system_error>
+#include <vector>
 
 #include "formats/image_backend.h"
 
@@ -31,27 +32,40 @@ struct LoadedBackend {
     std::string error;  // why api is null
 };
 
+// The module where the build put it: a program copied elsewhere (build/bin/rtm to ~/bin) still finds it there.
+#ifndef RTM_IMAGEIO_MODULE_BUILT
+#define RTM_IMAGEIO_MODULE_BUILT ""
+#endif
+
+// Where to look: $RTM_IMAGEIO_MODULE alone if set; else beside the running program, then where the build put it.
+std::vector<std::string> module_candidates(std::string& error) {
+    if (const char* env = std::getenv("RTM_IMAGEIO_MODULE"); env && *env) return {env};
+    std::vector<std::string> paths;
+    std::error_code ec;
+    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (ec)
+        error = "/proc/self/exe: " + ec.message();
+    else
+        paths.push_back((exe.parent_path() / RTM_IMAGEIO_MODULE_DIR / kImageModuleName).lexically_normal().string());
+    const std::string built = RTM_IMAGEIO_MODULE_BUILT;
+    if (!built.empty() && (paths.empty() || paths[0] != built)) paths.push_back(built);
+    return paths;
+}
+
 LoadedBackend load_module() {
-    std::string path;
-    if (const char* env = std::getenv("RTM_IMAGEIO_MODULE"); env && *env) {
-        path = env;
-    } else {
-        std::error_code ec;
-        const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-        if (ec)
-            return {nullptr, "cannot find the running program to find " + std::string(kImageModuleName) +
-                                 " beside it (/proc/self/exe: " + ec.message() + "); set RTM_IMAGEIO_MODULE"};
-        path = (exe.parent_path() / RTM_IMAGEIO_MODULE_DIR / kImageModuleName).lexically_normal().string();
-    }
-    void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (!handle) {
+    std::string tried;
+    for (const std::string& path : module_candidates(tried)) {
+        if (void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL)) {
+            auto entry = reinterpret_cast<const ImageBackend* (*)()>(::dlsym(handle, "rtm_image_backend_v1"));
+            if (!entry)
+                return {nullptr, "the image module " + path + " is not this version's (no rtm_image_backend_v1)"};
+            return {entry(), {}};
+        }
         const char* why = ::dlerror();
-        return {nullptr, "cannot load the image module (" + std::string(why ? why : path) +
-                             "); set RTM_IMAGEIO_MODULE to the path of " + kImageModuleName};
+        tried += (tried.empty() ? "" : "; ") + std::string(why ? why : path);
     }
-    auto entry = reinterpret_cast<const ImageBackend* (*)()>(::dlsym(handle, "rtm_image_backend_v1"));
-    if (!entry) return {nullptr, "the image module " + path + " is not this version's (no rtm_image_backend_v1)"};
-    return {entry(), {}};
+    return {nullptr,
+            "cannot load the image module (" + tried + "); set RTM_IMAGEIO_MODULE to the path of " + kImageModuleName};
 }
 
 // `path`: the file the caller was about to read or write, for the error if there is no backend.

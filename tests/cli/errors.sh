@@ -89,6 +89,13 @@ RTM_IMAGEIO_MODULE=$T/no_module.so expect_ok --version
 RTM_IMAGEIO_MODULE=$T/no_module.so expect_fail 1 'c\.ppm: cannot load the image module \(.*no_module\.so' -- \
   prewarp --relief "$R" --eye 0.5,0.5,3 --out "$T/o_mod.png"
 [ -e "$T/o_mod.png" ] && { echo "FAIL: o_mod.png written without an image module"; fails=$((fails + 1)); }
+# A copy of rtm outside the build tree finds the module where the build put it.
+mkdir -p "$T/elsewhere"
+cp "$RTM" "$T/elsewhere/rtm"
+if ! "$T/elsewhere/rtm" prewarp --relief "$R" --eye 0.5,0.5,3 --out "$T/o_copy.png" 2>"$T/err"; then
+  echo "FAIL: a copy of rtm in $T/elsewhere cannot read images: $(cat "$T/err")"
+  fails=$((fails + 1))
+fi
 printf 'not a module' >"$T/bad_module.so"
 RTM_IMAGEIO_MODULE=$T/bad_module.so expect_fail 1 'cannot load the image module \(.*bad_module\.so' -- \
   prewarp --relief "$R" --eye 0.5,0.5,3 --out "$T/o_mod.png"
