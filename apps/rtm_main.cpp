@@ -7,19 +7,6 @@
 #include "rtm_version.h"
 #include "formats/image_io.h"
 
-namespace {
-
-// One line on stderr per failure (docs/FORMATS.md), even when the message quotes a file name or a flag value
-// holding a newline: control characters are shown as '?'.
-std::string one_line(const char* what) {
-    std::string s = what;
-    for (char& c : s)
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-    return s;
-}
-
-}  // namespace
-
 int main(int argc, char** argv) {
     // One line on stderr per failure: libpng's own copy of a read error must not reach it.
     rtm::set_quiet_image_library_stderr(true);
@@ -44,13 +31,13 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "rtm: %s (try --help)\n", one_line(e.what()).c_str());
+        std::fprintf(stderr, "rtm: %s (try --help)\n", rtm::printable_one_line(e.what()).c_str());
         return 2;
     } catch (const rtm::cli::UsageError& e) {
-        std::fprintf(stderr, "rtm: %s\n", one_line(e.what()).c_str());
+        std::fprintf(stderr, "rtm: %s\n", rtm::printable_one_line(e.what()).c_str());
         return 2;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "rtm: %s\n", one_line(e.what()).c_str());
+        std::fprintf(stderr, "rtm: %s\n", rtm::printable_one_line(e.what()).c_str());
         return 1;
     }
     return 0;

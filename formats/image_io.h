@@ -13,13 +13,17 @@ struct IoError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-// Throws IoError "<path>: <what>", control characters shown as '?' so the message stays one line whatever the path
-// holds (a newline in a file name, which a manifest can ask for: found by fuzz/fuzz_relief_manifest).
-[[noreturn]] inline void throw_io_error(const std::string& path, const std::string& what) {
-    std::string msg = path + ": " + what;
-    for (char& c : msg)
+// `s` with its control characters shown as '?': one line whatever it quotes (a newline in a file name, which a
+// manifest can ask for: found by fuzz/fuzz_relief_manifest; or in a flag's value).
+inline std::string printable_one_line(std::string s) {
+    for (char& c : s)
         if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-    throw IoError(msg);
+    return s;
+}
+
+// Throws IoError "<path>: <what>", one line (printable_one_line) whatever the path holds.
+[[noreturn]] inline void throw_io_error(const std::string& path, const std::string& what) {
+    throw IoError(printable_one_line(path + ": " + what));
 }
 
 // Largest image a reader accepts (width*height), so a header claiming absurd sizes cannot make us allocate
