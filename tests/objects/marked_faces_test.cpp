@@ -1,23 +1,34 @@
 // The synthetic objects' faces (procedural/synthetic_object.h), which carry discontinuity marks (paper section
-// 4.1.1), on the fast AVX-512 two-pass kernels (warp/simd/avx512_two_pass.h) against the generic kernels: each face
-// pre-warped alone from random eyes around the box, one and two threads, copies of still runs on and off, with and
-// without the side polygons' margins, pixel for pixel; and whole faces of an object (adjacent faces warped onto the
-// face, the face over them, composite and crack closing: ReliefObject::prewarp_face), the same image either way.
+// 4.1.1), on the fast two-pass kernels of every SIMD target this machine supports (warp/simd/avx512_two_pass.h,
+// warp/simd/hwy_two_pass.h) against the generic kernels: each face pre-warped alone from random eyes around the box,
+// one and two threads, copies of still runs on and off, with and without the side polygons' margins, pixel for pixel;
+// and whole faces of an object (adjacent faces warped onto the face, the face over them, composite and crack closing:
+// ReliefObject::prewarp_face), the same image either way.
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "common/seed.h"
 #include "objects/relief_object.h"
 #include "procedural/synthetic_object.h"
+#include "warp/isa.h"
 #include "warp/prewarp.h"
 #include "warp/simd/schedule.h"
 
 namespace rtm {
 namespace {
+
+// The SIMD targets this machine supports (each forced in turn: warp/isa.h).
+std::vector<Isa> simd_targets() {
+    std::vector<Isa> v;
+    for (Isa isa : supported_isas())
+        if (isa != Isa::generic) v.push_back(isa);
+    return v;
+}
 
 // A random eye outside the box [-1, 1]^3, 1.3 to 4 radii from its centre.
 glm::dvec3 random_eye(std::mt19937_64& rng) {
@@ -27,7 +38,7 @@ glm::dvec3 random_eye(std::mt19937_64& rng) {
 }
 
 TEST(MarkedFaces, SyntheticFacesOnTheFastKernelsMatchTheReference) {
-    if (!fast_prewarp_available()) GTEST_SKIP() << "no AVX-512 on this CPU: marked reliefs stay on the reference";
+    if (simd_targets().empty()) GTEST_SKIP() << "no SIMD target on this CPU: marked reliefs stay on the reference";
     const uint64_t seed = test::test_seed(4301);
     std::mt19937_64 rng(seed);
     PrewarpWorkspace ws_ref, ws_fast;
@@ -51,24 +62,26 @@ TEST(MarkedFaces, SyntheticFacesOnTheFastKernelsMatchTheReference) {
                 SCOPED_TRACE("seed " + std::to_string(seed) + " " + to_string(shape) + " face " + kFaceKeys[size_t(f)] +
                              " view " + std::to_string(i) + " " + k.to_string());
                 prewarp(t, k, o, ws_ref, ref);
-                o.isa = Isa::avx512;
-                if (k.side != ViewSide::on_plane) {
-                    EXPECT_TRUE(fast_prewarp_covers(Isa::avx512, t, k, o, prewarp_extent(t, k, o), nullptr));
-                }
-                for (int threads : {1, 2})
-                    for (bool copy : {true, false}) {
-                        o.threads = threads;
-                        o.copy_still_runs = copy;
-                        prewarp(t, k, o, ws_fast, fast);
-                        ASSERT_TRUE(fast == ref) << "threads " << threads << ", copy " << copy;
+                for (Isa isa : simd_targets()) {
+                    o.isa = isa;
+                    if (k.side != ViewSide::on_plane) {
+                        EXPECT_TRUE(fast_prewarp_covers(isa, t, k, o, prewarp_extent(t, k, o), nullptr));
                     }
+                    for (int threads : {1, 2})
+                        for (bool copy : {true, false}) {
+                            o.threads = threads;
+                            o.copy_still_runs = copy;
+                            prewarp(t, k, o, ws_fast, fast);
+                            ASSERT_TRUE(fast == ref) << isa_name(isa) << ", threads " << threads << ", copy " << copy;
+                        }
+                }
             }
         }
     }
 }
 
 TEST(MarkedFaces, ObjectFacesAreTheSameOnEveryTarget) {
-    if (!fast_prewarp_available()) GTEST_SKIP() << "no AVX-512 on this CPU: marked reliefs stay on the reference";
+    if (simd_targets().empty()) GTEST_SKIP() << "no SIMD target on this CPU: marked reliefs stay on the reference";
     const uint64_t seed = test::test_seed(4302);
     std::mt19937_64 rng(seed);
     for (SyntheticShape shape : {SyntheticShape::sphere, SyntheticShape::cross_box}) {
@@ -84,10 +97,12 @@ TEST(MarkedFaces, ObjectFacesAreTheSameOnEveryTarget) {
                 o.isa = Isa::generic;
                 ObjectFacePrewarp ref, fast;
                 object.prewarp_face(f, eye, 0, o, false, ref);
-                o.isa = Isa::avx512;
-                object.prewarp_face(f, eye, 0, o, false, fast);
-                ASSERT_TRUE(fast.image == ref.image);
-                EXPECT_EQ(fast.crack_pixels, ref.crack_pixels);
+                for (Isa isa : simd_targets()) {
+                    o.isa = isa;
+                    object.prewarp_face(f, eye, 0, o, false, fast);
+                    ASSERT_TRUE(fast.image == ref.image) << isa_name(isa);
+                    EXPECT_EQ(fast.crack_pixels, ref.crack_pixels) << isa_name(isa);
+                }
             }
         }
     }

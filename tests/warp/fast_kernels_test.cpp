@@ -673,13 +673,6 @@ ReliefTexture steady_state_relief() {
         300, 200, 0.0, 0.5, [](int x, int) { return 0.5 * std::abs(std::sin(x * 0.3)); }, g);
 }
 
-class ReverseModeFixture : public ::testing::Test {
-protected:
-    void SetUp() override {
-        if (!fast_prewarp_available()) GTEST_SKIP() << "no AVX-512 on this CPU: the fast kernels are not used";
-    }
-};
-
 // The suites of the scheduling policies run on every SIMD target this machine supports, each chosen in turn (the
 // hand-written AVX-512 kernels and the Highway ones have the same policies: warp/simd/kernel_policy.h).
 class PipelinedReverseFastKernels : public ::testing::TestWithParam<Isa> {
@@ -1143,15 +1136,13 @@ TEST_P(TwoPassReverseFastKernels, FoldoversEmptyRowsAndMarksMatchTheReference) {
                 }
             }
         }
-        // Discontinuity marks: the avx512 kernels (the only ones that take them), marked rows forwards whatever the
-        // policy says.
-        if (isa() != Isa::avx512) continue;
+        // Discontinuity marks: marked rows forwards whatever the policy says.
         mark_discontinuities(t, 0.05);
         o.isa = Isa::generic;
         o.threads = 1;
         prewarp(t, k, o, ws_ref, ref);
-        o.isa = Isa::avx512;
-        EXPECT_TRUE(fast_prewarp_covers(Isa::avx512, t, k, o, sr.extent, nullptr));
+        o.isa = isa();
+        EXPECT_TRUE(fast_prewarp_covers(isa(), t, k, o, sr.extent, nullptr));
         for (KernelChoice reverse : {KernelChoice::automatic, KernelChoice::always}) {
             const simd::testing::ScopedKernelPolicy scope(two_pass_policy(reverse));
             for (int threads : {1, 3}) {
@@ -1209,7 +1200,7 @@ TEST(FastPrewarpCovers, OnlyOutputsItsKernelsCanAddress) {
 }
 
 // Surface-discontinuity marks (paper section 4.1.1: ReliefTexture::breaks and discontinuity_threshold), which the
-// AVX-512 two-pass kernels handle (TwoPassJob::breaks, threshold): the random cases above with marks from
+// two-pass kernels of every SIMD target handle (TwoPassJob::breaks, threshold): the random cases above with marks from
 // mark_discontinuities at a random threshold, random kBreakRight / kBreakUp bits with and without a threshold, and
 // a threshold without marks, against the reference pixel by pixel: every backward-row policy, one and two threads,
 // copies of still runs on and off (the vertical pass's still copies are reached: printed).
@@ -1235,7 +1226,7 @@ void mark_randomly(ReliefTexture& t, std::mt19937_64& rng, int mode) {
     }
 }
 
-TEST_F(ReverseModeFixture, MarkedReliefsMatchTheReference) {
+TEST_P(TwoPassReverseFastKernels, MarkedReliefsMatchTheReference) {
     const uint64_t seed = test::test_seed(80041);
     std::mt19937_64 rng(seed);
     const int cases = test::sweep_cases(600);
@@ -1255,8 +1246,8 @@ TEST_F(ReverseModeFixture, MarkedReliefsMatchTheReference) {
         o.isa = Isa::generic;
         o.threads = 1;
         const PrewarpStats sr = prewarp(c.relief, k, o, ws_ref, ref);
-        o.isa = Isa::avx512;
-        covered += fast_prewarp_covers(Isa::avx512, c.relief, k, o, sr.extent, nullptr);
+        o.isa = isa();
+        covered += fast_prewarp_covers(isa(), c.relief, k, o, sr.extent, nullptr);
         for (const NamedPolicy& policy : kTwoPassReverse) {
             const simd::testing::ScopedKernelPolicy scope(policy.policy);
             for (int threads : {1, 2})
@@ -1281,7 +1272,7 @@ TEST_F(ReverseModeFixture, MarkedReliefsMatchTheReference) {
 
 // Large marked reliefs (many bands, the two-thread band pipeline): 256^2 to 700x300 steps and noise marked at a
 // threshold, seen from near and far, one to three threads.
-TEST_F(ReverseModeFixture, LargeMarkedReliefsMatchTheReference) {
+TEST_P(TwoPassReverseFastKernels, LargeMarkedReliefsMatchTheReference) {
     const uint64_t seed = test::test_seed(80042);
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> U(0.0, 1.0);
@@ -1313,7 +1304,7 @@ TEST_F(ReverseModeFixture, LargeMarkedReliefsMatchTheReference) {
         SCOPED_TRACE("seed " + std::to_string(seed) + " case " + std::to_string(i) + " kind " + std::to_string(kind) +
                      " " + std::to_string(w) + "x" + std::to_string(h) + " " + k.to_string());
         prewarp(t, k, o, ws_ref, ref);
-        o.isa = Isa::avx512;
+        o.isa = isa();
         for (int threads : {1, 2, 3}) {
             o.threads = threads;
             prewarp(t, k, o, ws_fast, fast);
@@ -1322,9 +1313,9 @@ TEST_F(ReverseModeFixture, LargeMarkedReliefsMatchTheReference) {
     }
 }
 
-// Marked reliefs go to the AVX-512 two-pass kernels only: the pipelined reconstruction and the Highway targets keep
-// the reference for them.
-TEST(FastKernelCoverage, MarkedReliefsOnlyOnTheAvx512TwoPassKernels) {
+// Marked reliefs go to the two-pass kernels of every SIMD target; the pipelined reconstruction keeps the reference
+// for them.
+TEST(FastKernelCoverage, MarkedReliefsOnlyOnTheTwoPassKernels) {
     ReliefTexture t = test::make_test_relief(
         32, 32, 0.0, 0.1, [](int x, int) { return x < 16 ? 0.0 : 0.1; }, unit_width_geometry(32));
     mark_discontinuities(t, 0.05);
@@ -1336,14 +1327,14 @@ TEST(FastKernelCoverage, MarkedReliefsOnlyOnTheAvx512TwoPassKernels) {
         if (isa == Isa::generic) continue;
         SCOPED_TRACE(isa_name(isa));
         o.method = Reconstruction::two_pass;
-        EXPECT_EQ(fast_prewarp_covers(isa, t, k, o, e, nullptr), isa == Isa::avx512);
+        EXPECT_TRUE(fast_prewarp_covers(isa, t, k, o, e, nullptr));
         o.method = Reconstruction::pipelined;
         EXPECT_FALSE(fast_prewarp_covers(isa, t, k, o, e, nullptr));
     }
     // Marks that do not match the texels (a malformed relief) are left to the reference.
     t.breaks.pop_back();
     o.method = Reconstruction::two_pass;
-    EXPECT_FALSE(fast_prewarp_covers(Isa::avx512, t, k, o, e, nullptr));
+    for (Isa isa : supported_isas()) EXPECT_FALSE(fast_prewarp_covers(isa, t, k, o, e, nullptr)) << isa_name(isa);
 }
 
 // Every SIMD target this machine supports with both reconstructions.

@@ -49,7 +49,7 @@ struct TwoPassJob {
     uint16_t* col_ok = nullptr;
     float* seam_v = nullptr;
     uint32_t* seam_c = nullptr;
-    // Surface discontinuities (paper section 4.1.1; the AVX-512 kernels only, fast_prewarp_covers): the relief's
+    // Surface discontinuities (paper section 4.1.1; the two-pass kernels, fast_prewarp_covers): the relief's
     // per-texel marks (kBreakRight: no span to the texel on the right; null when it has none), and the threshold
     // on the displacement carried into the columns (0: none). With a threshold the horizontal pass also carries
     // each pixel's interpolated displacement d into band rows `d_offset` floats after the v rows, the column state

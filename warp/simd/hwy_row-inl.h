@@ -31,11 +31,13 @@ HWY_BEFORE_NAMESPACE();
 namespace rtm::simd::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-// Scratch of one row: positions, row coordinates and packed colours of the source width, in the caller's memory.
+// Scratch of one row: positions, row coordinates, packed colours and (where a discontinuity threshold needs them)
+// displacements of the source width, in the caller's memory.
 struct RowScratch {
     float* pos;
     float* v;
     uint32_t* color;
+    float* d = nullptr;
 };
 
 HWY_INLINE uint32_t pack(Rgba8 c) {
@@ -476,9 +478,23 @@ HWY_INLINE bool CopyStill(DF df, const float* pos, const uint32_t* col, const fl
     return true;
 }
 
+// How many of the `count` spans keyed first, first + dir, ... lead before one whose pair the row's marks break
+// (kBreakRight on the pair's left texel, which is the key itself: the left part's span k joins k - 1 and k and is
+// looked up as k - 1 by its caller; the right part's span k joins k + 1 and k).
+inline int UnbrokenLead(const uint8_t* marks, int first, int dir, int count) {
+    for (int i = 0; i < count; ++i)
+        if (marks[first + dir * i] & kBreakRight) return i;
+    return count;
+}
+
+// `marks` (null: none) are the row's surface-discontinuity marks (ReliefTexture::breaks, paper section 4.1.1): no
+// span joins texels k and k + 1 where texel k has kBreakRight, and the later of the two in the part's order starts a
+// run of its own (a point), as warp_line_to with the reference's RowConnected. A group of spans stops before such a
+// pair; a copy of still texels (CopyStill) needs no test: a still sample's pixel is the same whether it is joined to
+// its neighbour (a one-pixel span at t = 1) or not (a point on the same pixel).
 template <class Range = NoRange>
 void WarpRow(const float* pos, const uint32_t* col, const float* attr, int n, int split, int n_out, RowOut out,
-             const Range& range = {}) {
+             const Range& range = {}, const uint8_t* marks = nullptr) {
     out.width = n_out;
     const hn::ScalableTag<float> df;
     const int N = int(hn::Lanes(df));
@@ -499,10 +515,12 @@ void WarpRow(const float* pos, const uint32_t* col, const float* attr, int n, in
         raster_span(pos[a], unpack(col[a]), attr[a], pos[b], unpack(col[b]), attr[b], n_out, put);
     };
     auto ok = [&](int k) { return std::isfinite(pos[k]); };
+    // Samples a and b (adjacent) joined: the reference's RowConnected.
+    auto joined = [&](int a, int b) { return !marks || !(marks[std::min(a, b)] & kBreakRight); };
     // Sample k after sample `prev` (-1: none) in processing order: the reference's part loop body.
     auto one_sample = [&](int k, int prev) {
         if (!ok(k)) return -1;
-        if (prev < 0) {
+        if (prev < 0 || !joined(prev, k)) {
             if constexpr (kRange) {
                 int xa, xb;
                 PointPixels(pos[k], n_out, xa, xb);
@@ -524,7 +542,8 @@ void WarpRow(const float* pos, const uint32_t* col, const float* attr, int n, in
                 continue;
             }
             bool up;
-            const int m = GroupPrefix(df, pos + k - 1, pos + k, true, up);
+            int m = GroupPrefix(df, pos + k - 1, pos + k, true, up);
+            if (m && marks && (m = UnbrokenLead(marks, k - 1, +1, m)) < kMinGroup) m = 0;
             if (m) {
                 DrawGroup(df, pos, col, attr, k - 1, k, m, true, up, out, before, 0, n_out - 1);
                 k += m;
@@ -548,7 +567,8 @@ void WarpRow(const float* pos, const uint32_t* col, const float* attr, int n, in
                 continue;
             }
             bool up;
-            const int m = GroupPrefix(df, pos + b + 1, pos + b, false, up);
+            int m = GroupPrefix(df, pos + b + 1, pos + b, false, up);
+            if (m && marks && (m = UnbrokenLead(marks, k, -1, m)) < kMinGroup) m = 0;
             if (m) {
                 DrawGroup(df, pos, col, attr, b + 1, b, m, false, up, out, before, 0, n_out - 1);
                 k -= m;
@@ -560,7 +580,9 @@ void WarpRow(const float* pos, const uint32_t* col, const float* attr, int n, in
         --k;
     }
     const int right_last = prev;
-    if (left_last >= 0 && right_last >= 0 && left_last == split - 1 && right_last == split) span(left_last, right_last);
+    if (left_last >= 0 && right_last >= 0 && left_last == split - 1 && right_last == split &&
+        joined(left_last, right_last))
+        span(left_last, right_last);
     if constexpr (kRange) range.done();
 }
 
@@ -775,14 +797,16 @@ inline long long PrepareRow(const ReliefTexture& t, const fast::FastTables& ft, 
 }
 
 // The state of the output columns: each column's last sample (final row coordinate, packed colour, and floor and
-// ceil of its v - 0.5 clamped to [-1, out height]) and, in ok, -1 where it has one and 0 elsewhere. Arrays of the
-// output width, readable a whole vector past it.
+// ceil of its v - 0.5 clamped to [-1, out height]) and, in ok, -1 where it has one and 0 elsewhere; with a
+// discontinuity threshold (ColumnStep<true>) also its carried displacement d. Arrays of the output width, readable
+// a whole vector past it.
 struct Columns {
     float* v;
     int32_t* ok;
     uint32_t* c;
     int32_t* fl;
     int32_t* ce;
+    float* d = nullptr;
 };
 
 // The column step of one row of pixels rc (packed colour, alpha 0 where not written) and rv (final row
@@ -794,8 +818,14 @@ struct Columns {
 // raster_span's rows floor(pv - 0.5) + 1 .. floor(v - 0.5) (v > pv) or ceil(v - 0.5) .. ceil(pv - 0.5) - 1 (v < pv),
 // clamped to [0, oh - 1], in integers from floor and ceil of v - 0.5 kept with each sample (clamping to [-1, oh]
 // first commutes with floor and ceil and changes no row in [0, oh - 1]): each step rounds its new samples only.
+//
+// With kThreshold (the relief's discontinuity threshold, paper section 4.1.1) the row also brings each pixel's
+// carried displacement rd, and a column joins its last sample to the new one only where |d_last - d| <= threshold
+// (the reference's DisplConnected, operation by operation: the sign bit of the difference cleared); elsewhere the
+// new sample starts a run (a point).
+template <bool kThreshold = false>
 HWY_INLINE void ColumnStep(const Columns& col, const ColumnTarget& o, const uint32_t* rc, const float* rv, int x0,
-                           int x1) {
+                           int x1, const float* rd = nullptr, float threshold = 0.0f) {
     const hn::ScalableTag<float> df;
     const hn::RebindToSigned<decltype(df)> di;
     using VF = hn::Vec<decltype(df)>;
@@ -811,9 +841,14 @@ HWY_INLINE void ColumnStep(const Columns& col, const ColumnTarget& o, const uint
         const VI c = hn::MaskedLoad(mi, di, reinterpret_cast<const int32_t*>(rc + x));
         const auto fin = hn::And(mi, hn::And(hn::Ne(hn::And(c, alpha), izero), hn::RebindMask(di, hn::IsFinite(v))));
         const VI okv = hn::MaskedLoad(mi, di, col.ok + x);
-        const auto pok = hn::And(fin, hn::Ne(okv, izero));
+        auto pok = hn::And(fin, hn::Ne(okv, izero));
         hn::BlendedStore(hn::VecFromMask(di, fin), mi, di, col.ok + x);
         if (hn::AllFalse(di, fin)) continue;
+        if constexpr (kThreshold) {
+            const VF d = hn::MaskedLoad(m, df, rd + x), pd = hn::MaskedLoad(m, df, col.d + x);
+            pok = hn::And(pok, hn::RebindMask(di, hn::Le(hn::Abs(hn::Sub(pd, d)), hn::Set(df, threshold))));
+            hn::BlendedStore(d, hn::RebindMask(df, fin), df, col.d + x);
+        }
         const VF pv = hn::MaskedLoad(m, df, col.v + x);
         const VI pc = hn::MaskedLoad(mi, di, reinterpret_cast<const int32_t*>(col.c + x));
         const VI pf = hn::MaskedLoad(mi, di, col.fl + x), pe = hn::MaskedLoad(mi, di, col.ce + x);

@@ -7,6 +7,8 @@
 
 #include <hwy/highway.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include "warp/line_warp.h"
@@ -18,30 +20,57 @@
 HWY_BEFORE_NAMESPACE();
 namespace rtm::simd::HWY_NAMESPACE {
 
+// Whether the row's marks (w texels) break any pair of neighbours (kBreakRight on texels 0 .. w - 2).
+inline bool RowHasMark(const uint8_t* marks, int w) {
+    for (int x = 0; x + 1 < w; ++x)
+        if (marks[x] & kBreakRight) return true;
+    return false;
+}
+
 // The horizontal pass of steps [s0, s1): for each, the reference's row_samples (lookup-table path) and
 // warp_line_to (WarpRow, or WarpRowBackward for rows that fold over) into one band row (colour with alpha 255 where
-// written, 0 elsewhere; the final row coordinate).
+// written, 0 elsewhere; the final row coordinate). Rows with discontinuity marks (job.breaks) go forwards, their
+// marks breaking spans in WarpRow (the backward order needs one connected path of samples). With a discontinuity
+// threshold the row's displacements are carried too, into band rows job.d_offset floats after the v rows: a second
+// walk of the row with the displacement as attribute (the same positions, so the same pixels, and the same colours
+// written again), where the AVX-512 kernels carry both attributes in one walk (warp_line_fast<2>).
 void HorizontalSteps(const fast::TwoPassJob& job, int s0, int s1, uint32_t* band_c, float* band_v, size_t stride,
                      float* scratch) {
     const ReliefTexture& t = *job.relief;
     const int w = t.width, ow = job.out->width;
-    const RowScratch s{scratch, scratch + w, reinterpret_cast<uint32_t*>(scratch + 2 * size_t(w))};
+    const bool with_d = job.threshold > 0.0f;
+    const RowScratch s{scratch, scratch + w, reinterpret_cast<uint32_t*>(scratch + 2 * size_t(w)),
+                       with_d ? scratch + 3 * size_t(w) : nullptr};
     long long dropped = 0;
     for (int st = s0; st < s1; ++st) {
         const int r = fast::step_row(job, st);
         if (st + 1 < t.height) prefetch_relief_row(t, fast::step_row(job, st + 1));
         dropped += PrepareRow(t, *job.tables, job.extent, r, s);
+        const uint8_t* marks = job.breaks ? job.breaks + size_t(r) * size_t(w) : nullptr;
+        if (marks && !RowHasMark(marks, w)) marks = nullptr;
+        if (with_d) {
+            const ReliefTexel* src = &t.texels[size_t(r) * size_t(w)];
+            for (int x = 0; x < w; ++x) s.d[x] = job.ref_tables->displ[src[x].q];  // the reference's RowAttr::d
+        }
         uint32_t* rc = band_c + size_t(st - s0) * stride;
         float* rv = band_v + size_t(st - s0) * stride;
         std::memset(rc, 0, size_t(ow) * 4);
         // Rows that fold over: backwards, each pixel drawn once (WarpRowBackward). Bumps never folds over.
-        bool backward = false;
-        if (job.reverse != KernelChoice::never &&
-            RowFoldsOver(s.pos, w, job.split_u, job.reverse == KernelChoice::always)) {
-            backward = WarpRowBackward(s.pos, s.color, s.v, w, job.split_u, ow, RowOut{rc, rv}) && !job.redo_forwards;
-            if (!backward) std::memset(rc, 0, size_t(ow) * 4);  // only with redo_forwards (WarpRowBackward says why)
-        }
-        if (!backward) WarpRow(s.pos, s.color, s.v, w, job.split_u, ow, RowOut{rc, rv, job.copy_still});
+        const bool try_backward = !marks && job.reverse != KernelChoice::never &&
+                                  RowFoldsOver(s.pos, w, job.split_u, job.reverse == KernelChoice::always);
+        auto walk = [&](const float* attr, float* out_attr) {
+            bool backward = false;
+            if (try_backward) {
+                backward = WarpRowBackward(s.pos, s.color, attr, w, job.split_u, ow, RowOut{rc, out_attr}) &&
+                           !job.redo_forwards;
+                if (!backward) std::memset(rc, 0, size_t(ow) * 4);  // only with redo_forwards (see WarpRowBackward)
+            }
+            if (!backward)
+                WarpRow(s.pos, s.color, attr, w, job.split_u, ow, RowOut{rc, out_attr, job.copy_still}, NoRange{},
+                        marks);
+        };
+        walk(s.v, rv);
+        if (with_d) walk(s.d, rv + job.d_offset);
     }
     if (dropped) *job.dropped += dropped;
 }
@@ -52,6 +81,9 @@ void VerticalSteps(const fast::TwoPassJob& job, int s0, int s1, const uint32_t* 
     const int h = job.relief->height, ow = job.out->width, oh = job.out->height;
     uint32_t* out = reinterpret_cast<uint32_t*>(job.out->pixels.data());
     int32_t* col_ok = reinterpret_cast<int32_t*>(job.col_ok);  // one int32 a column here
+    const bool with_d = job.threshold > 0.0f;
+    const Columns cols{job.col_v, col_ok, job.col_c, job.col_fl, job.col_ce, job.col_d};
+    const ColumnTarget target{out, ow, oh, 0, oh};
     if (s0 == 0) {
         for (int y = 0; y < oh; ++y) std::memset(out + size_t(y) * size_t(ow) + size_t(x0), 0, size_t(x1 - x0) * 4);
         std::fill(col_ok + x0, col_ok + x1, 0);
@@ -65,15 +97,21 @@ void VerticalSteps(const fast::TwoPassJob& job, int s0, int s1, const uint32_t* 
                 job.seam_c[x] = col_ok[x] ? (job.col_c[x] | 0xFF000000u) : 0u;
                 col_ok[x] = 0;
             }
+            if (with_d) std::copy(job.col_d + x0, job.col_d + x1, job.seam_d + x0);
         }
-        ColumnStep(Columns{job.col_v, col_ok, job.col_c, job.col_fl, job.col_ce}, ColumnTarget{out, ow, oh, 0, oh},
-                   band_c + size_t(st - s0) * stride, band_v + size_t(st - s0) * stride, x0, x1);
+        const uint32_t* rc = band_c + size_t(st - s0) * stride;
+        const float* rv = band_v + size_t(st - s0) * stride;
+        if (with_d)
+            ColumnStep<true>(cols, target, rc, rv, x0, x1, rv + job.d_offset, job.threshold);
+        else
+            ColumnStep(cols, target, rc, rv, x0, x1);
     }
     if (s1 == h && job.split_v > 0 && job.split_v < h) {
         // The span across the epipole (warp_line_to's seam): the samples at split_v - 1 and split_v, where both
         // are there.
         for (int x = x0; x < x1; ++x) {
             if (!(job.seam_c[x] >> 24) || !col_ok[x]) continue;
+            if (with_d && !(std::abs(job.seam_d[x] - job.col_d[x]) <= job.threshold)) continue;
             raster_span(job.seam_v[x], unpack(job.seam_c[x]), 0.0f, job.col_v[x], unpack(job.col_c[x]), 0.0f, oh,
                         [&](int y, Rgba8 c, float) { job.out->at(x, oh - 1 - y) = c; });
         }

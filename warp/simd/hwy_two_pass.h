@@ -34,8 +34,9 @@
 
 namespace rtm::simd {
 
-// The horizontal pass of steps [s0, s1) into one band; `scratch` holds 3 * source width floats that no other call
-// uses at the same time (one per band slot: the kernels then allocate nothing, whichever thread runs them).
+// The horizontal pass of steps [s0, s1) into one band; `scratch` holds 3 * source width floats (4 with a
+// discontinuity threshold, TwoPassJob::threshold) that no other call uses at the same time (one per band slot: the
+// kernels then allocate nothing, whichever thread runs them).
 using HorizontalStepsFn = void (*)(const fast::TwoPassJob&, int, int, uint32_t*, float*, size_t, float* scratch);
 using VerticalStepsFn = void (*)(const fast::TwoPassJob&, int, int, const uint32_t*, const float*, size_t, int, int);
 // The still-step test of the vertical pass (warp/simd/schedule.cpp, vertical_with_still): bit i set where step

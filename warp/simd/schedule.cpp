@@ -161,9 +161,8 @@ bool fast_prewarp_covers(Isa isa, const ReliefTexture& relief, const PrewarpCoef
     if (isa != Isa::avx512 && !(options.method == Reconstruction::two_pass ? !!simd::hwy_two_pass_kernels(isa).vertical
                                                                            : !!simd::hwy_pipelined_kernels(isa).part))
         return false;
-    // Discontinuity marks (paper section 4.1.1): the AVX-512 two-pass kernels (TwoPassJob::breaks, threshold).
-    if ((!relief.breaks.empty() || relief.discontinuity_threshold > 0.0) &&
-        !(isa == Isa::avx512 && options.method == Reconstruction::two_pass))
+    // Discontinuity marks (paper section 4.1.1): the two-pass kernels (TwoPassJob::breaks, threshold).
+    if ((!relief.breaks.empty() || relief.discontinuity_threshold > 0.0) && options.method != Reconstruction::two_pass)
         return false;
     if (!relief.breaks.empty() && relief.breaks.size() != relief.texels.size()) return false;
     if (k.side == ViewSide::on_plane || relief.width <= 0 || relief.height <= 0) return false;
@@ -347,12 +346,14 @@ PrewarpStats fast_two_pass(const simd::TwoPassKernels& kernels, const ReliefText
     const int band = kBandRows, slots = kBandSlots;
     // One more row: the groups' still flags (vertical_with_still).
     ensure_size(ws.mid_color, stride, 4 + band * slots + 2);
-    // After the bands: one row scratch (3 source widths of floats) per band slot, for the Highway kernels.
-    const size_t scratch_rows = (3 * size_t(w) + size_t(stride) - 1) / size_t(stride);
-    // With a discontinuity threshold (the AVX-512 kernels only), then: the columns' carried displacement, the
-    // seam's, and the bands' (each band's d rows d_offset floats after its v rows).
+    // With a discontinuity threshold the columns carry each sample's displacement (TwoPassJob::threshold).
     const float threshold = float(relief.discontinuity_threshold);
     const bool carry_d = threshold > 0.0f;
+    // After the bands: one row scratch per band slot for the Highway kernels (3 source widths of floats, 4 with a
+    // threshold: hwy_two_pass.h).
+    const size_t scratch_rows = ((carry_d ? 4 : 3) * size_t(w) + size_t(stride) - 1) / size_t(stride);
+    // With a threshold, then: the columns' carried displacement, the seam's, and the bands' (each band's d rows
+    // d_offset floats after its v rows).
     const int d_rows = carry_d ? 2 + band * slots : 0;
     const size_t d_base = 4 + size_t(band * slots) + scratch_rows * size_t(slots);
     ensure_size(ws.mid_v, stride, int(d_base) + d_rows + 1);
