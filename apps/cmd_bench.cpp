@@ -25,6 +25,8 @@ struct BenchArgs {
     std::string scene_variants;
     double min_time = 0;
     bool min_time_given = false;
+    double discontinuity = 0;
+    bool discontinuity_given = false;
 };
 
 std::vector<int> parse_ints(const std::string& text, const std::string& flag, int lo, int hi) {
@@ -67,6 +69,15 @@ void run_bench_command(const BenchArgs& a) {
             throw UsageError("--min-time: expected seconds in 0..3600, found " + found.str());
         }
         c.min_seconds = a.min_time;
+    }
+    if (a.discontinuity_given) {
+        if (!(a.discontinuity > 0.0 && a.discontinuity <= 1.0)) {
+            std::ostringstream found;
+            found << a.discontinuity;
+            throw UsageError("--discontinuity: expected a fraction of the displacement range in (0, 1], found " +
+                             found.str());
+        }
+        c.discontinuity = a.discontinuity;
     }
     if (!a.json.empty()) check_output_file(a.json, "--json");
     c.exact = !a.no_exact;
@@ -122,6 +133,10 @@ void add_bench_command(CLI::App& app) {
                     "auto, i.e. RTM_ISA or the fastest)");
     sub->add_option("--min-time", a->min_time, "Seconds of repeats per measurement (default 0.25)")
         ->each([a](const std::string&) { a->min_time_given = true; });
+    sub->add_option("--discontinuity", a->discontinuity,
+                    "Mark the throughput reliefs' surface discontinuities at this fraction of their displacement "
+                    "range, as six-face objects' faces are (e.g. 0.05; default: no marks)")
+        ->each([a](const std::string&) { a->discontinuity_given = true; });
     sub->add_flag("--no-exact", a->no_exact, "Skip the --exact (double precision) path");
     sub->add_flag("--no-reference", a->no_reference, "Skip the generic reference kernels");
     sub->add_flag("--no-table1", a->no_table1, "Skip the OpenGL frame (Table 1) and the objects beside it");

@@ -34,6 +34,9 @@ struct BenchConfig {
     int min_repeats = 3;        // ... and at least this often (after one warm-up), at most max_repeats
     int max_repeats = 400;
     CompareView view = orbit_view(30.0, 20.0);  // the eye (orbit convention, about the relief's bounds)
+    // > 0: the throughput rows' reliefs carry surface-discontinuity marks (paper section 4.1.1, mark_discontinuities)
+    // at this fraction of their displacement range as threshold, as every six-face object's face does; 0: none.
+    double discontinuity = 0.0;
     bool table1 = true;
     int table1_size = 256;
     bool objects = true;  // with table1: six-face objects of table1_size^2 faces from one-, two- and three-face views
@@ -121,6 +124,7 @@ struct BenchResult {
     std::string gl_renderer;              // the OpenGL context of Table 1, or why there is none
     std::string load_before, load_after;  // /proc/loadavg at the start and the end
     std::string view;                     // the eye used
+    double discontinuity = 0.0;           // BenchConfig::discontinuity
     std::vector<BenchRow> rows;
     std::vector<Table1Row> table1;
     std::vector<ObjectFrameRow> objects;

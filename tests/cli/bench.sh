@@ -125,6 +125,21 @@ PY
 then
   passes=$((passes + 1)); else echo "FAIL: --no-reference work columns"; fails=$((fails + 1)); fi
 
+# --discontinuity: the throughput reliefs carry marks, which the two-pass fast kernels take (the row names the SIMD
+# target that ran, not the reference's "generic") and the pipelined reconstruction leaves to the reference.
+expect_ok bench --sizes 16 --reliefs bricks --threads 1 --min-time 0 --no-exact --no-table1 --discontinuity 0.05 \
+  --json "$T/m.json"
+if grep -q '^Discontinuity marks: .* 0.05 of their displacement range' "$T/stdout" && python3 - "$T/m.json" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+two = [r for r in d["rows"] if r["method"] == "two-pass"]
+pipe = [r for r in d["rows"] if r["method"] == "pipelined"]
+ok = d["discontinuity"] == 0.05 and len(two) == 2 and len(pipe) == 2
+ok = ok and [r["isa"] != "generic" for r in two] == [True, False] and all(r["isa"] == "generic" for r in pipe)
+sys.exit(not ok)
+PY
+then passes=$((passes + 1)); else echo "FAIL: bench --discontinuity"; fails=$((fails + 1)); fi
+
 # Errors: usage (2) names the flag and the value; an unwritable --json fails (1) before the run, naming the file.
 expect_fail 2 'sizes.*"0"' -- bench --sizes 0
 expect_fail 2 'sizes.*"16,x"' -- bench --sizes 16,x
@@ -133,6 +148,9 @@ expect_fail 2 'reliefs.*moon' -- bench --reliefs moon
 expect_fail 2 'methods.*foo' -- bench --methods foo
 expect_fail 2 'min-time.*-2' -- bench --min-time -2
 expect_fail 2 'min-time.*nan' -- bench --min-time nan
+expect_fail 2 'discontinuity.*found 0$' -- bench --discontinuity 0
+expect_fail 2 'discontinuity.*found 1.5' -- bench --discontinuity 1.5
+expect_fail 2 'discontinuity.*found nan' -- bench --discontinuity nan
 expect_fail 1 'nowhere/b\.json.*does not exist' -- bench --json "$T/nowhere/b.json"
 expect_fail 1 'json.*folder' -- bench --json "$T"
 expect_fail 1 'nowhere/f\.json' -- bench-filter --json "$T/nowhere/f.json"

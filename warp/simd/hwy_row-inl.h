@@ -54,7 +54,19 @@ struct RowOut {
     // (PrewarpOptions::copy_still_runs; CopyStill). The row is the same either way.
     bool copy = false;
     int width = 0;  // pixels in the row (WarpRow and WarpRowBackward set it from their n_out)
+    // A second attribute carried like the first (the displacement, for a discontinuity threshold), pixel x at
+    // attr2[x]; null: none (then the row warps take no second attribute either).
+    float* attr2 = nullptr;
 };
+
+// Both attributes of a sample where a row carries two, interpolated by the reference's attr_lerp for its RowAttr
+// (each one a * (1 - t) + b * t): what the sample-by-sample paths hand to raster_point and raster_span.
+struct TwoAttrs {
+    float v, d;
+};
+inline TwoAttrs attr_lerp(TwoAttrs a, TwoAttrs b, float t) {
+    return {a.v * (1.0f - t) + b.v * t, a.d * (1.0f - t) + b.d * t};
+}
 
 #if HWY_TARGET == HWY_AVX2
 // Compression of 8 lanes on AVX2 for SpanLanes: for each mask of 8 bits, the indices of the set lanes in order (then
@@ -113,7 +125,8 @@ alignas(16) inline constexpr Compress4Table kCompress4;
 // The spans of lanes `span` (pa != pb, from sample a to sample b) into row `out`: each lane's pixels lo .. hi as
 // raster_span computes them (centres in (pa, pb] or [pb, pa), clamped to [0, n_out)), only those in [cl, ch] (the
 // caller's clip range, within [0, n_out); the backward rows draw only the pixels no later span covers), colour by
-// lerp8's integer formula and the carried row coordinate by attr_lerp at each centre. The lanes are consecutive spans
+// lerp8's integer formula and the carried row coordinate (and out.attr2's attribute, from da and db, where the row
+// carries one) by attr_lerp at each centre. The lanes are consecutive spans
 // of one orientation whose pixels follow the lane order (DrawGroup reverses the lanes where they run the other way):
 // their pixels are disjoint, in lane order, and together one run xa .. xb, handed to before(xa, xb) before any of them
 // is written. Where the run is at most 4 vectors long (spans of a pixel or two, the usual case), each pixel of it looks
@@ -122,10 +135,12 @@ alignas(16) inline constexpr Compress4Table kCompress4;
 // lanes of at most two pixels each (bumps) go span by span, compressed into place (below).
 template <class DF, class DI, class MF, class Before>
 HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb, hn::Vec<DI> ca, hn::Vec<DI> cb,
-                          hn::Vec<DF> va, hn::Vec<DF> vb, bool fwd, RowOut out, const Before& before, int cl, int ch) {
+                          hn::Vec<DF> va, hn::Vec<DF> vb, hn::Vec<DF> da, hn::Vec<DF> db, bool fwd, RowOut out,
+                          const Before& before, int cl, int ch) {
     using VF = hn::Vec<DF>;
     using VI = hn::Vec<DI>;
     const int N = int(hn::Lanes(df));
+    const bool with2 = out.attr2 != nullptr;
     const VF half = hn::Set(df, 0.5f), one = hn::Set(df, 1.0f), zero = hn::Zero(df);
     const VF first_px = hn::Set(df, float(cl)), last = hn::Set(df, float(ch));
     const auto inc = hn::And(span, hn::Gt(pb, pa));
@@ -155,11 +170,12 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
     // pixel centres c (raster_span's t, lerp8, attr_lerp).
     const bool narrow = hn::AllTrue(di, hn::Or(hn::Not(todo), hn::Lt(hn::Sub(xhi, xlo), hn::Set(di, 2))));
     const VF xc0 = hn::Add(lo, half);  // the centre of lo + 1 is xc0 + 1 exactly (pixel indices below 2^22)
-    auto at = [&](VF c, VI & col, VF & v) HWY_ATTR __attribute__((always_inline)) {
+    auto at = [&](VF c, VI & col, VF & v, VF & d) HWY_ATTR __attribute__((always_inline)) {
         VF tt = hn::Mul(hn::Sub(c, pa), inv);
         tt = hn::IfThenElse(hn::Lt(tt, zero), zero, hn::IfThenElse(hn::Lt(one, tt), one, tt));  // std::clamp
         col = Lerp8At(df, di, tt, ca, cb);
         v = hn::Add(hn::Mul(va, hn::Sub(one, tt)), hn::Mul(vb, tt));  // attr_lerp, no contraction
+        if (with2) d = hn::Add(hn::Mul(da, hn::Sub(one, tt)), hn::Mul(db, tt));
     };
 #endif
 #if HWY_TARGET == HWY_AVX2
@@ -170,19 +186,21 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
     if (narrow) {
         int32_t* oc = reinterpret_cast<int32_t*>(out.c + xa);
         float* ov = out.v + xa;
+        int32_t* od = with2 ? reinterpret_cast<int32_t*>(out.attr2 + xa) : nullptr;
         VI c1;
-        VF v1;
-        at(xc0, c1, v1);
+        VF v1, d1 = zero;
+        at(xc0, c1, v1, d1);
         const auto two = hn::And(todo, hn::Lt(xlo, xhi));
         const unsigned b1 = unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(hn::VecFromMask(di, todo).raw)));
         if (hn::AllFalse(di, two)) {
             CompressStore8(c1.raw, b1, oc);
             CompressStore8(_mm256_castps_si256(v1.raw), b1, reinterpret_cast<int32_t*>(ov));
+            if (with2) CompressStore8(_mm256_castps_si256(d1.raw), b1, od);
             return;
         }
         VI c2;
-        VF v2;
-        at(hn::Add(xc0, one), c2, v2);
+        VF v2, d2 = zero;
+        at(hn::Add(xc0, one), c2, v2, d2);
         // (a0 b0 a1 b1 a2 b2 a3 b3) and (a4 b4 .. a7 b7): the unpacks work within 128-bit blocks.
         auto zip = [](__m256i a, __m256i b, __m256i& l, __m256i& h) {
             const __m256i ul = _mm256_unpacklo_epi32(a, b), uh = _mm256_unpackhi_epi32(a, b);
@@ -200,6 +218,12 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
         CompressStore8(vl4, bl, ovi);
         CompressStore8(ch4, bh, oc + n1);
         CompressStore8(vh4, bh, ovi + n1);
+        if (with2) {
+            __m256i dl4, dh4;
+            zip(_mm256_castps_si256(d1.raw), _mm256_castps_si256(d2.raw), dl4, dh4);
+            CompressStore8(dl4, bl, od);
+            CompressStore8(dh4, bh, od + n1);
+        }
         return;
     }
 #elif HWY_TARGET <= HWY_AVX3
@@ -214,19 +238,21 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
                                      _mm512_maskz_compress_epi32(m, v));
             return int(_mm_popcnt_u32(bits));
         };
+        int32_t* od = with2 ? reinterpret_cast<int32_t*>(out.attr2 + xa) : nullptr;
         VI c1;
-        VF v1;
-        at(xc0, c1, v1);
+        VF v1, d1 = zero;
+        at(xc0, c1, v1, d1);
         const auto two = hn::And(todo, hn::Lt(xlo, xhi));
         const unsigned b1 = unsigned(todo.raw);
         if (hn::AllFalse(di, two)) {
             put(c1.raw, b1, oc);
             put(_mm512_castps_si512(v1.raw), b1, ov);
+            if (with2) put(_mm512_castps_si512(d1.raw), b1, od);
             return;
         }
         VI c2;
-        VF v2;
-        at(hn::Add(xc0, one), c2, v2);
+        VF v2, d2 = zero;
+        at(hn::Add(xc0, one), c2, v2, d2);
         // (a0 b0 a1 b1 .. a7 b7) and (a8 b8 .. a15 b15), the masks' bits the same way.
         const __m512i lo_idx = _mm512_set_epi32(23, 7, 22, 6, 21, 5, 20, 4, 19, 3, 18, 2, 17, 1, 16, 0);
         const __m512i hi_idx = _mm512_set_epi32(31, 15, 30, 14, 29, 13, 28, 12, 27, 11, 26, 10, 25, 9, 24, 8);
@@ -236,6 +262,11 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
         put(_mm512_permutex2var_epi32(w1, lo_idx, w2), bits & 0xFFFFu, ov);
         put(_mm512_permutex2var_epi32(c1.raw, hi_idx, c2.raw), bits >> 16, oc + n1);
         put(_mm512_permutex2var_epi32(w1, hi_idx, w2), bits >> 16, ov + n1);
+        if (with2) {
+            const __m512i e1 = _mm512_castps_si512(d1.raw), e2 = _mm512_castps_si512(d2.raw);
+            put(_mm512_permutex2var_epi32(e1, lo_idx, e2), bits & 0xFFFFu, od);
+            put(_mm512_permutex2var_epi32(e1, hi_idx, e2), bits >> 16, od + n1);
+        }
         return;
     }
 #elif HWY_TARGET == HWY_SSE4 || HWY_TARGET == HWY_NEON
@@ -258,18 +289,21 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
         };
         int32_t* oc = reinterpret_cast<int32_t*>(out.c + xa);
         int32_t* ov = reinterpret_cast<int32_t*>(out.v + xa);
+        int32_t* od = with2 ? reinterpret_cast<int32_t*>(out.attr2 + xa) : nullptr;
         const VI keep_c = hn::LoadU(di, oc + len), keep_v = hn::LoadU(di, ov + len);
+        const VI keep_d = with2 ? hn::LoadU(di, od + len) : hn::Zero(di);
         VI c1, c2;
-        VF v1, v2;
-        at(xc0, c1, v1);
+        VF v1, v2, d1 = zero, d2 = zero;
+        at(xc0, c1, v1, d1);
         const auto two = hn::And(todo, hn::Lt(xlo, xhi));
         const VI t1 = hn::VecFromMask(di, todo);
         if (hn::AllFalse(di, two)) {
             const unsigned b = bits4(t1);
             put(c1, b, oc);
             put(hn::BitCast(di, v1), b, ov);
+            if (with2) put(hn::BitCast(di, d1), b, od);
         } else {
-            at(hn::Add(xc0, one), c2, v2);
+            at(hn::Add(xc0, one), c2, v2, d2);
             const VI t2 = hn::VecFromMask(di, two);
             const unsigned bl = bits4(hn::InterleaveLower(di, t1, t2)), bh = bits4(hn::InterleaveUpper(di, t1, t2));
             const VI w1 = hn::BitCast(di, v1), w2 = hn::BitCast(di, v2);
@@ -277,9 +311,15 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
             put(hn::InterleaveLower(di, w1, w2), bl, ov);
             put(hn::InterleaveUpper(di, c1, c2), bh, oc + n1);
             put(hn::InterleaveUpper(di, w1, w2), bh, ov + n1);
+            if (with2) {
+                const VI e1 = hn::BitCast(di, d1), e2 = hn::BitCast(di, d2);
+                put(hn::InterleaveLower(di, e1, e2), bl, od);
+                put(hn::InterleaveUpper(di, e1, e2), bh, od + n1);
+            }
         }
         hn::StoreU(keep_c, di, oc + len);
         hn::StoreU(keep_v, di, ov + len);
+        if (with2) hn::StoreU(keep_d, di, od + len);
         return;
     }
 #endif
@@ -306,30 +346,38 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
             VF tt = hn::Mul(hn::Sub(xc, hn::TableLookupLanes(pa, ix)), hn::TableLookupLanes(inv, ix));
             tt = hn::IfThenElse(hn::Lt(tt, zero), zero, hn::IfThenElse(hn::Lt(one, tt), one, tt));  // std::clamp
             const VI col = Lerp8At(df, di, tt, hn::TableLookupLanes(ca, ixi), hn::TableLookupLanes(cb, ixi));
-            const VF v = hn::Add(hn::Mul(hn::TableLookupLanes(va, ix), hn::Sub(one, tt)),
+            const VF one_t = hn::Sub(one, tt);
+            const VF v = hn::Add(hn::Mul(hn::TableLookupLanes(va, ix), one_t),
                                  hn::Mul(hn::TableLookupLanes(vb, ix), tt));  // attr_lerp, no contraction
+            const VF d = with2 ? hn::Add(hn::Mul(hn::TableLookupLanes(da, ix), one_t),
+                                         hn::Mul(hn::TableLookupLanes(db, ix), tt))
+                               : zero;
             if (j + N <= len) {
                 hn::StoreU(col, di, reinterpret_cast<int32_t*>(out.c + xa + j));
                 hn::StoreU(v, df, out.v + xa + j);
+                if (with2) hn::StoreU(d, df, out.attr2 + xa + j);
             } else if (kMaskedStore) {  // a masked store instruction: no pixel past the run is touched
                 const auto m = hn::FirstN(di, size_t(len - j));
                 hn::BlendedStore(col, m, di, reinterpret_cast<int32_t*>(out.c + xa + j));
                 hn::BlendedStore(v, hn::RebindMask(df, m), df, out.v + xa + j);
+                if (with2) hn::BlendedStore(d, hn::RebindMask(df, m), df, out.attr2 + xa + j);
             } else {  // the last pixels one by one (SSE4's and NEON's BlendedStore store the whole vector)
                 HWY_ALIGN int32_t tc[HWY_MAX_BYTES / 4] = {};
-                HWY_ALIGN float tv[HWY_MAX_BYTES / 4] = {};
+                HWY_ALIGN float tv[HWY_MAX_BYTES / 4] = {}, td[HWY_MAX_BYTES / 4] = {};
                 hn::Store(col, di, tc);
                 hn::Store(v, df, tv);
+                hn::Store(d, df, td);
                 for (int i = 0; i < len - j; ++i) {
                     out.c[xa + j + i] = uint32_t(tc[i]);
                     out.v[xa + j + i] = tv[i];
+                    if (with2) out.attr2[xa + j + i] = td[i];
                 }
             }
         }
         return;
     }
     HWY_ALIGN int32_t lane_c[HWY_MAX_BYTES / 4];
-    HWY_ALIGN float lane_v[HWY_MAX_BYTES / 4];
+    HWY_ALIGN float lane_v[HWY_MAX_BYTES / 4], lane_d[HWY_MAX_BYTES / 4];
     VI x = xlo;
     VF xc = hn::Add(hn::ConvertTo(df, xlo), half);
     auto on = todo;
@@ -342,10 +390,12 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
         hn::Store(col, di, lane_c);
         hn::Store(v, df, lane_v);
         hn::Store(hn::VecFromMask(di, on), di, lane_on);
+        if (with2) hn::Store(hn::Add(hn::Mul(da, hn::Sub(one, tt)), hn::Mul(db, tt)), df, lane_d);
         for (int i = 0; i < N; ++i)
             if (lane_on[i]) {
                 out.c[lane_x[i]] = uint32_t(lane_c[i]);
                 out.v[lane_x[i]] = lane_v[i];
+                if (with2) out.attr2[lane_x[i]] = lane_d[i];
             }
         x = hn::Add(x, hn::Set(di, 1));
         xc = hn::Add(xc, one);
@@ -430,8 +480,8 @@ HWY_INLINE int GroupPrefix(DF df, const float* pa_ptr, const float* pb_ptr, bool
 // part, a0 - 1 in the right part), only pixels in [cl, ch]. SpanLanes wants the lanes' pixels in lane order: the
 // lanes are reversed where the pixels run the other way (left part: spans going down; right part: going up).
 template <class DF, class Before>
-HWY_INLINE void DrawGroup(DF df, const float* pos, const uint32_t* col, const float* attr, int a0, int b0, int m,
-                          bool from_low, bool up, RowOut out, const Before& before, int cl, int ch) {
+HWY_INLINE void DrawGroup(DF df, const float* pos, const uint32_t* col, const float* attr, const float* attr2, int a0,
+                          int b0, int m, bool from_low, bool up, RowOut out, const Before& before, int cl, int ch) {
     const hn::RebindToSigned<DF> di;
     const int N = int(hn::Lanes(df));
     const bool reverse = (b0 > a0) != up;
@@ -446,8 +496,9 @@ HWY_INLINE void DrawGroup(DF df, const float* pos, const uint32_t* col, const fl
         return reverse ? hn::Reverse(di, v) : v;
     };
     const auto pa = lf(pos + a0), pb = lf(pos + b0);
+    const auto da = attr2 ? lf(attr2 + a0) : hn::Zero(df), db = attr2 ? lf(attr2 + b0) : hn::Zero(df);
     SpanLanes(df, di, hn::And(mask, hn::Ne(pb, pa)), pa, pb, li(col + a0), li(col + b0), lf(attr + a0), lf(attr + b0),
-              up, out, before, cl, ch);
+              da, db, up, out, before, cl, ch);
 }
 
 // The spans ending at samples b .. b + N - 1 (the lanes of one vector), each from the sample on its other side (d =
@@ -459,8 +510,8 @@ HWY_INLINE void DrawGroup(DF df, const float* pos, const uint32_t* col, const fl
 // texels; the AVX-512 kernels' `ident` runs, warp/simd/avx512_line.h). Returns false, having written nothing,
 // otherwise.
 template <class DF, class Before>
-HWY_INLINE bool CopyStill(DF df, const float* pos, const uint32_t* col, const float* attr, int b, int d, int n_out,
-                          RowOut out, const Before& before) {
+HWY_INLINE bool CopyStill(DF df, const float* pos, const uint32_t* col, const float* attr, const float* attr2, int b,
+                          int d, int n_out, RowOut out, const Before& before) {
     const hn::RebindToSigned<DF> di;
     const int N = int(hn::Lanes(df));
     const auto ps = hn::LoadU(df, pos + b), pn = hn::LoadU(df, pos + b + d);
@@ -475,8 +526,52 @@ HWY_INLINE bool CopyStill(DF df, const float* pos, const uint32_t* col, const fl
     hn::StoreU(hn::Or(hn::LoadU(di, reinterpret_cast<const int32_t*>(col + b)), alpha), di,
                reinterpret_cast<int32_t*>(out.c + x0));
     hn::StoreU(hn::LoadU(df, attr + b), df, out.v + x0);
+    if (attr2) hn::StoreU(hn::LoadU(df, attr2 + b), df, out.attr2 + x0);
     return true;
 }
+
+// The sample-by-sample paths of the row warps: raster_point, raster_span and raster_span_pixels of samples a and b
+// of one row carrying its attribute attr (and attr2, where not null, as TwoAttrs) into out.
+struct ScalarRow {
+    const float* pos;
+    const uint32_t* col;
+    const float* attr;
+    const float* attr2;
+    RowOut out;
+    auto put1() const {
+        return [o = out](int x, Rgba8 c, float v) {
+            o.c[x] = pack(c);
+            o.v[x] = v;
+        };
+    }
+    auto put2() const {
+        return [o = out](int x, Rgba8 c, TwoAttrs a) {
+            o.c[x] = pack(c);
+            o.v[x] = a.v;
+            o.attr2[x] = a.d;
+        };
+    }
+    void point(int k, int n_out) const {
+        if (attr2)
+            raster_point(pos[k], unpack(col[k]), TwoAttrs{attr[k], attr2[k]}, n_out, put2());
+        else
+            raster_point(pos[k], unpack(col[k]), attr[k], n_out, put1());
+    }
+    void span(int a, int b, int n_out) const {
+        if (attr2)
+            raster_span(pos[a], unpack(col[a]), TwoAttrs{attr[a], attr2[a]}, pos[b], unpack(col[b]),
+                        TwoAttrs{attr[b], attr2[b]}, n_out, put2());
+        else
+            raster_span(pos[a], unpack(col[a]), attr[a], pos[b], unpack(col[b]), attr[b], n_out, put1());
+    }
+    void span_pixels(int a, int b, int x0, int x1) const {
+        if (attr2)
+            raster_span_pixels(pos[a], unpack(col[a]), TwoAttrs{attr[a], attr2[a]}, pos[b], unpack(col[b]),
+                               TwoAttrs{attr[b], attr2[b]}, x0, x1, put2());
+        else
+            raster_span_pixels(pos[a], unpack(col[a]), attr[a], pos[b], unpack(col[b]), attr[b], x0, x1, put1());
+    }
+};
 
 // How many of the `count` spans keyed first, first + dir, ... lead before one whose pair the row's marks break
 // (kBreakRight on the pair's left texel, which is the key itself: the left part's span k joins k - 1 and k and is
@@ -492,19 +587,17 @@ inline int UnbrokenLead(const uint8_t* marks, int first, int dir, int count) {
 // run of its own (a point), as warp_line_to with the reference's RowConnected. A group of spans stops before such a
 // pair; a copy of still texels (CopyStill) needs no test: a still sample's pixel is the same whether it is joined to
 // its neighbour (a one-pixel span at t = 1) or not (a point on the same pixel).
+// `attr2` (null: none) is a second attribute carried like the first into out.attr2 (null exactly when it is).
 template <class Range = NoRange>
-void WarpRow(const float* pos, const uint32_t* col, const float* attr, int n, int split, int n_out, RowOut out,
-             const Range& range = {}, const uint8_t* marks = nullptr) {
+void WarpRow(const float* pos, const uint32_t* col, const float* attr, const float* attr2, int n, int split, int n_out,
+             RowOut out, const Range& range = {}, const uint8_t* marks = nullptr) {
     out.width = n_out;
     const hn::ScalableTag<float> df;
     const int N = int(hn::Lanes(df));
     constexpr bool kRange = !std::is_same_v<Range, NoRange>;
+    const ScalarRow scalar{pos, col, attr, attr2, out};
     auto before = [&](int xa, int xb) {
         if constexpr (kRange) range.before(xa, xb);
-    };
-    auto put = [&](int x, Rgba8 c, float v) {
-        out.c[x] = pack(c);
-        out.v[x] = v;
     };
     auto span = [&](int a, int b) {
         if constexpr (kRange) {
@@ -512,7 +605,7 @@ void WarpRow(const float* pos, const uint32_t* col, const float* attr, int n, in
             SpanPixels(pos[a], pos[b], n_out, xa, xb);
             if (xa <= xb) before(xa, xb);
         }
-        raster_span(pos[a], unpack(col[a]), attr[a], pos[b], unpack(col[b]), attr[b], n_out, put);
+        scalar.span(a, b, n_out);
     };
     auto ok = [&](int k) { return std::isfinite(pos[k]); };
     // Samples a and b (adjacent) joined: the reference's RowConnected.
@@ -526,7 +619,7 @@ void WarpRow(const float* pos, const uint32_t* col, const float* attr, int n, in
                 PointPixels(pos[k], n_out, xa, xb);
                 if (xa <= xb) before(xa, xb);
             }
-            raster_point(pos[k], unpack(col[k]), attr[k], n_out, put);
+            scalar.point(k, n_out);
         } else {
             span(prev, k);
         }
@@ -536,7 +629,7 @@ void WarpRow(const float* pos, const uint32_t* col, const float* attr, int n, in
     int prev = -1, k = 0;
     while (k < split) {
         if (prev == k - 1 && prev >= 0 && k + N <= split) {
-            if (out.copy && CopyStill(df, pos, col, attr, k, -1, n_out, out, before)) {
+            if (out.copy && CopyStill(df, pos, col, attr, attr2, k, -1, n_out, out, before)) {
                 k += N;
                 prev = k - 1;
                 continue;
@@ -545,7 +638,7 @@ void WarpRow(const float* pos, const uint32_t* col, const float* attr, int n, in
             int m = GroupPrefix(df, pos + k - 1, pos + k, true, up);
             if (m && marks && (m = UnbrokenLead(marks, k - 1, +1, m)) < kMinGroup) m = 0;
             if (m) {
-                DrawGroup(df, pos, col, attr, k - 1, k, m, true, up, out, before, 0, n_out - 1);
+                DrawGroup(df, pos, col, attr, attr2, k - 1, k, m, true, up, out, before, 0, n_out - 1);
                 k += m;
                 prev = k - 1;
                 continue;
@@ -561,7 +654,7 @@ void WarpRow(const float* pos, const uint32_t* col, const float* attr, int n, in
     while (k >= split) {
         if (prev == k + 1 && k - N + 1 >= split) {
             const int b = k - N + 1;  // lanes: samples b .. k, each after sample + 1; processing order from lane N - 1
-            if (out.copy && CopyStill(df, pos, col, attr, b, +1, n_out, out, before)) {
+            if (out.copy && CopyStill(df, pos, col, attr, attr2, b, +1, n_out, out, before)) {
                 k -= N;
                 prev = k + 1;
                 continue;
@@ -570,7 +663,7 @@ void WarpRow(const float* pos, const uint32_t* col, const float* attr, int n, in
             int m = GroupPrefix(df, pos + b + 1, pos + b, false, up);
             if (m && marks && (m = UnbrokenLead(marks, k, -1, m)) < kMinGroup) m = 0;
             if (m) {
-                DrawGroup(df, pos, col, attr, b + 1, b, m, false, up, out, before, 0, n_out - 1);
+                DrawGroup(df, pos, col, attr, attr2, b + 1, b, m, false, up, out, before, 0, n_out - 1);
                 k -= m;
                 prev = k + 1;
                 continue;
@@ -631,9 +724,10 @@ inline bool RowFoldsOver(const float* pos, int n, int split, bool any_row) {
 // caller clears the row and warps it forwards.
 // Why: on foldover-heavy reliefs most pixels of a row are written again later in the same row (ridges 1024^2: 2.43
 // row pixels a texel); measured in docs/perf-history.md.
-inline bool WarpRowBackward(const float* pos, const uint32_t* col, const float* attr, int n, int split, int n_out,
-                            RowOut out) {
+inline bool WarpRowBackward(const float* pos, const uint32_t* col, const float* attr, const float* attr2, int n,
+                            int split, int n_out, RowOut out) {
     out.width = n_out;
+    const ScalarRow scalar{pos, col, attr, attr2, out};
     const hn::ScalableTag<float> df;
     const int N = int(hn::Lanes(df));
     int w_lo = 0, w_hi = -1;
@@ -654,21 +748,15 @@ inline bool WarpRowBackward(const float* pos, const uint32_t* col, const float* 
         w_hi = std::max(w_hi, hi);
         return true;
     };
-    auto put = [&](int x, Rgba8 c, float v) {
-        out.c[x] = pack(c);
-        out.v[x] = v;
-    };
     auto span = [&](int a, int b) -> bool {
         int lo, hi;
         SpanPixels(pos[a], pos[b], n_out, lo, hi);
-        return item(lo, hi, [&](int cl, int ch) {
-            raster_span_pixels(pos[a], unpack(col[a]), attr[a], pos[b], unpack(col[b]), attr[b], cl, ch, put);
-        });
+        return item(lo, hi, [&](int cl, int ch) { scalar.span_pixels(a, b, cl, ch); });
     };
     auto point = [&](int k) -> bool {
         int lo, hi;
         PointPixels(pos[k], n_out, lo, hi);
-        return item(lo, hi, [&](int, int) { put(lo, unpack(col[k] | 0xFF000000u), attr[k]); });
+        return item(lo, hi, [&](int, int) { scalar.point(k, n_out); });
     };
     auto no_before = [](int, int) {};
     if (split >= 1 && split < n && !span(split - 1, split)) return false;
@@ -683,7 +771,7 @@ inline bool WarpRowBackward(const float* pos, const uint32_t* col, const float* 
                     int lo, hi;
                     SpanPixels(pos[j + m], pos[j], n_out, lo, hi);
                     if (!item(lo, hi, [&](int cl, int ch) {
-                            DrawGroup(df, pos, col, attr, j + 1, j, m, true, up, out, no_before, cl, ch);
+                            DrawGroup(df, pos, col, attr, attr2, j + 1, j, m, true, up, out, no_before, cl, ch);
                         }))
                         return false;
                     j += m;
@@ -705,7 +793,8 @@ inline bool WarpRowBackward(const float* pos, const uint32_t* col, const float* 
                     int lo, hi;
                     SpanPixels(pos[j - m], pos[j], n_out, lo, hi);
                     if (!item(lo, hi, [&](int cl, int ch) {
-                            DrawGroup(df, pos, col, attr, j - N, j - N + 1, m, false, up, out, no_before, cl, ch);
+                            DrawGroup(df, pos, col, attr, attr2, j - N, j - N + 1, m, false, up, out, no_before, cl,
+                                      ch);
                         }))
                         return false;
                     j -= m;

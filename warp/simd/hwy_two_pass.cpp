@@ -31,9 +31,8 @@ inline bool RowHasMark(const uint8_t* marks, int w) {
 // warp_line_to (WarpRow, or WarpRowBackward for rows that fold over) into one band row (colour with alpha 255 where
 // written, 0 elsewhere; the final row coordinate). Rows with discontinuity marks (job.breaks) go forwards, their
 // marks breaking spans in WarpRow (the backward order needs one connected path of samples). With a discontinuity
-// threshold the row's displacements are carried too, into band rows job.d_offset floats after the v rows: a second
-// walk of the row with the displacement as attribute (the same positions, so the same pixels, and the same colours
-// written again), where the AVX-512 kernels carry both attributes in one walk (warp_line_fast<2>).
+// threshold the row also carries each texel's displacement (the reference's RowAttr::d) as a second attribute,
+// interpolated with the same parameter as v, into band rows job.d_offset floats after the v rows.
 void HorizontalSteps(const fast::TwoPassJob& job, int s0, int s1, uint32_t* band_c, float* band_v, size_t stride,
                      float* scratch) {
     const ReliefTexture& t = *job.relief;
@@ -50,27 +49,23 @@ void HorizontalSteps(const fast::TwoPassJob& job, int s0, int s1, uint32_t* band
         if (marks && !RowHasMark(marks, w)) marks = nullptr;
         if (with_d) {
             const ReliefTexel* src = &t.texels[size_t(r) * size_t(w)];
-            for (int x = 0; x < w; ++x) s.d[x] = job.ref_tables->displ[src[x].q];  // the reference's RowAttr::d
+            for (int x = 0; x < w; ++x) s.d[x] = job.ref_tables->displ[src[x].q];
         }
         uint32_t* rc = band_c + size_t(st - s0) * stride;
         float* rv = band_v + size_t(st - s0) * stride;
+        RowOut out{rc, rv, job.copy_still};
+        if (with_d) out.attr2 = rv + job.d_offset;
         std::memset(rc, 0, size_t(ow) * 4);
         // Rows that fold over: backwards, each pixel drawn once (WarpRowBackward). Bumps never folds over.
-        const bool try_backward = !marks && job.reverse != KernelChoice::never &&
-                                  RowFoldsOver(s.pos, w, job.split_u, job.reverse == KernelChoice::always);
-        auto walk = [&](const float* attr, float* out_attr) {
-            bool backward = false;
-            if (try_backward) {
-                backward = WarpRowBackward(s.pos, s.color, attr, w, job.split_u, ow, RowOut{rc, out_attr}) &&
-                           !job.redo_forwards;
-                if (!backward) std::memset(rc, 0, size_t(ow) * 4);  // only with redo_forwards (see WarpRowBackward)
-            }
-            if (!backward)
-                WarpRow(s.pos, s.color, attr, w, job.split_u, ow, RowOut{rc, out_attr, job.copy_still}, NoRange{},
-                        marks);
-        };
-        walk(s.v, rv);
-        if (with_d) walk(s.d, rv + job.d_offset);
+        bool backward = false;
+        if (!marks && job.reverse != KernelChoice::never &&
+            RowFoldsOver(s.pos, w, job.split_u, job.reverse == KernelChoice::always)) {
+            RowOut back = out;
+            back.copy = false;
+            backward = WarpRowBackward(s.pos, s.color, s.v, s.d, w, job.split_u, ow, back) && !job.redo_forwards;
+            if (!backward) std::memset(rc, 0, size_t(ow) * 4);  // only with redo_forwards (WarpRowBackward says why)
+        }
+        if (!backward) WarpRow(s.pos, s.color, s.v, s.d, w, job.split_u, ow, out, NoRange{}, marks);
     }
     if (dropped) *job.dropped += dropped;
 }
