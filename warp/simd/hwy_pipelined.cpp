@@ -315,7 +315,8 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
         const long long dropped = prepare(j, j + p.step);
         std::fill(b.cur_ok + x0, b.cur_ok + x1, 0);
         const Emitter emit{b, ColumnTarget{pixels, ow, oh, ya, yb}, x0, x1, drawn, job.copy_still};
-        WarpRow(s.pos, s.color, s.v, nullptr, w, job.split_u, ow, RowOut{rc, rv, job.copy_still}, Coalescer<Emitter>{emit});
+        WarpRow(s.pos, s.color, s.v, nullptr, w, job.split_u, ow, RowOut{rc, rv, job.copy_still},
+                Coalescer<Emitter>{emit});
         std::swap(b.prev_c, b.cur_c);
         std::swap(b.prev_v, b.cur_v);
         std::swap(b.prev_ok, b.cur_ok);
@@ -348,7 +349,8 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
             std::fill(r.fin_ok.data() + x0, r.fin_ok.data() + x1, 0);
             log.n = 0;
             const Logger logger{b, r, log, x0, x1};
-            WarpRow(s.pos, s.color, s.v, nullptr, w, job.split_u, ow, RowOut{rc, rv, job.copy_still}, Coalescer<Logger>{logger});
+            WarpRow(s.pos, s.color, s.v, nullptr, w, job.split_u, ow, RowOut{rc, rv, job.copy_still},
+                    Coalescer<Logger>{logger});
         };
         const hn::ScalableTag<float> df;
         const hn::RebindToSigned<decltype(df)> di;
