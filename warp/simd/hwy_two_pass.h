@@ -19,6 +19,10 @@
 // (warp/simd/hwy_columns-inl.h): two masked row stores a step where the lanes share a row or the next (AVX-512,
 // AVX2, SVE), otherwise one scatter (AVX-512) or lane by lane; spans of 5 pixels and more row by row over the lanes.
 // Still steps (zero displacement) are copied by the shared scheduling, tested by StillSteps a vector at a time.
+// Surface discontinuities (paper section 4.1.1; TwoPassJob::breaks, threshold): a row's marks end its groups of spans
+// and make the sample after a marked pair a point (WarpRow), marked rows go forwards; with a threshold the rows carry
+// each texel's displacement as a second attribute (RowOut::attr2) and ColumnStep<true> joins two samples of a column
+// only where their displacements differ by at most the threshold.
 //
 // The building blocks (row set-up, row warp, column step) are shared with the Highway pipelined kernel
 // (warp/simd/hwy_row-inl.h, warp/simd/hwy_columns-inl.h, warp/simd/hwy_pipelined.h). Not yet here
