@@ -1226,8 +1226,17 @@ void mark_randomly(ReliefTexture& t, std::mt19937_64& rng, int mode) {
     }
 }
 
-TEST_P(TwoPassReverseFastKernels, MarkedReliefsMatchTheReference) {
-    const uint64_t seed = test::test_seed(80041);
+// The target whose kernels take a marked relief on `isa` with `method`: the hand-written pipelined kernel takes no
+// marks, and the Highway one on the same CPUs does (fast_prewarp).
+Isa marked_target(Isa isa, Reconstruction method) {
+    return isa == Isa::avx512 && method == Reconstruction::pipelined ? Isa::avx512_hwy : isa;
+}
+
+// The random cases with marks (mark_randomly) against the reference on target `isa`, each of `policies`, one and two
+// threads, copies of still runs on and off; every covered case reports the target that ran.
+template <size_t N>
+void marked_random_cases(Isa isa, Reconstruction method, const NamedPolicy (&policies)[N], uint64_t seed_fallback) {
+    const uint64_t seed = test::test_seed(seed_fallback);
     std::mt19937_64 rng(seed);
     const int cases = test::sweep_cases(600);
     PrewarpWorkspace ws_ref, ws_fast;
@@ -1238,7 +1247,7 @@ TEST_P(TwoPassReverseFastKernels, MarkedReliefsMatchTheReference) {
         Case c = random_case(rng);
         const int mode = int(rng() % 4);
         mark_randomly(c.relief, rng, mode);
-        c.options.method = Reconstruction::two_pass;
+        c.options.method = method;
         SCOPED_TRACE("seed " + std::to_string(seed) + " case " + std::to_string(i) + ": " + c.describe + " marks " +
                      std::to_string(mode) + " threshold " + std::to_string(c.relief.discontinuity_threshold));
         const PrewarpCoefficients k = compute_coefficients(c.relief.geometry, c.eye);
@@ -1246,9 +1255,10 @@ TEST_P(TwoPassReverseFastKernels, MarkedReliefsMatchTheReference) {
         o.isa = Isa::generic;
         o.threads = 1;
         const PrewarpStats sr = prewarp(c.relief, k, o, ws_ref, ref);
-        o.isa = isa();
-        covered += fast_prewarp_covers(isa(), c.relief, k, o, sr.extent, nullptr);
-        for (const NamedPolicy& policy : kTwoPassReverse) {
+        o.isa = isa;
+        const bool covers = fast_prewarp_covers(isa, c.relief, k, o, sr.extent, nullptr);
+        covered += covers;
+        for (const NamedPolicy& policy : policies) {
             const simd::testing::ScopedKernelPolicy scope(policy.policy);
             for (int threads : {1, 2})
                 for (bool copy : {true, false}) {
@@ -1259,26 +1269,38 @@ TEST_P(TwoPassReverseFastKernels, MarkedReliefsMatchTheReference) {
                         << policy.name << ", threads " << threads << ", copy " << copy << " " << k.to_string();
                     ASSERT_EQ(sf.dropped, sr.dropped);
                     ASSERT_EQ(sf.extent, sr.extent);
+                    ASSERT_EQ(sf.isa, covers ? marked_target(isa, method) : Isa::generic);
                 }
         }
     }
     // Everything but the eye in the relief's plane goes through the fast kernels.
     EXPECT_GT(covered, cases * 9 / 10);
-    const long long copies = simd::testing::vertical_still_copies() - copies_before;
-    std::printf("seed %llu: %d of %d marked cases on the fast kernels, %lld still pixels copied by the vertical pass\n",
-                (unsigned long long)seed, covered, cases, copies);
-    EXPECT_GT(copies, 0);
+    std::printf("seed %llu: %d of %d marked cases on the fast kernels\n", (unsigned long long)seed, covered, cases);
+    if (method == Reconstruction::two_pass) {
+        const long long copies = simd::testing::vertical_still_copies() - copies_before;
+        std::printf("%lld still pixels copied by the two-pass vertical pass\n", copies);
+        EXPECT_GT(copies, 0);
+    }
 }
 
-// Large marked reliefs (many bands, the two-thread band pipeline): 256^2 to 700x300 steps and noise marked at a
-// threshold, seen from near and far, one to three threads.
-TEST_P(TwoPassReverseFastKernels, LargeMarkedReliefsMatchTheReference) {
-    const uint64_t seed = test::test_seed(80042);
+TEST_P(TwoPassReverseFastKernels, MarkedReliefsMatchTheReference) {
+    marked_random_cases(isa(), Reconstruction::two_pass, kTwoPassReverse, 80041);
+}
+
+TEST_P(PipelinedReverseFastKernels, MarkedReliefsMatchTheReference) {
+    marked_random_cases(isa(), Reconstruction::pipelined, kPipelinedReverse, 80043);
+}
+
+// Large marked reliefs (two-pass: many bands, the two-thread band pipeline; pipelined: row chunks and column ranges,
+// the reverse mode where there is no threshold): 256^2 to 700x300 steps and noise marked at a threshold, and the same
+// marks without a threshold, seen from near and far, one to three threads.
+void large_marked_cases(Isa isa, Reconstruction method, uint64_t seed_fallback) {
+    const uint64_t seed = test::test_seed(seed_fallback);
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> U(0.0, 1.0);
     PrewarpWorkspace ws_ref, ws_fast;
     ImageRGBA8 ref, fast;
-    for (int i = 0; i < 12; ++i) {
+    for (int i = 0, n = large_cases(12); i < n; ++i) {
         const int w = 256 + int(rng() % 450), h = 256 + int(rng() % 50);
         const ReliefGeometry g = unit_width_geometry(w);
         const uint32_t salt = uint32_t(rng());
@@ -1294,28 +1316,39 @@ TEST_P(TwoPassReverseFastKernels, LargeMarkedReliefsMatchTheReference) {
             },
             g);
         mark_discontinuities(t, 0.3 * (0.05 + U(rng) * 0.5));
+        if (i % 4 == 3) t.discontinuity_threshold = 0.0;  // the marks alone
         const double az = (U(rng) - 0.5) * 6.0, el = 0.1 + U(rng) * 1.3, d = 0.6 + U(rng) * 3;
         const glm::dvec3 eye{d * std::cos(el) * std::sin(az), d * std::cos(el) * std::cos(az), d * std::sin(el)};
         const PrewarpCoefficients k = compute_coefficients(g, eye);
         PrewarpOptions o;
-        o.method = Reconstruction::two_pass;
+        o.method = method;
         o.isa = Isa::generic;
         o.threads = 1;
         SCOPED_TRACE("seed " + std::to_string(seed) + " case " + std::to_string(i) + " kind " + std::to_string(kind) +
                      " " + std::to_string(w) + "x" + std::to_string(h) + " " + k.to_string());
         prewarp(t, k, o, ws_ref, ref);
-        o.isa = isa();
+        o.isa = isa;
         for (int threads : {1, 2, 3}) {
             o.threads = threads;
-            prewarp(t, k, o, ws_fast, fast);
+            const PrewarpStats sf = prewarp(t, k, o, ws_fast, fast);
             ASSERT_EQ(first_difference(ref, fast), "") << "threads " << threads;
+            ASSERT_EQ(sf.isa, marked_target(isa, method)) << "threads " << threads;
         }
     }
 }
 
-// Marked reliefs go to the two-pass kernels of every SIMD target; the pipelined reconstruction keeps the reference
-// for them.
-TEST(FastKernelCoverage, MarkedReliefsOnlyOnTheTwoPassKernels) {
+TEST_P(TwoPassReverseFastKernels, LargeMarkedReliefsMatchTheReference) {
+    large_marked_cases(isa(), Reconstruction::two_pass, 80042);
+}
+
+TEST_P(PipelinedReverseFastKernels, LargeMarkedReliefsMatchTheReference) {
+    large_marked_cases(isa(), Reconstruction::pipelined, 80044);
+}
+
+// Marked reliefs go to the fast kernels of every SIMD target, both reconstructions (`avx512`'s pipelined ones to the
+// Highway kernel on the same CPUs: marked_target); marks that do not match the texels (a malformed relief) to the
+// reference.
+TEST(FastKernelCoverage, MarkedReliefsOnTheFastKernels) {
     ReliefTexture t = test::make_test_relief(
         32, 32, 0.0, 0.1, [](int x, int) { return x < 16 ? 0.0 : 0.1; }, unit_width_geometry(32));
     mark_discontinuities(t, 0.05);
@@ -1323,18 +1356,24 @@ TEST(FastKernelCoverage, MarkedReliefsOnlyOnTheTwoPassKernels) {
     const PrewarpCoefficients k = compute_coefficients(t.geometry, {0.1, 0.2, 2.0});
     PrewarpOptions o;
     const PrewarpExtent e = prewarp_extent(t, k, o);
+    PrewarpWorkspace ws;
+    ImageRGBA8 out;
     for (Isa isa : supported_isas()) {
         if (isa == Isa::generic) continue;
-        SCOPED_TRACE(isa_name(isa));
-        o.method = Reconstruction::two_pass;
-        EXPECT_TRUE(fast_prewarp_covers(isa, t, k, o, e, nullptr));
-        o.method = Reconstruction::pipelined;
-        EXPECT_FALSE(fast_prewarp_covers(isa, t, k, o, e, nullptr));
+        for (Reconstruction method : {Reconstruction::two_pass, Reconstruction::pipelined}) {
+            SCOPED_TRACE(std::string(isa_name(isa)) + " " + to_string(method));
+            o.method = method;
+            o.isa = isa;
+            EXPECT_TRUE(fast_prewarp_covers(isa, t, k, o, e, nullptr));
+            EXPECT_EQ(prewarp(t, k, o, ws, out).isa, marked_target(isa, method));
+        }
     }
-    // Marks that do not match the texels (a malformed relief) are left to the reference.
     t.breaks.pop_back();
-    o.method = Reconstruction::two_pass;
-    for (Isa isa : supported_isas()) EXPECT_FALSE(fast_prewarp_covers(isa, t, k, o, e, nullptr)) << isa_name(isa);
+    for (Isa isa : supported_isas())
+        for (Reconstruction method : {Reconstruction::two_pass, Reconstruction::pipelined}) {
+            o.method = method;
+            EXPECT_FALSE(fast_prewarp_covers(isa, t, k, o, e, nullptr)) << isa_name(isa) << " " << to_string(method);
+        }
 }
 
 // Every SIMD target this machine supports with both reconstructions.

@@ -40,6 +40,15 @@ struct PipelinedJob {
     bool copy_still = true;                          // PrewarpOptions::copy_still_runs
     KernelChoice reverse = KernelChoice::automatic;  // FastKernelPolicy::pipelined_reverse
     std::atomic<long long>* dropped = nullptr;
+    // Surface discontinuities (paper section 4.1.1; the Highway kernel only, fast_prewarp_covers): the relief's
+    // per-texel marks (kBreakRight: no span to the texel on the right; null when it has none) and the threshold on
+    // the displacement each column carries (0: none). With a threshold the rows carry each texel's displacement
+    // (ref_tables->displ) beside the row coordinate, a column joins its last sample to a new one only where the two
+    // differ by at most the threshold (the reference's column_connected), and seam_d keeps each part's last.
+    const uint8_t* breaks = nullptr;
+    float threshold = 0.0f;
+    const PrewarpTables* ref_tables = nullptr;
+    float* seam_d[2] = {nullptr, nullptr};
     // The Highway kernel's buffers: each task takes the next of them (next_task counts the tasks of the pre-warp).
     std::vector<std::vector<float>>* task_buffers = nullptr;
     std::atomic<int>* next_task = nullptr;

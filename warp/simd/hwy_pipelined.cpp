@@ -41,14 +41,15 @@ PartRows part_rows(const fast::PipelinedJob& job, int part) {
 // One task's buffers, carved out of its float vector in the workspace (PrewarpWorkspace::task_buffers), which grows
 // to the largest relief and output seen and never shrinks (steady state allocates nothing).
 struct PipeBuffers {
-    float* row;    // one row's samples: positions, row coordinates, colours (RowScratch)
-    uint32_t* rc;  // one row of pixels: packed colour and final row coordinate
-    float* rv;
+    float* row;    // one row's samples: positions, row coordinates, colours, displacements (RowScratch)
+    uint32_t* rc;  // one row of pixels: packed colour, final row coordinate and (with a threshold) displacement
+    float *rv, *rd;
     // The column state: each column's last sample of the previous row (prev_*) and of the row being warped (cur_*),
-    // ok -1 where the column has one and 0 elsewhere.
+    // ok -1 where the column has one and 0 elsewhere; d its displacement (with a threshold).
     uint32_t *prev_c, *cur_c;
     float *prev_v, *cur_v;
     int32_t *prev_ok, *cur_ok;
+    float *prev_d, *cur_d;
 };
 
 PipeBuffers task_buffers(const fast::PipelinedJob& job) {
@@ -57,8 +58,8 @@ PipeBuffers task_buffers(const fast::PipelinedJob& job) {
     // Arrays are read and written (BlendedStore: on SSE4 and NEON a whole vector) up to a whole vector past the
     // output width: 64 lanes is SVE's most. Sizes are rounded up to 64, so that outputs a few pixels wider (the next
     // view's margins) fit.
-    const size_t n = (size_t(ow) + 63) / 64 * 64 + 64, nr = 3 * ((size_t(w) + 63) / 64 * 64);
-    if (v.size() < nr + 8 * n) v.resize(nr + 8 * n);
+    const size_t n = (size_t(ow) + 63) / 64 * 64 + 64, nr = 4 * ((size_t(w) + 63) / 64 * 64);
+    if (v.size() < nr + 11 * n) v.resize(nr + 11 * n);
     float* p = v.data();
     PipeBuffers b;
     b.row = p;
@@ -68,16 +69,17 @@ PipeBuffers task_buffers(const fast::PipelinedJob& job) {
         p += n;
     };
     take(b.rc), take(b.rv), take(b.prev_c), take(b.cur_c), take(b.prev_v), take(b.cur_v);
-    take(b.prev_ok), take(b.cur_ok);
+    take(b.prev_ok), take(b.cur_ok), take(b.rd), take(b.prev_d), take(b.cur_d);
     return b;
 }
 
 // Reverse mode's buffers (see RunRows), per thread: they grow to the largest output seen and never shrink (steady
 // state allocates nothing). The emissions of a row are logged in the order of the row warp, a vector of adjacent
-// columns an entry (x, then N row coordinates, NaN where the lane received nothing, and N packed colours).
+// columns an entry (x, then N row coordinates, NaN where the lane received nothing, N packed colours and, with a
+// discontinuity threshold, N displacements).
 struct EmitLog {
     std::vector<int32_t> x;
-    std::vector<float> v;
+    std::vector<float> v, d;
     std::vector<uint32_t> c;
     size_t n = 0;  // entries
 };
@@ -85,7 +87,7 @@ struct EmitLog {
 struct ReverseBuffers {
     // The final samples of the row warped last (fin_ok: -1 where the column has one), and the rows written per column
     // (ColumnsWritten).
-    std::vector<float> fin_v;
+    std::vector<float> fin_v, fin_d;
     std::vector<uint32_t> fin_c;
     std::vector<int32_t> fin_ok, lo, hi, bits_on;
     std::vector<uint64_t> bits;
@@ -98,7 +100,7 @@ struct ReverseBuffers {
         auto grow = [&](auto& vec, size_t want) {
             if (vec.size() < want) vec.resize(want);
         };
-        grow(fin_v, n), grow(fin_c, n), grow(fin_ok, n), grow(lo, n), grow(hi, n), grow(bits_on, n);
+        grow(fin_v, n), grow(fin_d, n), grow(fin_c, n), grow(fin_ok, n), grow(lo, n), grow(hi, n), grow(bits_on, n);
         nw = (oh + 63) / 64;
         grow(bits, n * size_t(nw));
     }
@@ -134,13 +136,40 @@ struct RowRange {
 // (raster_span along the column) or start a run with it (raster_point), drawing only the output rows of `o`, and
 // make the new sample the column's current one. A column that receives several pixels from a row (a foldover along
 // the row) is handed each of them in the row warp's order, each drawn from the previous row's sample, as the
-// reference draws them. With `drawn`, adds the rows each span covers (at most oh a column) to it.
+// reference draws them. With `drawn`, adds the rows each span covers (at most oh a column) to it. With a `threshold`
+// (> 0: the relief's discontinuity threshold), a column's sample of the previous row is joined to the new one only
+// where their displacements (prev_d, rd) differ by at most the threshold (the reference's column_connected).
 struct Emitter {
+    static constexpr int kScalarRun = 2;  // runs of fewer pixels go column by column (One)
     PipeBuffers& b;
     ColumnTarget o;
     int x0, x1;
     float* drawn = nullptr;
     bool copy = false;  // PrewarpOptions::copy_still_runs: still steps are copies (ColumnDraw)
+    float threshold = 0.0f;
+
+    // Column x's pixel of the row, as the reference's put() draws it (raster_span from the column's sample of the
+    // previous row, or raster_point), one column alone.
+    void One(int x) const {
+        const float v = b.rv[x];
+        if (!std::isfinite(v)) return;
+        const uint32_t c = b.rc[x];
+        const float d = threshold > 0.0f ? b.rd[x] : 0.0f;
+        const bool joined = b.prev_ok[x] && (!(threshold > 0.0f) || std::abs(b.prev_d[x] - d) <= threshold);
+        auto put = [&](int y, Rgba8 cc, float) {
+            if (y >= o.y0 && y < o.y1) o.vline(y)[x] = pack(cc);
+        };
+        if (joined) {
+            raster_span(b.prev_v[x], unpack(b.prev_c[x]), 0.0f, v, unpack(c), 0.0f, o.oh, put);
+            if (drawn) *drawn += std::min(std::abs(v - b.prev_v[x]), float(o.oh));
+        } else {
+            raster_point(v, unpack(c), 0.0f, o.oh, put);
+        }
+        b.cur_v[x] = v;
+        b.cur_c[x] = c;
+        b.cur_ok[x] = -1;
+        b.cur_d[x] = d;
+    }
 
     void operator()(int xa, int xb) const {
         const hn::ScalableTag<float> df;
@@ -150,6 +179,13 @@ struct Emitter {
         const int N = int(hn::Lanes(df));
         xa = std::max(xa, x0);
         xb = std::min(xb, x1 - 1);
+        // Runs of one or two pixels (rows that marks or foldovers cut into pieces), column by column: a vector step
+        // for them cost about 40 ns a pixel (ridges 256^2 marked at 5% of its range, avx2: 47,600 Emitter calls of
+        // 1.2 pixels a pre-warp, 2.0 ms against the generic kernels' 1.2).
+        if (xb - xa < kScalarRun) {
+            for (int x = xa; x <= xb; ++x) One(x);
+            return;
+        }
         for (int x = xa; x <= xb; x += N) {
             const auto m = hn::FirstN(df, size_t(xb - x + 1));
             const auto mi = hn::RebindMask(di, m);
@@ -158,7 +194,13 @@ struct Emitter {
             if (hn::AllFalse(df, fin)) continue;           // coordinate
             const auto fini = hn::RebindMask(di, fin);
             const VI c = hn::IfThenElseZero(mi, hn::LoadU(di, reinterpret_cast<const int32_t*>(b.rc + x)));
-            const auto pok = hn::And(fin, hn::RebindMask(df, hn::Ne(hn::LoadU(di, b.prev_ok + x), hn::Zero(di))));
+            auto pok = hn::And(fin, hn::RebindMask(df, hn::Ne(hn::LoadU(di, b.prev_ok + x), hn::Zero(di))));
+            if (threshold > 0.0f) {
+                // std::abs(a.d - b.d) <= threshold, operation by operation (the sign bit cleared).
+                const VF d = hn::IfThenElseZero(m, hn::LoadU(df, b.rd + x));
+                pok = hn::And(pok, hn::Le(hn::Abs(hn::Sub(hn::LoadU(df, b.prev_d + x), d)), hn::Set(df, threshold)));
+                hn::BlendedStore(d, fin, df, b.cur_d + x);
+            }
             const VF pv = hn::LoadU(df, b.prev_v + x);
             const VI pc = hn::LoadU(di, reinterpret_cast<const int32_t*>(b.prev_c + x));
             hn::BlendedStore(v, fin, df, b.cur_v + x);
@@ -174,12 +216,13 @@ struct Emitter {
 };
 
 // Reverse mode: the emissions of a row, as the Emitter receives them (columns [x0, x1)), into a log, and each
-// column's last one into the reverse buffers' fin_*.
+// column's last one into the reverse buffers' fin_* (with `with_d`, their displacements too).
 struct Logger {
     PipeBuffers& b;
     ReverseBuffers& r;
     EmitLog& log;
     int x0, x1;
+    bool with_d = false;
 
     void operator()(int xa, int xb) const {
         const hn::ScalableTag<float> df;
@@ -196,6 +239,7 @@ struct Logger {
             const size_t cap = std::max(want, 2 * log.x.size());
             log.x.resize(cap);
             log.v.resize(cap * size_t(N));
+            log.d.resize(cap * size_t(N));
             log.c.resize(cap * size_t(N));
         }
         const VF nan = hn::Set(df, std::numeric_limits<float>::quiet_NaN());
@@ -214,6 +258,11 @@ struct Logger {
             hn::BlendedStore(v, fin, df, r.fin_v.data() + x);
             hn::BlendedStore(c, fini, di, reinterpret_cast<int32_t*>(r.fin_c.data() + x));
             hn::BlendedStore(hn::Set(di, -1), fini, di, r.fin_ok.data() + x);
+            if (with_d) {
+                const VF d = hn::IfThenElseZero(m, hn::LoadU(df, b.rd + x));
+                hn::StoreU(d, df, log.d.data() + (log.n - 1) * size_t(N));
+                hn::BlendedStore(d, fin, df, r.fin_d.data() + x);
+            }
         }
     }
 };
@@ -292,21 +341,31 @@ constexpr float kReverseDrawn = 3.0f;
 // writes it again and again (ridges: long column spans that later rows overwrite). Each column keeps the interval
 // of rows written so far, or a bitmask where they are not one interval (ColumnDrawRev). Automatic: every 4th row
 // measures the rows its spans cover per column, and more than kReverseDrawn switches.
+//
+// Discontinuity marks (PipelinedJob::breaks) break the row warp's spans (WarpRow's marks); a threshold carries each
+// texel's displacement through the row warp (RowOut::attr2) into the Emitter, or the log and the replay.
 RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0, int x1, uint32_t* pixels,
                  bool track) {
     const ReliefTexture& t = *job.relief;
     const int w = t.width, h = t.height, ow = job.out->width, oh = job.out->height;
     const PartRows p = part_rows(job, part);
     PipeBuffers b = task_buffers(job);
-    const RowScratch s{b.row, b.row + w, reinterpret_cast<uint32_t*>(b.row + 2 * size_t(w))};
+    const bool with_d = job.threshold > 0.0f;
+    const RowScratch s{b.row, b.row + w, reinterpret_cast<uint32_t*>(b.row + 2 * size_t(w)),
+                       with_d ? b.row + 3 * size_t(w) : nullptr};
     uint32_t* rc = b.rc;
     float* rv = b.rv;
+    RowOut out{rc, rv, job.copy_still};
+    if (with_d) out.attr2 = b.rd;
     std::fill(b.prev_ok + x0, b.prev_ok + x1, 0);
     RowRange range{std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
-    // Row j set up, row `next` (the one set up after it) prefetched; returns the texels dropped.
+    // Row j set up, row `next` (the one set up after it) prefetched; returns the texels dropped. `marks`: the row's.
+    const uint8_t* marks = nullptr;
     auto prepare = [&](int j, int next) {
         prefetch_relief_row(t, h - 1 - next);
         const long long dropped = PrepareRow(t, *job.tables, job.extent, h - 1 - j, s);
+        marks = RowMarks(t, job.breaks, h - 1 - j);
+        if (with_d) RowDisplacements(t, *job.ref_tables, h - 1 - j, s);
         if (track) TrackRange(s, w, range);
         return dropped;
     };
@@ -314,12 +373,12 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
     auto row = [&](int j, int ya, int yb, float* drawn) {
         const long long dropped = prepare(j, j + p.step);
         std::fill(b.cur_ok + x0, b.cur_ok + x1, 0);
-        const Emitter emit{b, ColumnTarget{pixels, ow, oh, ya, yb}, x0, x1, drawn, job.copy_still};
-        WarpRow(s.pos, s.color, s.v, nullptr, w, job.split_u, ow, RowOut{rc, rv, job.copy_still},
-                Coalescer<Emitter>{emit});
+        const Emitter emit{b, ColumnTarget{pixels, ow, oh, ya, yb}, x0, x1, drawn, job.copy_still, job.threshold};
+        WarpRow(s.pos, s.color, s.v, s.d, w, job.split_u, ow, out, Coalescer<Emitter>{emit}, marks);
         std::swap(b.prev_c, b.cur_c);
         std::swap(b.prev_v, b.cur_v);
         std::swap(b.prev_ok, b.cur_ok);
+        std::swap(b.prev_d, b.cur_d);
         return dropped;
     };
     const int ja = p.first + p.step * r0, jb = p.first + p.step * r1;
@@ -348,9 +407,8 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
             if (x0 == 0) dropped += d;
             std::fill(r.fin_ok.data() + x0, r.fin_ok.data() + x1, 0);
             log.n = 0;
-            const Logger logger{b, r, log, x0, x1};
-            WarpRow(s.pos, s.color, s.v, nullptr, w, job.split_u, ow, RowOut{rc, rv, job.copy_still},
-                    Coalescer<Logger>{logger});
+            const Logger logger{b, r, log, x0, x1, with_d};
+            WarpRow(s.pos, s.color, s.v, s.d, w, job.split_u, ow, out, Coalescer<Logger>{logger}, marks);
         };
         const hn::ScalableTag<float> df;
         const hn::RebindToSigned<decltype(df)> di;
@@ -363,20 +421,26 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
                 job.seam_v[part][x] = r.fin_v[size_t(x)];
                 job.seam_c[part][x] = r.fin_ok[size_t(x)] ? (r.fin_c[size_t(x)] | 0xFF000000u) : 0u;
             }
+        if (seam && with_d) std::copy(r.fin_d.data() + x0, r.fin_d.data() + x1, job.seam_d[part] + x0);
         for (int j = last;; j -= p.step) {
             const float* pv = b.prev_v;
+            const float* pd = b.prev_d;
             const uint32_t* pc = b.prev_c;
             const int32_t* pok = b.prev_ok;
             if (j != from) {
                 warp(j - p.step, r.log[cur ^ 1]);
-                pv = r.fin_v.data(), pc = r.fin_c.data(), pok = r.fin_ok.data();
+                pv = r.fin_v.data(), pd = r.fin_d.data(), pc = r.fin_c.data(), pok = r.fin_ok.data();
             }
             const EmitLog& log = r.log[cur];
             for (size_t i = log.n; i-- > 0;) {
                 const int x = log.x[i];
                 const auto v = hn::LoadU(df, log.v.data() + i * N);
                 const auto fin = hn::IsFinite(v);
-                const auto ok = hn::And(fin, hn::RebindMask(df, hn::Ne(hn::LoadU(di, pok + x), hn::Zero(di))));
+                auto ok = hn::And(fin, hn::RebindMask(df, hn::Ne(hn::LoadU(di, pok + x), hn::Zero(di))));
+                if (with_d) {  // the Emitter's threshold test
+                    const auto d = hn::LoadU(df, log.d.data() + i * N);
+                    ok = hn::And(ok, hn::Le(hn::Abs(hn::Sub(hn::LoadU(df, pd + x), d)), hn::Set(df, job.threshold)));
+                }
                 ColumnDrawRev(df, o, cw, x, x + int(N) <= x1, job.copy_still, fin, ok, hn::LoadU(df, pv + x),
                               hn::LoadU(di, reinterpret_cast<const int32_t*>(pc + x)), v,
                               hn::LoadU(di, reinterpret_cast<const int32_t*>(log.c.data() + i * N)));
@@ -389,6 +453,7 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
             job.seam_v[part][x] = b.prev_v[x];
             job.seam_c[part][x] = b.prev_ok[x] ? (b.prev_c[x] | 0xFF000000u) : 0u;
         }
+        if (with_d) std::copy(b.prev_d + x0, b.prev_d + x1, job.seam_d[part] + x0);
     }
     if (dropped) *job.dropped += dropped;
     return range;
@@ -466,6 +531,7 @@ void seam(const fast::PipelinedJob& job) {
     for (int x = 0; x < ow; ++x) {
         const uint32_t ca = job.seam_c[0][x], cb = job.seam_c[1][x];
         if (!(ca >> 24) || !(cb >> 24)) continue;
+        if (job.threshold > 0.0f && !(std::abs(job.seam_d[0][x] - job.seam_d[1][x]) <= job.threshold)) continue;
         raster_span(job.seam_v[0][x], rgba(ca), 0.0f, job.seam_v[1][x], rgba(cb), 0.0f, oh,
                     [&](int y, Rgba8 c, float) { job.out->at(x, oh - 1 - y) = c; });
     }

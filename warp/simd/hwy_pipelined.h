@@ -14,7 +14,14 @@
 // one of them, in order. Reverse mode (FastKernelPolicy::pipelined_reverse, as the AVX-512 kernel's): where rows
 // overdraw much (foldover-heavy reliefs: long column spans that later rows overwrite), the rest of the part runs
 // with the painter's algorithm backwards, each row's emissions logged and replayed from the last, every pixel
-// written once (RunRows, ColumnDrawRev in warp/simd/hwy_columns-inl.h).
+// written once (RunRows, ColumnDrawRev in warp/simd/hwy_columns-inl.h). Runs of one or two pixels (rows that marks
+// or foldovers cut into pieces) go column by column through the reference's raster_span and raster_point.
+//
+// Surface discontinuities (paper section 4.1.1; PipelinedJob::breaks, threshold), which the hand-written kernel does
+// not take (an `avx512` pre-warp of a marked relief runs this kernel compiled for AVX3_DL: fast_prewarp): a row's
+// marks break its spans in WarpRow; with a threshold the rows carry each texel's displacement (RowOut::attr2), and a
+// column joins its sample of the previous row to a new one only where the two displacements differ by at most the
+// threshold, forwards (the Emitter) and in reverse mode (the log carries the displacements); the seam likewise.
 #pragma once
 
 #include "warp/isa.h"

@@ -885,6 +885,23 @@ inline long long PrepareRow(const ReliefTexture& t, const fast::FastTables& ft, 
     return dropped;
 }
 
+// The marks of storage row r (ReliefTexture::breaks, `breaks` being the relief's or null), or null where none of them
+// breaks a pair of neighbours (kBreakRight on texels 0 .. w - 2): WarpRow's `marks`.
+inline const uint8_t* RowMarks(const ReliefTexture& t, const uint8_t* breaks, int r) {
+    if (!breaks) return nullptr;
+    const uint8_t* row = breaks + size_t(r) * size_t(t.width);
+    for (int x = 0; x + 1 < t.width; ++x)
+        if (row[x] & kBreakRight) return row;
+    return nullptr;
+}
+
+// Each texel's displacement along storage row r into s.d (the reference's RowAttr::d: its tables' displ by
+// displacement index), the second attribute the rows carry for a discontinuity threshold.
+inline void RowDisplacements(const ReliefTexture& t, const PrewarpTables& tab, int r, const RowScratch& s) {
+    const ReliefTexel* src = &t.texels[size_t(r) * size_t(t.width)];
+    for (int x = 0; x < t.width; ++x) s.d[x] = tab.displ[src[x].q];
+}
+
 // The state of the output columns: each column's last sample (final row coordinate, packed colour, and floor and
 // ceil of its v - 0.5 clamped to [-1, out height]) and, in ok, -1 where it has one and 0 elsewhere; with a
 // discontinuity threshold (ColumnStep<true>) also its carried displacement d. Arrays of the output width, readable

@@ -20,13 +20,6 @@
 HWY_BEFORE_NAMESPACE();
 namespace rtm::simd::HWY_NAMESPACE {
 
-// Whether the row's marks (w texels) break any pair of neighbours (kBreakRight on texels 0 .. w - 2).
-inline bool RowHasMark(const uint8_t* marks, int w) {
-    for (int x = 0; x + 1 < w; ++x)
-        if (marks[x] & kBreakRight) return true;
-    return false;
-}
-
 // The horizontal pass of steps [s0, s1): for each, the reference's row_samples (lookup-table path) and
 // warp_line_to (WarpRow, or WarpRowBackward for rows that fold over) into one band row (colour with alpha 255 where
 // written, 0 elsewhere; the final row coordinate). Rows with discontinuity marks (job.breaks) go forwards, their
@@ -45,12 +38,8 @@ void HorizontalSteps(const fast::TwoPassJob& job, int s0, int s1, uint32_t* band
         const int r = fast::step_row(job, st);
         if (st + 1 < t.height) prefetch_relief_row(t, fast::step_row(job, st + 1));
         dropped += PrepareRow(t, *job.tables, job.extent, r, s);
-        const uint8_t* marks = job.breaks ? job.breaks + size_t(r) * size_t(w) : nullptr;
-        if (marks && !RowHasMark(marks, w)) marks = nullptr;
-        if (with_d) {
-            const ReliefTexel* src = &t.texels[size_t(r) * size_t(w)];
-            for (int x = 0; x < w; ++x) s.d[x] = job.ref_tables->displ[src[x].q];
-        }
+        const uint8_t* marks = RowMarks(t, job.breaks, r);
+        if (with_d) RowDisplacements(t, *job.ref_tables, r, s);
         uint32_t* rc = band_c + size_t(st - s0) * stride;
         float* rv = band_v + size_t(st - s0) * stride;
         RowOut out{rc, rv, job.copy_still};

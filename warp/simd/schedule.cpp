@@ -154,6 +154,11 @@ void balance_row_chunks(std::vector<int>& bounds, const double* ms) {
     }
 }
 
+namespace {
+// Whether the relief has surface-discontinuity marks or a threshold (paper section 4.1.1).
+bool marked(const ReliefTexture& relief) { return !relief.breaks.empty() || relief.discontinuity_threshold > 0.0; }
+}  // namespace
+
 bool fast_prewarp_covers(Isa isa, const ReliefTexture& relief, const PrewarpCoefficients& k,
                          const PrewarpOptions& options, const PrewarpExtent& e, const Image2D<uint8_t>* displ_out) {
     if (options.exact || displ_out || options.filter != Filter::point) return false;
@@ -161,8 +166,10 @@ bool fast_prewarp_covers(Isa isa, const ReliefTexture& relief, const PrewarpCoef
     if (isa != Isa::avx512 && !(options.method == Reconstruction::two_pass ? !!simd::hwy_two_pass_kernels(isa).vertical
                                                                            : !!simd::hwy_pipelined_kernels(isa).part))
         return false;
-    // Discontinuity marks (paper section 4.1.1): the two-pass kernels (TwoPassJob::breaks, threshold).
-    if ((!relief.breaks.empty() || relief.discontinuity_threshold > 0.0) && options.method != Reconstruction::two_pass)
+    // Discontinuity marks (paper section 4.1.1): the two-pass kernels (TwoPassJob::breaks, threshold) and the Highway
+    // pipelined kernel (PipelinedJob::breaks, threshold), which also takes them for `avx512` (fast_prewarp).
+    if (marked(relief) && options.method == Reconstruction::pipelined && isa == Isa::avx512 &&
+        !isa_supported(Isa::avx512_hwy))
         return false;
     if (!relief.breaks.empty() && relief.breaks.size() != relief.texels.size()) return false;
     if (k.side == ViewSide::on_plane || relief.width <= 0 || relief.height <= 0) return false;
@@ -547,14 +554,16 @@ void pipelined_in_row_chunks(const simd::PipelinedKernels& kernels, const fast::
 
 PrewarpStats fast_pipelined(const simd::PipelinedKernels& kernels, const ReliefTexture& relief,
                             const PrewarpCoefficients& k, const PrewarpOptions& options, const PrewarpExtent& e,
-                            const fast::FastTables& tables, PrewarpWorkspace& ws, ImageRGBA8& out) {
+                            const PrewarpTables& ref_tables, const fast::FastTables& tables, PrewarpWorkspace& ws,
+                            ImageRGBA8& out) {
     const int w = relief.width, h = relief.height;
     const int ow = w + e.left + e.right, oh = h + e.bottom + e.top;
     std::atomic<long long> dropped{0};
     ensure_size(out, ow, oh);
-    // The seam rows (the last sample of each part per column) live in the intermediate images, unused otherwise.
+    // The seam rows (the last sample of each part per column; rows 2 and 3 its displacement, with a threshold) live in
+    // the intermediate images, unused otherwise.
     ensure_size(ws.mid_color, ow, 2);
-    ensure_size(ws.mid_v, ow, 2);
+    ensure_size(ws.mid_v, ow, 4);
     fast::PipelinedJob job;
     job.relief = &relief;
     job.copy_still = options.copy_still_runs;
@@ -570,6 +579,11 @@ PrewarpStats fast_pipelined(const simd::PipelinedKernels& kernels, const ReliefT
         job.seam_c[p] = reinterpret_cast<uint32_t*>(ws.mid_color.row(p));
     }
     job.dropped = &dropped;
+    job.breaks = relief.breaks.empty() ? nullptr : relief.breaks.data();
+    job.threshold = float(relief.discontinuity_threshold);
+    job.ref_tables = &ref_tables;
+    job.seam_d[0] = ws.mid_v.row(2);
+    job.seam_d[1] = ws.mid_v.row(3);
     std::atomic<int> next_task{0};
     if (ws.task_buffers.size() < 2 * 64) ws.task_buffers.resize(2 * 64);  // the most tasks (two parts of 64)
     job.task_buffers = &ws.task_buffers;
@@ -602,18 +616,23 @@ PrewarpStats fast_prewarp(Isa isa, const ReliefTexture& relief, const PrewarpCoe
     const PrewarpTables ref_tables = PrewarpTables::build(k, relief.quant);
     const fast::FastTables tables = fast::make_fast_tables(ref_tables);
     PrewarpStats stats;
-    if (isa == Isa::avx512) {
+    if (isa == Isa::avx512 && options.method == Reconstruction::pipelined && marked(relief)) {
+        // The hand-written pipelined kernel takes no discontinuity marks; the Highway one on the same CPUs does
+        // (fast_prewarp_covers has checked that this CPU runs it).
+        isa = Isa::avx512_hwy;
+        stats = fast_pipelined(simd::hwy_pipelined_kernels(isa), relief, k, options, e, ref_tables, tables, ws, out);
+    } else if (isa == Isa::avx512) {
 #if RTM_AVX512_KERNELS
         if (options.method == Reconstruction::pipelined)
             stats = fast_pipelined({&fast::pipelined_part, &fast::pipelined_chunk, &fast::pipelined_composite,
                                     &fast::pipelined_seam},
-                                   relief, k, options, e, tables, ws, out);
+                                   relief, k, options, e, ref_tables, tables, ws, out);
         else
             stats = fast_two_pass({&fast::horizontal_steps, &fast::vertical_steps, &still_steps16}, relief, k, options,
                                   e, ref_tables, tables, ws, out);
 #endif
     } else if (options.method == Reconstruction::pipelined) {
-        stats = fast_pipelined(simd::hwy_pipelined_kernels(isa), relief, k, options, e, tables, ws, out);
+        stats = fast_pipelined(simd::hwy_pipelined_kernels(isa), relief, k, options, e, ref_tables, tables, ws, out);
     } else {
         stats = fast_two_pass(simd::hwy_two_pass_kernels(isa), relief, k, options, e, ref_tables, tables, ws, out);
     }
