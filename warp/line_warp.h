@@ -124,6 +124,13 @@ struct AlwaysConnected {
     bool operator()(int, int) const { return true; }
 };
 
+// Two samples carried across the other direction belong to one surface where their displacements differ by at most
+// the discontinuity threshold (paper section 4.1.1); a threshold of 0 joins every pair.
+template <class P>
+inline bool displacements_joined(P da, P db, P threshold) {
+    return !(threshold > P(0)) || std::abs(da - db) <= threshold;
+}
+
 // The whole line in occlusion-compatible order (see the top of this file), pixels to put(). connected(a, b)
 // says whether two adjacent valid samples belong to one surface (false across a marked discontinuity: then no
 // span is drawn and b starts a new run).

@@ -124,7 +124,7 @@ template <class P>
 struct DisplConnected {
     const P* d;
     P threshold;  // 0 = always connected
-    bool operator()(int a, int b) const { return !(threshold > P(0)) || std::abs(d[a] - d[b]) <= threshold; }
+    bool operator()(int a, int b) const { return displacements_joined(d[a], d[b], threshold); }
 };
 
 // Copying texels that do not move (paper section 5: on the brick wall, skipping the transformation of
@@ -416,7 +416,7 @@ struct PipelinedPart {
 
 template <class P>
 inline bool column_connected(const ColumnSample<P>& a, const ColumnSample<P>& b, P threshold) {
-    return !(threshold > P(0)) || std::abs(a.d - b.d) <= threshold;
+    return displacements_joined(a.d, b.d, threshold);
 }
 
 // Rows j (v order, bottom = 0) from `first` towards `last` (exclusive) by `step`; writes only output v-lines in

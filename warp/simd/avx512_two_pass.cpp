@@ -200,7 +200,7 @@ void vertical_steps(const TwoPassJob& job, int s0, int s1, const uint32_t* band_
         auto rgba = [](uint32_t c) { return Rgba8{uint8_t(c), uint8_t(c >> 8), uint8_t(c >> 16), uint8_t(c >> 24)}; };
         for (int x = x0; x < x1; ++x) {
             if (!(job.seam_c[x] >> 24) || !ok_bit(job, x)) continue;
-            if (job.threshold > 0.0f && !(std::abs(job.seam_d[x] - job.col_d[x]) <= job.threshold)) continue;
+            if (job.threshold > 0.0f && !displacements_joined(job.seam_d[x], job.col_d[x], job.threshold)) continue;
             raster_span(job.seam_v[x], rgba(job.seam_c[x]), 0.0f, job.col_v[x], rgba(job.col_c[x]), 0.0f, oh,
                         [&](int y, Rgba8 c, float) { job.out->at(x, oh - 1 - y) = c; });
         }

@@ -155,7 +155,7 @@ struct Emitter {
         if (!std::isfinite(v)) return;
         const uint32_t c = b.rc[x];
         const float d = threshold > 0.0f ? b.rd[x] : 0.0f;
-        const bool joined = b.prev_ok[x] && (!(threshold > 0.0f) || std::abs(b.prev_d[x] - d) <= threshold);
+        const bool joined = b.prev_ok[x] && displacements_joined(b.prev_d[x], d, threshold);
         auto put = [&](int y, Rgba8 cc, float) {
             if (y >= o.y0 && y < o.y1) o.vline(y)[x] = pack(cc);
         };
@@ -196,9 +196,8 @@ struct Emitter {
             const VI c = hn::IfThenElseZero(mi, hn::LoadU(di, reinterpret_cast<const int32_t*>(b.rc + x)));
             auto pok = hn::And(fin, hn::RebindMask(df, hn::Ne(hn::LoadU(di, b.prev_ok + x), hn::Zero(di))));
             if (threshold > 0.0f) {
-                // std::abs(a.d - b.d) <= threshold, operation by operation (the sign bit cleared).
                 const VF d = hn::IfThenElseZero(m, hn::LoadU(df, b.rd + x));
-                pok = hn::And(pok, hn::Le(hn::Abs(hn::Sub(hn::LoadU(df, b.prev_d + x), d)), hn::Set(df, threshold)));
+                pok = hn::And(pok, WithinThreshold(df, hn::LoadU(df, b.prev_d + x), d, threshold));
                 hn::BlendedStore(d, fin, df, b.cur_d + x);
             }
             const VF pv = hn::LoadU(df, b.prev_v + x);
@@ -439,7 +438,7 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
                 auto ok = hn::And(fin, hn::RebindMask(df, hn::Ne(hn::LoadU(di, pok + x), hn::Zero(di))));
                 if (with_d) {  // the Emitter's threshold test
                     const auto d = hn::LoadU(df, log.d.data() + i * N);
-                    ok = hn::And(ok, hn::Le(hn::Abs(hn::Sub(hn::LoadU(df, pd + x), d)), hn::Set(df, job.threshold)));
+                    ok = hn::And(ok, WithinThreshold(df, hn::LoadU(df, pd + x), d, job.threshold));
                 }
                 ColumnDrawRev(df, o, cw, x, x + int(N) <= x1, job.copy_still, fin, ok, hn::LoadU(df, pv + x),
                               hn::LoadU(di, reinterpret_cast<const int32_t*>(pc + x)), v,
@@ -531,7 +530,7 @@ void seam(const fast::PipelinedJob& job) {
     for (int x = 0; x < ow; ++x) {
         const uint32_t ca = job.seam_c[0][x], cb = job.seam_c[1][x];
         if (!(ca >> 24) || !(cb >> 24)) continue;
-        if (job.threshold > 0.0f && !(std::abs(job.seam_d[0][x] - job.seam_d[1][x]) <= job.threshold)) continue;
+        if (job.threshold > 0.0f && !displacements_joined(job.seam_d[0][x], job.seam_d[1][x], job.threshold)) continue;
         raster_span(job.seam_v[0][x], rgba(ca), 0.0f, job.seam_v[1][x], rgba(cb), 0.0f, oh,
                     [&](int y, Rgba8 c, float) { job.out->at(x, oh - 1 - y) = c; });
     }

@@ -59,6 +59,19 @@ struct RowOut {
     float* attr2 = nullptr;
 };
 
+// attr_lerp (warp/line_warp.h) a vector at a time: a * (1 - t) + b * t, operation by operation (no contraction).
+template <class V>
+HWY_INLINE V AttrLerp(V a, V b, V tt, V one) {
+    return hn::Add(hn::Mul(a, hn::Sub(one, tt)), hn::Mul(b, tt));
+}
+
+// displacements_joined (warp/line_warp.h) a vector at a time, for a threshold > 0: |da - db| <= threshold, the
+// difference's sign bit cleared.
+template <class DF>
+HWY_INLINE hn::Mask<DF> WithinThreshold(DF df, hn::Vec<DF> da, hn::Vec<DF> db, float threshold) {
+    return hn::Le(hn::Abs(hn::Sub(da, db)), hn::Set(df, threshold));
+}
+
 // Both attributes of a sample where a row carries two, interpolated by the reference's attr_lerp for its RowAttr
 // (each one a * (1 - t) + b * t): what the sample-by-sample paths hand to raster_point and raster_span.
 struct TwoAttrs {
@@ -174,8 +187,8 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
         VF tt = hn::Mul(hn::Sub(c, pa), inv);
         tt = hn::IfThenElse(hn::Lt(tt, zero), zero, hn::IfThenElse(hn::Lt(one, tt), one, tt));  // std::clamp
         col = Lerp8At(df, di, tt, ca, cb);
-        v = hn::Add(hn::Mul(va, hn::Sub(one, tt)), hn::Mul(vb, tt));  // attr_lerp, no contraction
-        if (with2) d = hn::Add(hn::Mul(da, hn::Sub(one, tt)), hn::Mul(db, tt));
+        v = AttrLerp(va, vb, tt, one);
+        if (with2) d = AttrLerp(da, db, tt, one);
     };
 #endif
 #if HWY_TARGET == HWY_AVX2
@@ -346,12 +359,8 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
             VF tt = hn::Mul(hn::Sub(xc, hn::TableLookupLanes(pa, ix)), hn::TableLookupLanes(inv, ix));
             tt = hn::IfThenElse(hn::Lt(tt, zero), zero, hn::IfThenElse(hn::Lt(one, tt), one, tt));  // std::clamp
             const VI col = Lerp8At(df, di, tt, hn::TableLookupLanes(ca, ixi), hn::TableLookupLanes(cb, ixi));
-            const VF one_t = hn::Sub(one, tt);
-            const VF v = hn::Add(hn::Mul(hn::TableLookupLanes(va, ix), one_t),
-                                 hn::Mul(hn::TableLookupLanes(vb, ix), tt));  // attr_lerp, no contraction
-            const VF d = with2 ? hn::Add(hn::Mul(hn::TableLookupLanes(da, ix), one_t),
-                                         hn::Mul(hn::TableLookupLanes(db, ix), tt))
-                               : zero;
+            const VF v = AttrLerp(hn::TableLookupLanes(va, ix), hn::TableLookupLanes(vb, ix), tt, one);
+            const VF d = with2 ? AttrLerp(hn::TableLookupLanes(da, ix), hn::TableLookupLanes(db, ix), tt, one) : zero;
             if (j + N <= len) {
                 hn::StoreU(col, di, reinterpret_cast<int32_t*>(out.c + xa + j));
                 hn::StoreU(v, df, out.v + xa + j);
@@ -385,12 +394,12 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
         VF tt = hn::Mul(hn::Sub(xc, pa), inv);
         tt = hn::IfThenElse(hn::Lt(tt, zero), zero, hn::IfThenElse(hn::Lt(one, tt), one, tt));  // std::clamp
         const VI col = Lerp8At(df, di, tt, ca, cb);
-        const VF v = hn::Add(hn::Mul(va, hn::Sub(one, tt)), hn::Mul(vb, tt));  // attr_lerp, no contraction
+        const VF v = AttrLerp(va, vb, tt, one);
         hn::Store(x, di, lane_x);
         hn::Store(col, di, lane_c);
         hn::Store(v, df, lane_v);
         hn::Store(hn::VecFromMask(di, on), di, lane_on);
-        if (with2) hn::Store(hn::Add(hn::Mul(da, hn::Sub(one, tt)), hn::Mul(db, tt)), df, lane_d);
+        if (with2) hn::Store(AttrLerp(da, db, tt, one), df, lane_d);
         for (int i = 0; i < N; ++i)
             if (lane_on[i]) {
                 out.c[lane_x[i]] = uint32_t(lane_c[i]);
@@ -952,7 +961,7 @@ HWY_INLINE void ColumnStep(const Columns& col, const ColumnTarget& o, const uint
         if (hn::AllFalse(di, fin)) continue;
         if constexpr (kThreshold) {
             const VF d = hn::MaskedLoad(m, df, rd + x), pd = hn::MaskedLoad(m, df, col.d + x);
-            pok = hn::And(pok, hn::RebindMask(di, hn::Le(hn::Abs(hn::Sub(pd, d)), hn::Set(df, threshold))));
+            pok = hn::And(pok, hn::RebindMask(di, WithinThreshold(df, pd, d, threshold)));
             hn::BlendedStore(d, hn::RebindMask(df, fin), df, col.d + x);
         }
         const VF pv = hn::MaskedLoad(m, df, col.v + x);

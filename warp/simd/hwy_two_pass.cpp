@@ -95,7 +95,7 @@ void VerticalSteps(const fast::TwoPassJob& job, int s0, int s1, const uint32_t* 
         // are there.
         for (int x = x0; x < x1; ++x) {
             if (!(job.seam_c[x] >> 24) || !col_ok[x]) continue;
-            if (with_d && !(std::abs(job.seam_d[x] - job.col_d[x]) <= job.threshold)) continue;
+            if (with_d && !displacements_joined(job.seam_d[x], job.col_d[x], job.threshold)) continue;
             raster_span(job.seam_v[x], unpack(job.seam_c[x]), 0.0f, job.col_v[x], unpack(job.col_c[x]), 0.0f, oh,
                         [&](int y, Rgba8 c, float) { job.out->at(x, oh - 1 - y) = c; });
         }
