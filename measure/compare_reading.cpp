@@ -10,7 +10,7 @@ namespace rtm {
 
 namespace {
 
-double median(std::vector<double> v) {
+double median_or_nan(std::vector<double> v) {
     if (v.empty()) return NAN;
     std::sort(v.begin(), v.end());
     const size_t n = v.size();
@@ -79,10 +79,10 @@ std::string prewarp_cost_sentence(const CompareResults& r) {
     std::string s;
     if (!pre.empty())
         s += "In the pre-warp methods' frames (" + std::to_string(pre.size()) + " rows), the pre-warp itself took a " +
-             "median " + percent(median(pre)) + " of the frame time (median " + significant(median(pre_ms)) +
-             " ms of " + significant(median(frame_ms)) + " ms)" +
-             (up.empty() ? "" : ", the upload into texture memory " + percent(median(up))) +
-             (tex.empty() ? "" : ", the texture-mapping draw " + percent(median(tex))) + ". ";
+             "median " + percent(median_or_nan(pre)) + " of the frame time (median " +
+             significant(median_or_nan(pre_ms)) + " ms of " + significant(median_or_nan(frame_ms)) + " ms)" +
+             (up.empty() ? "" : ", the upload into texture memory " + percent(median_or_nan(up))) +
+             (tex.empty() ? "" : ", the texture-mapping draw " + percent(median_or_nan(tex))) + ". ";
     const std::vector<SummaryRow> all = overall(r);
     const SummaryRow* fastest_pre = nullptr;
     std::vector<const SummaryRow*> perpixel;
@@ -277,7 +277,7 @@ std::string curved_sentence(const CompareResults& r) {
         std::vector<double> v;
         for (const ResultRow& row : r.rows)
             if (row.method_id == id && std::isfinite(row.ms)) v.push_back(row.ms);
-        return median(v);
+        return median_or_nan(v);
     };
     std::vector<std::string> parts;
     int better_iou = 0, better_sil = 0, compared = 0;

@@ -21,7 +21,7 @@ std::string family_colour(const std::string& family) {
 
 namespace {
 
-std::string num(double v) {
+std::string one_decimal(double v) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.1f", v);
     return buf;
@@ -73,29 +73,30 @@ TimeErrorPlot time_error_plot(const std::vector<SummaryRow>& rows, const std::st
     std::string s = "<svg id=\"" + html_escape(plot_id) +
                     "\" class=\"plot\" xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 640 400\" width=\"640\" "
                     "height=\"400\" role=\"img\" aria-label=\"frame time against RMSE\">\n";
-    s += "<rect x=\"" + num(left) + "\" y=\"" + num(top) + "\" width=\"" + num(W - left - right) + "\" height=\"" +
-         num(H - top - bottom) + "\" fill=\"#fff\" stroke=\"#888\"/>\n";
+    s += "<rect x=\"" + one_decimal(left) + "\" y=\"" + one_decimal(top) + "\" width=\"" +
+         one_decimal(W - left - right) + "\" height=\"" + one_decimal(H - top - bottom) +
+         "\" fill=\"#fff\" stroke=\"#888\"/>\n";
     // Time ticks: every decade labelled, 2 and 5 as light grid lines.
     for (double d = d0; d <= d1 + 1e-9; ++d)
         for (double m : {1.0, 2.0, 5.0}) {
             const double ms = m * std::pow(10.0, d);
             if (std::log10(ms) > d1 + 1e-9) break;
             const double x = X(ms);
-            s += "<line x1=\"" + num(x) + "\" y1=\"" + num(top) + "\" x2=\"" + num(x) + "\" y2=\"" + num(H - bottom) +
-                 "\" stroke=\"" + (m == 1.0 ? "#ccc" : "#eee") + "\"/>\n";
-            s += "<text x=\"" + num(x) + "\" y=\"" + num(H - bottom + 16) + "\" text-anchor=\"middle\" font-size=\"" +
-                 (m == 1.0 ? "12" : "10") + "\">" + tick(ms) + "</text>\n";
+            s += "<line x1=\"" + one_decimal(x) + "\" y1=\"" + one_decimal(top) + "\" x2=\"" + one_decimal(x) +
+                 "\" y2=\"" + one_decimal(H - bottom) + "\" stroke=\"" + (m == 1.0 ? "#ccc" : "#eee") + "\"/>\n";
+            s += "<text x=\"" + one_decimal(x) + "\" y=\"" + one_decimal(H - bottom + 16) +
+                 "\" text-anchor=\"middle\" font-size=\"" + (m == 1.0 ? "12" : "10") + "\">" + tick(ms) + "</text>\n";
         }
     for (int i = 0; i <= 5; ++i) {
         const double e = emax * i / 5, y = Y(e);
-        s += "<line x1=\"" + num(left) + "\" y1=\"" + num(y) + "\" x2=\"" + num(W - right) + "\" y2=\"" + num(y) +
-             "\" stroke=\"#eee\"/>\n";
-        s += "<text x=\"" + num(left - 6) + "\" y=\"" + num(y + 4) + "\" text-anchor=\"end\" font-size=\"11\">" +
-             tick(e) + "</text>\n";
+        s += "<line x1=\"" + one_decimal(left) + "\" y1=\"" + one_decimal(y) + "\" x2=\"" + one_decimal(W - right) +
+             "\" y2=\"" + one_decimal(y) + "\" stroke=\"#eee\"/>\n";
+        s += "<text x=\"" + one_decimal(left - 6) + "\" y=\"" + one_decimal(y + 4) +
+             "\" text-anchor=\"end\" font-size=\"11\">" + tick(e) + "</text>\n";
     }
-    s += "<text x=\"" + num((left + W - right) / 2) + "\" y=\"" + num(H - 10) +
+    s += "<text x=\"" + one_decimal((left + W - right) / 2) + "\" y=\"" + one_decimal(H - 10) +
          "\" text-anchor=\"middle\" font-size=\"12\">median frame time (ms, log scale)</text>\n";
-    s += "<text transform=\"translate(14 " + num((top + H - bottom) / 2) +
+    s += "<text transform=\"translate(14 " + one_decimal((top + H - bottom) / 2) +
          ") rotate(-90)\" text-anchor=\"middle\" font-size=\"12\">RMSE against the ray caster (mean over "
          "views)</text>\n";
 
@@ -106,8 +107,9 @@ TimeErrorPlot time_error_plot(const std::vector<SummaryRow>& rows, const std::st
         if (r->pareto) front.push_back(r);
     std::sort(front.begin(), front.end(), [](const SummaryRow* a, const SummaryRow* b) { return a->ms < b->ms; });
     if (!front.empty()) {
-        std::string d = "M" + num(X(front[0]->ms)) + " " + num(Y(front[0]->rmse));
-        for (size_t i = 1; i < front.size(); ++i) d += " H" + num(X(front[i]->ms)) + " V" + num(Y(front[i]->rmse));
+        std::string d = "M" + one_decimal(X(front[0]->ms)) + " " + one_decimal(Y(front[0]->rmse));
+        for (size_t i = 1; i < front.size(); ++i)
+            d += " H" + one_decimal(X(front[i]->ms)) + " V" + one_decimal(Y(front[i]->rmse));
         s += "<path class=\"front\" d=\"" + d +
              "\" fill=\"none\" stroke=\"#000\" stroke-width=\"1.5\" "
              "stroke-dasharray=\"4 3\"/>\n";
@@ -116,7 +118,7 @@ TimeErrorPlot time_error_plot(const std::vector<SummaryRow>& rows, const std::st
         const std::string label = r->method_id + " (" + r->family + "): " + significant(r->ms) + " ms, RMSE " +
                                   fixed(r->rmse, 2) + ", PSNR " + fixed(r->psnr, 2) + " dB, IoU " + fixed(r->iou, 4) +
                                   (r->pareto ? ", on the Pareto front" : "");
-        const std::string cx = num(X(r->ms)), cy = num(Y(r->rmse));
+        const std::string cx = one_decimal(X(r->ms)), cy = one_decimal(Y(r->rmse));
         s += "<g class=\"pt\" data-id=\"" + html_escape(r->method_id) + "\" data-pareto=\"" +
              (r->pareto ? "true" : "false") + "\" data-label=\"" + html_escape(label) + "\">";
         if (r->pareto)
@@ -131,15 +133,15 @@ TimeErrorPlot time_error_plot(const std::vector<SummaryRow>& rows, const std::st
         if (std::find(families.begin(), families.end(), r->family) == families.end()) families.push_back(r->family);
     double ly = top + 14;
     for (const std::string& f : families) {
-        s += "<circle cx=\"" + num(W - right - 130) + "\" cy=\"" + num(ly - 4) + "\" r=\"5\" fill=\"" +
-             family_colour(f) + "\"/><text x=\"" + num(W - right - 120) + "\" y=\"" + num(ly) + "\" font-size=\"12\">" +
-             html_escape(f.empty() ? "(no family)" : f) + "</text>\n";
+        s += "<circle cx=\"" + one_decimal(W - right - 130) + "\" cy=\"" + one_decimal(ly - 4) + "\" r=\"5\" fill=\"" +
+             family_colour(f) + "\"/><text x=\"" + one_decimal(W - right - 120) + "\" y=\"" + one_decimal(ly) +
+             "\" font-size=\"12\">" + html_escape(f.empty() ? "(no family)" : f) + "</text>\n";
         ly += 16;
     }
     if (!front.empty())
-        s += "<circle cx=\"" + num(W - right - 130) + "\" cy=\"" + num(ly - 4) +
-             "\" r=\"7\" fill=\"none\" stroke=\"#000\"/><text x=\"" + num(W - right - 120) + "\" y=\"" + num(ly) +
-             "\" font-size=\"12\">Pareto front</text>\n";
+        s += "<circle cx=\"" + one_decimal(W - right - 130) + "\" cy=\"" + one_decimal(ly - 4) +
+             "\" r=\"7\" fill=\"none\" stroke=\"#000\"/><text x=\"" + one_decimal(W - right - 120) + "\" y=\"" +
+             one_decimal(ly) + "\" font-size=\"12\">Pareto front</text>\n";
     s += "</svg>\n";
     plot.svg = std::move(s);
     return plot;

@@ -20,16 +20,14 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) { throw IoError(path + ": " + what); }
-
 bool finite_number(const json& v) { return v.is_number() && std::isfinite(v.get<double>()); }
 
 glm::dvec3 vec3_field(const std::string& path, const std::string& where, const json& p, const char* key) {
-    if (!p.contains(key)) fail(path, where + ": missing field \"" + key + "\"");
+    if (!p.contains(key)) throw_io_error(path, where + ": missing field \"" + key + "\"");
     const json& v = p[key];
     if (!v.is_array() || v.size() != 3 || !finite_number(v[0]) || !finite_number(v[1]) || !finite_number(v[2]))
-        fail(path, where + ": field \"" + key + "\" must be an array of 3 finite numbers, found " +
-                       v.dump(-1, ' ', false, json::error_handler_t::replace));
+        throw_io_error(path, where + ": field \"" + key + "\" must be an array of 3 finite numbers, found " +
+                                 v.dump(-1, ' ', false, json::error_handler_t::replace));
     return {v[0].get<double>(), v[1].get<double>(), v[2].get<double>()};
 }
 
@@ -37,54 +35,55 @@ glm::dvec3 vec3_field(const std::string& path, const std::string& where, const j
 
 std::vector<BakePlane> parse_bake_planes(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
-    if (!in) fail(path, "cannot read planes: no such file or not readable");
+    if (!in) throw_io_error(path, "cannot read planes: no such file or not readable");
     json j;
     try {
         j = json::parse(in);
     } catch (const json::exception& e) {
-        fail(path, std::string("not valid JSON: ") + e.what());
+        throw_io_error(path, std::string("not valid JSON: ") + e.what());
     }
     if (!j.is_object() || !j.contains("planes") || !j["planes"].is_array() || j["planes"].empty())
-        fail(path, "expected an object with a non-empty array \"planes\"");
+        throw_io_error(path, "expected an object with a non-empty array \"planes\"");
     std::vector<BakePlane> out;
     std::set<std::string> names;
     for (size_t i = 0; i < j["planes"].size(); ++i) {
         const json& p = j["planes"][i];
         std::string where = "plane " + std::to_string(i);
-        if (!p.is_object()) fail(path, where + ": expected an object");
+        if (!p.is_object()) throw_io_error(path, where + ": expected an object");
         BakePlane b;
-        if (!p.contains("name") || !p["name"].is_string()) fail(path, where + ": field \"name\" must be a string");
+        if (!p.contains("name") || !p["name"].is_string())
+            throw_io_error(path, where + ": field \"name\" must be a string");
         b.name = p["name"].get<std::string>();
         const bool name_ok = !b.name.empty() && b.name.size() <= 64 &&
                              std::all_of(b.name.begin(), b.name.end(), [](char c) {
                                  return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
                              });
-        if (!name_ok) fail(path, where + ": field \"name\" must be 1..64 letters, digits, '_' or '-'");
+        if (!name_ok) throw_io_error(path, where + ": field \"name\" must be 1..64 letters, digits, '_' or '-'");
         where += " (\"" + b.name + "\")";
-        if (!names.insert(b.name).second) fail(path, where + ": the name is used twice");
+        if (!names.insert(b.name).second) throw_io_error(path, where + ": the name is used twice");
         b.geometry.origin = vec3_field(path, where, p, "origin");
         b.geometry.a = vec3_field(path, where, p, "a");
         b.geometry.b = vec3_field(path, where, p, "b");
-        if (const std::string why = b.geometry.validate(); !why.empty()) fail(path, where + ": " + why);
+        if (const std::string why = b.geometry.validate(); !why.empty()) throw_io_error(path, where + ": " + why);
         const json* size = p.contains("size") ? &p["size"] : nullptr;
         if (!size || !size->is_array() || size->size() != 2 || !(*size)[0].is_number_integer() ||
             !(*size)[1].is_number_integer() || (*size)[0].get<long long>() < 1 || (*size)[0].get<long long>() > 16384 ||
             (*size)[1].get<long long>() < 1 || (*size)[1].get<long long>() > 16384)
-            fail(path, where + ": field \"size\" must be [w, h], integers in 1..16384");
+            throw_io_error(path, where + ": field \"size\" must be [w, h], integers in 1..16384");
         b.width = int((*size)[0].get<long long>());
         b.height = int((*size)[1].get<long long>());
         if (p.contains("range")) {
             const json& r = p["range"];
             if (!r.is_array() || r.size() != 2 || !finite_number(r[0]) || !finite_number(r[1]) ||
                 r[0].get<double>() > r[1].get<double>())
-                fail(path, where + ": field \"range\" must be [lo, hi], finite numbers with lo <= hi");
+                throw_io_error(path, where + ": field \"range\" must be [lo, hi], finite numbers with lo <= hi");
             b.range_lo = r[0].get<double>();
             b.range_hi = r[1].get<double>();
         }
         if (p.contains("cull_back_faces")) {
             if (!p["cull_back_faces"].is_boolean())
-                fail(path, where + ": field \"cull_back_faces\" must be true or false, found " +
-                               p["cull_back_faces"].dump(-1, ' ', false, json::error_handler_t::replace));
+                throw_io_error(path, where + ": field \"cull_back_faces\" must be true or false, found " +
+                                         p["cull_back_faces"].dump(-1, ' ', false, json::error_handler_t::replace));
             b.cull_back_faces = p["cull_back_faces"].get<bool>();
         }
         out.push_back(b);

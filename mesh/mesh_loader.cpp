@@ -25,8 +25,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) { throw IoError(path + ": " + what); }
-
 std::string lower(std::string s) {
     for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
     return s;
@@ -195,7 +193,7 @@ struct Builder {
     }
 
     void add_node(const aiNode& node, const aiMatrix4x4& parent, int depth) {
-        if (depth > 1000) fail(path, "node hierarchy deeper than 1000 levels");
+        if (depth > 1000) throw_io_error(path, "node hierarchy deeper than 1000 levels");
         const aiMatrix4x4 t = parent * node.mTransformation;
         for (unsigned i = 0; i < node.mNumMeshes; ++i)
             if (node.mMeshes[i] < scene.mNumMeshes) add_mesh(*scene.mMeshes[node.mMeshes[i]], t);
@@ -215,12 +213,12 @@ std::string TriangleMesh::to_string() const {
 
 TriangleMesh load_mesh(const std::string& path) {
     std::error_code ec;
-    if (!fs::exists(path, ec)) fail(path, "cannot read mesh: no such file");
-    if (fs::is_directory(path, ec)) fail(path, "cannot read mesh: it is a folder");
+    if (!fs::exists(path, ec)) throw_io_error(path, "cannot read mesh: no such file");
+    if (fs::is_directory(path, ec)) throw_io_error(path, "cannot read mesh: it is a folder");
     const std::uintmax_t bytes = fs::file_size(path, ec);
-    if (ec) fail(path, "cannot read mesh: " + ec.message());
+    if (ec) throw_io_error(path, "cannot read mesh: " + ec.message());
     if (const std::string why = check_declared_counts(path, bytes); !why.empty())
-        fail(path, "cannot read mesh: " + why);
+        throw_io_error(path, "cannot read mesh: " + why);
     Assimp::Importer importer;
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
     const unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure |
@@ -229,7 +227,7 @@ TriangleMesh load_mesh(const std::string& path) {
     if (!scene || !scene->mRootNode || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE)) {
         std::string why = importer.GetErrorString();
         if (why.empty()) why = "no scene";
-        fail(path, "cannot read mesh: " + why);
+        throw_io_error(path, "cannot read mesh: " + why);
     }
     TriangleMesh mesh;
     for (unsigned i = 0; i < scene->mNumMaterials; ++i)
@@ -237,20 +235,20 @@ TriangleMesh load_mesh(const std::string& path) {
     if (mesh.materials.empty()) mesh.materials.push_back(MeshMaterial{"default", glm::vec4(1.0f), {}});
     Builder b{path, *scene, mesh};
     b.add_node(*scene->mRootNode, aiMatrix4x4(), 0);
-    if (mesh.indices.empty()) fail(path, "mesh has no triangles");
+    if (mesh.indices.empty()) throw_io_error(path, "mesh has no triangles");
 
     glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
     for (uint32_t idx : mesh.indices) {
         const glm::vec3& p = mesh.vertices[idx].position;
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-            fail(path, "vertex " + std::to_string(idx) + " has a non-finite position");
+            throw_io_error(path, "vertex " + std::to_string(idx) + " has a non-finite position");
         lo = glm::min(lo, glm::dvec3(p));
         hi = glm::max(hi, glm::dvec3(p));
     }
     constexpr double kMaxCoordinate = 1e30;  // as for cameras: past this single precision has no room left
     for (int k = 0; k < 3; ++k)
         if (std::abs(lo[k]) > kMaxCoordinate || std::abs(hi[k]) > kMaxCoordinate)
-            fail(path, "vertex coordinates beyond +-1e30");
+            throw_io_error(path, "vertex coordinates beyond +-1e30");
     mesh.lo = lo;
     mesh.hi = hi;
     return mesh;

@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <functional>
 #include <stdexcept>
 
 namespace rtm {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kRange = 0.25;
 
 // height(x, y) in [0, 1] over the unit square (x right, y up).
@@ -31,8 +31,8 @@ ProceduralRelief make(const std::string& name, int size, const std::function<dou
             const double h = std::clamp(height(x, y), 0.0, 1.0);
             p.displacement.at(i, row) = float(h);
             auto c = [](double v) { return uint8_t(std::lround(std::clamp(v, 0.0, 1.0) * 255.0)); };
-            p.color.at(i, row) = {c(0.5 + 0.4 * std::sin(2 * kPi * 3 * x)), c(0.5 + 0.4 * std::sin(2 * kPi * 3 * y)),
-                                  c(0.2 + 0.7 * h), 255};
+            p.color.at(i, row) = {c(0.5 + 0.4 * std::sin(2 * std::numbers::pi * 3 * x)),
+                                  c(0.5 + 0.4 * std::sin(2 * std::numbers::pi * 3 * y)), c(0.2 + 0.7 * h), 255};
         }
     return p;
 }

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <cstdint>
 #include <stdexcept>
 
@@ -18,7 +19,6 @@ namespace {
 
 constexpr int kMinSize = 8;
 constexpr int kMaxSize = 8192;
-constexpr double kPi = 3.14159265358979323846;
 
 void check_size(const char* name, int size) {
     if (size < kMinSize || size > kMaxSize)
@@ -244,7 +244,7 @@ bool in_rect(double x, double y, double x0, double y0, double x1, double y1) {
     return x >= x0 && x < x1 && y >= y0 && y < y1;
 }
 
-const Rgb kWall{228, 211, 175};
+const Rgb kWallColour{228, 211, 175};
 const Rgb kWhite{242, 240, 232};
 const Rgb kTrim{232, 226, 210};
 const Rgb kStone{152, 148, 140};
@@ -348,7 +348,7 @@ void door(FacadeSample& s, double x, double y) {
 
 void dormer(FacadeSample& s, double x, double y, double xc) {
     constexpr double hw = 0.07, y0 = 0.79, y1 = 0.90, apex = 0.955, over = 0.085, board = 0.012;
-    const Rgb cladding = kWall * 0.96;
+    const Rgb cladding = kWallColour * 0.96;
     if (y >= y1 && y < apex) {  // gable
         const double half = over * (apex - y) / (apex - y1);
         const double ax = std::abs(x - xc);
@@ -386,7 +386,7 @@ void dormer(FacadeSample& s, double x, double y, double xc) {
 FacadeSample facade_sample(double x, double y) {
     FacadeSample s;
     // Wall: stucco with a little low-frequency staining and fine grain.
-    s.c = kWall * (0.95 + 0.08 * (fbm(x * 12, y * 12, 61) - 0.5) * 2 + 0.05 * (fbm(x * 120, y * 120, 62) - 0.5));
+    s.c = kWallColour * (0.95 + 0.08 * (fbm(x * 12, y * 12, 61) - 0.5) * 2 + 0.05 * (fbm(x * 120, y * 120, 62) - 0.5));
     s.d = 0.0;
     if (y < 0.06) {  // plinth with a capping course
         s.d = y >= 0.052 ? 0.016 : 0.012;
@@ -413,7 +413,7 @@ FacadeSample facade_sample(double x, double y) {
     }
     if (y >= 0.745 && y < 0.76) {  // half-round gutter
         const double t = (y - 0.745) / 0.015;
-        s.d = 0.10 + 0.02 * std::sin(kPi * t);
+        s.d = 0.10 + 0.02 * std::sin(std::numbers::pi * t);
         s.c = Rgb{92, 86, 80};
     }
     if (y >= 0.76) {
@@ -484,7 +484,9 @@ ProceduralRelief make_bumps(int size) {
     for (int row = 0; row < c.height; ++row) {
         for (int i = 0; i < c.width; ++i) {
             const double x = c.x_of(i), y = c.y_of(row);
-            double v = 0.18 * (std::sin(2 * kPi * (2 * x + 0.1)) * std::sin(2 * kPi * (1.5 * y + 0.2)) + 1.0);
+            double v = 0.18 * (std::sin(2 * std::numbers::pi * (2 * x + 0.1)) *
+                                   std::sin(2 * std::numbers::pi * (1.5 * y + 0.2)) +
+                               1.0);
             for (const Bump& b : kBumps) {
                 const double r2 = (x - b.x) * (x - b.x) + (y - b.y) * (y - b.y);
                 v += b.amp * std::exp(-r2 / (2 * b.sigma * b.sigma));
