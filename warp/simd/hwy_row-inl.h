@@ -454,22 +454,27 @@ constexpr int kMinGroup = 3;
 
 // The spans from sample pa[i] to sample pb[i], i = 0 .. N - 1 (the lanes of one vector, in memory order), taken from
 // the lowest lane up (from_low) or from the highest down: how many lead with one orientation, all samples taking
-// part (0 when fewer than kMinGroup), and whether that is pb >= pa (up) or pb <= pa.
+// part (0 when fewer than kMinGroup), and whether that is pb >= pa (up) or pb <= pa. The first `skip` lanes in that
+// order are left out (a vector moved back from a part's end: they are spans drawn before) and not counted.
 template <class DF>
-HWY_INLINE int GroupPrefix(DF df, const float* pa_ptr, const float* pb_ptr, bool from_low, bool& up) {
+HWY_INLINE int GroupPrefix(DF df, const float* pa_ptr, const float* pb_ptr, bool from_low, bool& up, int skip = 0) {
     const auto pa = hn::LoadU(df, pa_ptr), pb = hn::LoadU(df, pb_ptr);
     const auto fin = hn::And(hn::IsFinite(pa), hn::IsFinite(pb));
     const int N = int(hn::Lanes(df));
+    auto lanes = [&](auto m) {  // the lanes asked about, the skipped ones set
+        if (HWY_LIKELY(!skip)) return m;
+        return hn::Or(m, from_low ? hn::FirstN(df, size_t(skip)) : hn::Not(hn::FirstN(df, size_t(N - skip))));
+    };
     // The whole vector one way (bumps: every group): no prefix to find.
-    auto ge = hn::And(fin, hn::Ge(pb, pa));
+    auto ge = lanes(hn::And(fin, hn::Ge(pb, pa)));
     if (hn::AllTrue(df, ge)) {
         up = true;
-        return N;
+        return N - skip;
     }
-    auto le = hn::And(fin, hn::Le(pb, pa));
+    auto le = lanes(hn::And(fin, hn::Le(pb, pa)));
     if (hn::AllTrue(df, le)) {
         up = false;
-        return N;
+        return N - skip;
     }
     if (!from_low) {
         ge = hn::MaskFromVec(hn::Reverse(df, hn::VecFromMask(df, ge)));
@@ -481,20 +486,23 @@ HWY_INLINE int GroupPrefix(DF df, const float* pa_ptr, const float* pb_ptr, bool
     };
     const int mu = lead(ge), md = lead(le);
     up = mu >= md;
-    const int m = std::max(mu, md);
+    const int m = std::max(mu, md) - skip;
     return m >= kMinGroup ? m : 0;
 }
 
 // Draws the m spans GroupPrefix found among the spans from sample a0 + i to sample b0 + i (b0 = a0 + 1 in the left
-// part, a0 - 1 in the right part), only pixels in [cl, ch]. SpanLanes wants the lanes' pixels in lane order: the
-// lanes are reversed where the pixels run the other way (left part: spans going down; right part: going up).
+// part, a0 - 1 in the right part), only pixels in [cl, ch], after the `skip` lanes GroupPrefix left out. SpanLanes
+// wants the lanes' pixels in lane order: the lanes are reversed where the pixels run the other way (left part: spans
+// going down; right part: going up).
 template <class DF, class Before>
 HWY_INLINE void DrawGroup(DF df, const float* pos, const uint32_t* col, const float* attr, const float* attr2, int a0,
-                          int b0, int m, bool from_low, bool up, RowOut out, const Before& before, int cl, int ch) {
+                          int b0, int m, bool from_low, bool up, RowOut out, const Before& before, int cl, int ch,
+                          int skip = 0) {
     const hn::RebindToSigned<DF> di;
     const int N = int(hn::Lanes(df));
     const bool reverse = (b0 > a0) != up;
-    auto mask = from_low ? hn::FirstN(df, size_t(m)) : hn::Not(hn::FirstN(df, size_t(N - m)));
+    auto mask = from_low ? hn::AndNot(hn::FirstN(df, size_t(skip)), hn::FirstN(df, size_t(skip + m)))
+                         : hn::AndNot(hn::FirstN(df, size_t(N - skip - m)), hn::FirstN(df, size_t(N - skip)));
     if (reverse) mask = hn::MaskFromVec(hn::Reverse(df, hn::VecFromMask(df, mask)));
     auto lf = [&](const float* p) {
         const auto v = hn::LoadU(df, p);
@@ -637,17 +645,21 @@ void WarpRow(const float* pos, const uint32_t* col, const float* attr, const flo
     // Left part: k = 0 .. split - 1, spans k - 1 -> k.
     int prev = -1, k = 0;
     while (k < split) {
-        if (prev == k - 1 && prev >= 0 && k + N <= split) {
-            if (out.copy && CopyStill(df, pos, col, attr, attr2, k, -1, n_out, out, before)) {
+        // A group's vector: spans w0 .. w0 + N - 1, those from k on drawn; at the row's end it moves back (skip > 0),
+        // and its lanes may reach past the split (loaded, not drawn).
+        const int w0 = std::min(k, n - N);
+        if (prev == k - 1 && prev >= 0 && w0 >= 1) {
+            const int skip = k - w0;
+            if (k + N <= split && out.copy && CopyStill(df, pos, col, attr, attr2, k, -1, n_out, out, before)) {
                 k += N;
                 prev = k - 1;
                 continue;
             }
             bool up;
-            int m = GroupPrefix(df, pos + k - 1, pos + k, true, up);
-            if (m && marks && (m = UnbrokenLead(marks, k - 1, +1, m)) < kMinGroup) m = 0;
-            if (m) {
-                DrawGroup(df, pos, col, attr, attr2, k - 1, k, m, true, up, out, before, 0, n_out - 1);
+            int m = std::min(GroupPrefix(df, pos + w0 - 1, pos + w0, true, up, skip), split - k);
+            if (m && marks) m = UnbrokenLead(marks, k - 1, +1, m);
+            if (m >= kMinGroup) {
+                DrawGroup(df, pos, col, attr, attr2, w0 - 1, w0, m, true, up, out, before, 0, n_out - 1, skip);
                 k += m;
                 prev = k - 1;
                 continue;
@@ -661,18 +673,21 @@ void WarpRow(const float* pos, const uint32_t* col, const float* attr, const flo
     prev = -1;
     k = n - 1;
     while (k >= split) {
-        if (prev == k + 1 && k - N + 1 >= split) {
-            const int b = k - N + 1;  // lanes: samples b .. k, each after sample + 1; processing order from lane N - 1
-            if (out.copy && CopyStill(df, pos, col, attr, attr2, b, +1, n_out, out, before)) {
+        // Lanes: samples b .. b + N - 1, each after sample + 1, processing order from lane N - 1, those from k down
+        // drawn: at the row's start the vector moves up (skip > 0), and its lanes may reach below the split.
+        const int b = std::max(k - N + 1, 0);
+        if (prev == k + 1 && b + N <= n - 1) {
+            const int skip = b + N - 1 - k;
+            if (b >= split && !skip && out.copy && CopyStill(df, pos, col, attr, attr2, b, +1, n_out, out, before)) {
                 k -= N;
                 prev = k + 1;
                 continue;
             }
             bool up;
-            int m = GroupPrefix(df, pos + b + 1, pos + b, false, up);
-            if (m && marks && (m = UnbrokenLead(marks, k, -1, m)) < kMinGroup) m = 0;
-            if (m) {
-                DrawGroup(df, pos, col, attr, attr2, b + 1, b, m, false, up, out, before, 0, n_out - 1);
+            int m = std::min(GroupPrefix(df, pos + b + 1, pos + b, false, up, skip), k - split + 1);
+            if (m && marks) m = UnbrokenLead(marks, k, -1, m);
+            if (m >= kMinGroup) {
+                DrawGroup(df, pos, col, attr, attr2, b + 1, b, m, false, up, out, before, 0, n_out - 1, skip);
                 k -= m;
                 prev = k + 1;
                 continue;
