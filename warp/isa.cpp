@@ -2,6 +2,7 @@
 
 #include <hwy/targets.h>
 
+#include <atomic>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -26,7 +27,23 @@ int64_t hwy_bits(Isa isa) {
     }
 }
 
+std::atomic<int64_t> g_hwy_targets{0};  // 0: not detected (Highway always supports at least one target)
+
 }  // namespace
+
+int64_t hwy_supported_targets() {
+    int64_t t = g_hwy_targets.load(std::memory_order_relaxed);
+    if (!t) {
+        t = hwy::SupportedTargets();
+        g_hwy_targets.store(t, std::memory_order_relaxed);
+    }
+    return t;
+}
+
+void set_hwy_targets_for_test(int64_t targets) {
+    hwy::SetSupportedTargetsForTest(targets);
+    g_hwy_targets.store(0, std::memory_order_relaxed);
+}
 
 const char* isa_name(Isa isa) {
     switch (isa) {
@@ -69,8 +86,8 @@ bool isa_supported(Isa isa) {
         // Highway's AVX3_DL target on a CPU with what the kernels use besides: AVX-512 VNNI, which Highway 1.0.3's
         // AVX3_DL does not enable (it names avxvnni), and BMI2, both checked by fast::cpu_supported.
         case Isa::avx512_hwy:
-            return fast::cpu_supported() && (hwy::SupportedTargets() & simd::hwy_compiled_targets() & HWY_AVX3_DL);
-        default: return (hwy::SupportedTargets() & simd::hwy_compiled_targets() & hwy_bits(isa)) != 0;
+            return fast::cpu_supported() && (hwy_supported_targets() & simd::hwy_compiled_targets() & HWY_AVX3_DL);
+        default: return (hwy_supported_targets() & simd::hwy_compiled_targets() & hwy_bits(isa)) != 0;
     }
 }
 

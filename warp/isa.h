@@ -11,6 +11,7 @@
 // PrewarpStats::isa says which ran.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -28,8 +29,8 @@ bool parse_isa(std::string_view name, Isa& isa);
 // "avx512, avx512-hwy, avx2, sse4, neon, sve, generic": the names, for messages.
 std::string isa_names();
 
-// The targets this CPU and this build can run, fastest first, generic last. Honours hwy::SetSupportedTargetsForTest
-// (the tests force each Highway target in turn).
+// The targets this CPU and this build can run, fastest first, generic last. Honours set_hwy_targets_for_test (the
+// tests force each Highway target in turn).
 std::vector<Isa> supported_isas();
 bool isa_supported(Isa isa);
 
@@ -40,5 +41,11 @@ Isa default_isa();
 // `isa` itself, or default_isa() for automatic. Throws std::invalid_argument naming the target when this CPU or
 // build cannot run it.
 Isa resolve_isa(Isa isa);
+
+// hwy::SupportedTargets(), detected once: Highway 1.0.3 runs CPUID on every call unless a test set the targets, 5.6
+// us a call in a virtual machine (where CPUID traps), and every pre-warp asks (2% of a 256^2 one, more below).
+int64_t hwy_supported_targets();
+// hwy::SetSupportedTargetsForTest(targets) (0: the CPU's own again); hwy_supported_targets() then asks again.
+void set_hwy_targets_for_test(int64_t targets);
 
 }  // namespace rtm

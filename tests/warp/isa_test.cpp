@@ -28,7 +28,7 @@ protected:
             setenv("RTM_ISA", saved_.c_str(), 1);
         else
             unsetenv("RTM_ISA");
-        hwy::SetSupportedTargetsForTest(0);  // 0: the CPU's own again
+        set_hwy_targets_for_test(0);  // 0: the CPU's own again
     }
     bool had_ = false;
     std::string saved_;
@@ -71,18 +71,18 @@ TEST_F(IsaTest, GenericIsAlwaysSupportedAndLast) {
 TEST_F(IsaTest, ForcedHighwayTargetsRestrictTheChoice) {
 #if defined(__x86_64__)
     if (!isa_supported(Isa::avx2)) GTEST_SKIP() << "no AVX2 on this CPU";
-    hwy::SetSupportedTargetsForTest(HWY_SSE4);  // as on a CPU with SSE4 but no AVX2
+    set_hwy_targets_for_test(HWY_SSE4);  // as on a CPU with SSE4 but no AVX2
     EXPECT_FALSE(isa_supported(Isa::avx2));
     EXPECT_TRUE(isa_supported(Isa::sse4));
-    hwy::SetSupportedTargetsForTest(0);
+    set_hwy_targets_for_test(0);
     EXPECT_TRUE(isa_supported(Isa::avx2));
 #elif defined(__aarch64__)
     if (!isa_supported(Isa::sve)) GTEST_SKIP() << "no SVE on this CPU";
-    hwy::SetSupportedTargetsForTest(HWY_NEON);  // as on a CPU with NEON but no SVE
+    set_hwy_targets_for_test(HWY_NEON);  // as on a CPU with NEON but no SVE
     EXPECT_FALSE(isa_supported(Isa::sve));
     EXPECT_TRUE(isa_supported(Isa::neon));
     EXPECT_EQ(default_isa(), Isa::neon);
-    hwy::SetSupportedTargetsForTest(0);
+    set_hwy_targets_for_test(0);
     EXPECT_TRUE(isa_supported(Isa::sve));
 #else
     GTEST_SKIP() << "x86-64 and ARM targets";

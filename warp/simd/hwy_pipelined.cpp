@@ -556,7 +556,7 @@ PipelinedKernels hwy_pipelined_kernels(Isa isa) {
 #endif
 #if HWY_TARGETS & HWY_SVE2
         case Isa::sve:
-            if (hwy::SupportedTargets() & HWY_SVE2) return RTM_HWY_PIPELINED(N_SVE2);
+            if (hwy_supported_targets() & HWY_SVE2) return RTM_HWY_PIPELINED(N_SVE2);
 #if HWY_TARGETS & HWY_SVE
             return RTM_HWY_PIPELINED(N_SVE);
 #else

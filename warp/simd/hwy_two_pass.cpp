@@ -147,7 +147,7 @@ TwoPassKernels hwy_two_pass_kernels(Isa isa) {
 #endif
 #if HWY_TARGETS & HWY_SVE2
         case Isa::sve:
-            if (hwy::SupportedTargets() & HWY_SVE2)
+            if (hwy_supported_targets() & HWY_SVE2)
                 return {&N_SVE2::HorizontalSteps, &N_SVE2::VerticalSteps, &N_SVE2::StillSteps};
 #if HWY_TARGETS & HWY_SVE
             return {&N_SVE::HorizontalSteps, &N_SVE::VerticalSteps, &N_SVE::StillSteps};
