@@ -43,7 +43,7 @@ Isa default_isa();
 Isa resolve_isa(Isa isa);
 
 // hwy::SupportedTargets(), detected once: Highway 1.0.3 runs CPUID on every call unless a test set the targets, 5.6
-// us a call in a virtual machine (where CPUID traps), and every pre-warp asks (2% of a 256^2 one, more below).
+// us a call in a virtual machine (where CPUID traps), and every pre-warp asks (2% of a 256^2 one, more of smaller).
 int64_t hwy_supported_targets();
 // hwy::SetSupportedTargetsForTest(targets) (0: the CPU's own again); hwy_supported_targets() then asks again.
 void set_hwy_targets_for_test(int64_t targets);
