@@ -875,8 +875,8 @@ HWY_INLINE void LookupFloats(const uint8_t (*planes)[256], __m512i qp, __mmask64
 }
 
 // PrepareRow's loop for texels x .. x + 63 of the row src (the same values, stored to s).
-HWY_INLINE void PrepareTexels64(const fast::FastTables& ft, const uint32_t* src, int x, __m512 vs, __m512 ou,
-                                __m512 ov, const RowScratch& s) {
+HWY_INLINE void PrepareTexels64(const fast::FastTables& ft, const uint32_t* src, int x, __m512 vs, __m512 ou, __m512 ov,
+                                const RowScratch& s) {
     __m512i d[4];
     for (int m = 0; m < 4; ++m) {
         d[m] = _mm512_loadu_si512(src + x + 16 * m);
