@@ -71,6 +71,17 @@ HWY_INLINE hn::Vec512<int32_t> TruncateInRange(hn::Full512<int32_t>, hn::Vec512<
 #endif
 #endif
 
+// The truncating conversion of floats that lie in [-2^31, 2^31) in the lanes whose result is used (the others get
+// anything): on x86 the instruction alone (TruncateInRange), elsewhere ConvertTo (one instruction there too).
+template <class DI, class VF>
+HWY_INLINE hn::Vec<DI> ConvertInRange(DI di, VF v) {
+#if RTM_HWY_X86_VECTORS
+    return TruncateInRange(di, v);
+#else
+    return hn::ConvertTo(di, v);
+#endif
+}
+
 // lerp8's weight at parameters tt in [0, 1] or NaN (per lane): floor(t * 2^14) made odd, at most 2^14 - 1, and
 // 2^14 - 1 for NaN: min(int(t * 2^14) | 1, 16383) where t >= 0, else 16383.
 template <class DF, class DI>
@@ -394,15 +405,17 @@ HWY_INLINE void ColumnRows(DF df, const ColumnTarget& o, MF fin, MF pok, hn::Vec
     const VF pvh = hn::Sub(pv, half), vh = hn::Sub(v, half);
     VF lo = hn::IfThenElse(inc, hn::Add(hn::Floor(pvh), one), hn::Ceil(vh));
     VF hi = hn::IfThenElse(inc, hn::Floor(vh), hn::Sub(hn::Ceil(pvh), one));
-    lo = hn::IfThenElse(hn::Lt(lo, first), first, lo);
-    hi = hn::IfThenElse(hn::Lt(last, hi), last, hi);
+    // (Finite in the lanes of inc and dec, where pv and v are: Max and Min clamp as the comparisons would.)
+    lo = hn::Max(lo, first);
+    hi = hn::Min(hi, last);
     const auto span = hn::And(hn::Or(inc, dec), hn::Le(lo, hi));
     // raster_point: row int(v) where 0 <= v < oh, and y0 <= int(v) < y1.
     const auto point = hn::AndNot(pok, hn::And(fin, hn::And(hn::Ge(v, first), hn::Lt(v, end))));
     spani = hn::RebindMask(di, span);
     pointi = hn::RebindMask(di, point);
-    ylo = hn::ConvertTo(di, hn::IfThenElse(point, v, lo));
-    yhi = hn::IfThenElse(pointi, ylo, hn::ConvertTo(di, hi));
+    // Rows in [y0, y1 - 1] in the lanes of span and point, the only ones used.
+    ylo = ConvertInRange(di, hn::IfThenElse(point, v, lo));
+    yhi = hn::IfThenElse(pointi, ylo, ConvertInRange(di, hi));
 }
 
 // Whether every lane of a vector is a still step: connected (pok) to the column's previous sample exactly one row

@@ -160,20 +160,26 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
     const VF pah = hn::Sub(pa, half), pbh = hn::Sub(pb, half);
     VF lo = hn::IfThenElse(inc, hn::Add(hn::Floor(pah), one), hn::Ceil(pbh));
     VF hi = hn::IfThenElse(inc, hn::Floor(pbh), hn::Sub(hn::Ceil(pah), one));
-    lo = hn::IfThenElse(hn::Lt(lo, first_px), first_px, lo);
-    hi = hn::IfThenElse(hn::Lt(last, hi), last, hi);
+    // (pa and pb are finite in the lanes of `span`: Max and Min clamp there as the comparisons would.)
+    lo = hn::Max(lo, first_px);
+    hi = hn::Min(hi, last);
     const auto todo = hn::RebindMask(di, hn::And(span, hn::Le(lo, hi)));
     if (hn::AllFalse(di, todo)) return;
-    const VI xlo = hn::ConvertTo(di, lo), xhi = hn::ConvertTo(di, hi);
+    // Pixels in [cl, ch] in the lanes of todo, the only ones used.
+    const VI xlo = ConvertInRange(di, lo), xhi = ConvertInRange(di, hi);
     const VF inv = hn::Div(one, hn::Sub(pb, pa));
     HWY_ALIGN int32_t lane_x[HWY_MAX_BYTES / 4], lane_h[HWY_MAX_BYTES / 4], lane_on[HWY_MAX_BYTES / 4];
     hn::Store(xlo, di, lane_x);
     hn::Store(xhi, di, lane_h);
     // The first and last lanes with pixels, from the mask's bits (at most 64 lanes of 32 bits: SVE's 2048 bits).
+#if HWY_TARGET <= HWY_AVX3
+    const uint64_t mask_bits = todo.raw;  // the mask register itself
+#else
     uint8_t mask_bytes[8] = {};
     hn::StoreMaskBits(di, todo, mask_bytes);
     uint64_t mask_bits = 0;
     for (int i = 0; i < 8; ++i) mask_bits |= uint64_t(mask_bytes[i]) << (8 * i);
+#endif
     const int first = __builtin_ctzll(mask_bits), lastl = 63 - __builtin_clzll(mask_bits);
     const int xa = lane_x[first], xb = lane_h[lastl];
     before(xa, xb);
@@ -184,8 +190,9 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
     const bool narrow = hn::AllTrue(di, hn::Or(hn::Not(todo), hn::Lt(hn::Sub(xhi, xlo), hn::Set(di, 2))));
     const VF xc0 = hn::Add(lo, half);  // the centre of lo + 1 is xc0 + 1 exactly (pixel indices below 2^22)
     auto at = [&](VF c, VI & col, VF & v, VF & d) HWY_ATTR __attribute__((always_inline)) {
-        VF tt = hn::Mul(hn::Sub(c, pa), inv);
-        tt = hn::IfThenElse(hn::Lt(tt, zero), zero, hn::IfThenElse(hn::Lt(one, tt), one, tt));  // std::clamp
+        // std::clamp(t, 0, 1) as Max and Min: t is never NaN (c - pa is not 0 inside a span, and 1 / (pb - pa) is
+        // finite or infinite).
+        const VF tt = hn::Max(zero, hn::Min(one, hn::Mul(hn::Sub(c, pa), inv)));
         col = Lerp8At(df, di, tt, ca, cb);
         v = AttrLerp(va, vb, tt, one);
         if (with2) d = AttrLerp(da, db, tt, one);
