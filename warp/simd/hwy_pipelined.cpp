@@ -358,27 +358,31 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
     if (with_d) out.attr2 = b.rd;
     std::fill(b.prev_ok + x0, b.prev_ok + x1, 0);
     RowRange range{std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
-    // Row j set up, row `next` (the one set up after it) prefetched; returns the texels dropped. `marks`: the row's.
+    // Row j set up, row `next` (the one set up after it) prefetched; returns the texels dropped and whether the row
+    // has still texels. `marks`: the row's.
     const uint8_t* marks = nullptr;
     auto prepare = [&](int j, int next) {
         prefetch_relief_row(t, h - 1 - next);
-        const long long dropped = PrepareRow(t, *job.tables, job.extent, h - 1 - j, s);
+        const PreparedRow prep = PrepareRow(t, *job.tables, job.extent, h - 1 - j, s);
         marks = RowMarks(t, job.breaks, h - 1 - j);
         if (with_d) RowDisplacements(t, *job.ref_tables, h - 1 - j, s);
         if (track) TrackRange(s, w, range);
-        return dropped;
+        return prep;
     };
-    // Row j, drawing into v-rows [ya, yb); returns the texels dropped.
+    // Row j, drawing into v-rows [ya, yb); returns the texels dropped. The copies of still spans and still column
+    // steps are looked for only in rows with still texels (a row of bumps has none: no test a vector).
     auto row = [&](int j, int ya, int yb, float* drawn) {
-        const long long dropped = prepare(j, j + p.step);
+        const PreparedRow prep = prepare(j, j + p.step);
         std::fill(b.cur_ok + x0, b.cur_ok + x1, 0);
-        const Emitter emit{b, ColumnTarget{pixels, ow, oh, ya, yb}, x0, x1, drawn, job.copy_still, job.threshold};
+        const bool copy = job.copy_still && prep.still;
+        out.copy = copy;
+        const Emitter emit{b, ColumnTarget{pixels, ow, oh, ya, yb}, x0, x1, drawn, copy, job.threshold};
         WarpRow(s.pos, s.color, s.v, s.d, w, job.split_u, ow, out, Coalescer<Emitter>{emit}, marks);
         std::swap(b.prev_c, b.cur_c);
         std::swap(b.prev_v, b.cur_v);
         std::swap(b.prev_ok, b.cur_ok);
         std::swap(b.prev_d, b.cur_d);
-        return dropped;
+        return prep.dropped;
     };
     const int ja = p.first + p.step * r0, jb = p.first + p.step * r1;
     if (r0 > 0) row(ja - p.step, p.y0, p.y0, nullptr);  // the row before: no output rows
@@ -402,8 +406,9 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
         const ColumnsWritten cw{r.lo.data(), r.hi.data(), r.bits_on.data(), r.bits.data(), r.nw};
         const ColumnTarget o{pixels, ow, oh, p.y0, p.y1};
         auto warp = [&](int j, EmitLog& log) {
-            const long long d = prepare(j, j - p.step);
-            if (x0 == 0) dropped += d;
+            const PreparedRow prep = prepare(j, j - p.step);
+            out.copy = job.copy_still && prep.still;
+            if (x0 == 0) dropped += prep.dropped;
             std::fill(r.fin_ok.data() + x0, r.fin_ok.data() + x1, 0);
             log.n = 0;
             const Logger logger{b, r, log, x0, x1, with_d};

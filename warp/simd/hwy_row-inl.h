@@ -881,8 +881,9 @@ HWY_INLINE void LookupFloats(const uint8_t (*planes)[256], __m512i qp, __mmask64
     out[3] = _mm512_castsi512_ps(_mm512_unpackhi_epi16(h01, h23));
 }
 
-// PrepareRow's loop for texels x .. x + 63 of the row src (the same values, stored to s).
-HWY_INLINE void PrepareTexels64(const fast::FastTables& ft, const uint32_t* src, int x, __m512 vs, __m512 ou, __m512 ov,
+// PrepareRow's loop for texels x .. x + 63 of the row src (the same values, stored to s). Returns whether any of
+// them is at zero displacement (an identity level).
+HWY_INLINE bool PrepareTexels64(const fast::FastTables& ft, const uint32_t* src, int x, __m512 vs, __m512 ou, __m512 ov,
                                 const RowScratch& s) {
     __m512i d[4];
     for (int m = 0; m < 4; ++m) {
@@ -898,13 +899,14 @@ HWY_INLINE void PrepareTexels64(const fast::FastTables& ft, const uint32_t* src,
     for (int m = 0; m < 4; ++m)
         us[m] = _mm512_add_ps(_mm512_cvtepi32_ps(_mm512_add_epi32(_mm512_set1_epi32(x + 16 * m), iota)),
                               _mm512_set1_ps(0.5f));
-    if (ft.any_identity && _mm512_movepi8_mask(LookupBytes(ft.identity, qp, high)) == ~0ull) {
+    const uint64_t still = ft.any_identity ? _mm512_movepi8_mask(LookupBytes(ft.identity, qp, high)) : 0;
+    if (still == ~0ull) {
         // Zero displacement at all 64 (PrepareRow says why no lookup is needed).
         for (int m = 0; m < 4; ++m) {
             _mm512_storeu_ps(s.pos + x + 16 * m, _mm512_add_ps(us[m], ou));
             _mm512_storeu_ps(s.v + x + 16 * m, _mm512_add_ps(vs, ov));
         }
-        return;
+        return true;
     }
     // Table by table, so that fewer registers are live at once.
     __m512 rcp[4], k[4];
@@ -915,6 +917,7 @@ HWY_INLINE void PrepareTexels64(const fast::FastTables& ft, const uint32_t* src,
     LookupFloats(ft.plane[1], qp, high, k);
     for (int m = 0; m < 4; ++m)
         _mm512_storeu_ps(s.v + x + 16 * m, _mm512_add_ps(_mm512_mul_ps(_mm512_add_ps(vs, k[m]), rcp[m]), ov));
+    return still != 0;
 }
 #endif
 
@@ -923,8 +926,15 @@ HWY_INLINE void PrepareTexels64(const fast::FastTables& ft, const uint32_t* src,
 // (alpha 255) of every texel. Returns the texels dropped (not empty, but 1 + k3*d <= 0). `ft` holds each level's K1
 // (NaN at the levels that cannot be pre-warped: (u_s + NaN) * R + margin is NaN, not finite, as the reference's
 // invalid sample), K2 and R (FastTables::level) and the identity levels (zero displacement: K1 = K2 = +-0, R = 1).
-inline long long PrepareRow(const ReliefTexture& t, const fast::FastTables& ft, const PrewarpExtent& e, int r,
-                            const RowScratch& s) {
+// Also says whether the row has a texel at zero displacement (one of the first run of identity levels, which holds
+// every level at zero displacement of a monotonic quantizer): without one, no vector of its spans is a copy of still
+// texels (CopyStill), and WarpRow need not test for them (RowOut::copy).
+struct PreparedRow {
+    long long dropped;
+    bool still;
+};
+inline PreparedRow PrepareRow(const ReliefTexture& t, const fast::FastTables& ft, const PrewarpExtent& e, int r,
+                              const RowScratch& s) {
     const int w = t.width, h = t.height;
     const float vs = float(h - 1 - r) + 0.5f;
     const ReliefTexel* src = &t.texels[size_t(r) * size_t(w)];
@@ -949,20 +959,26 @@ inline long long PrepareRow(const ReliefTexture& t, const fast::FastTables& ft, 
     const bool any_id = ft.identity_lo <= ft.identity_hi;
     const VI id_lo = hn::Set(di, ft.identity_lo), id_hi = hn::Set(di, ft.identity_hi);
     const VF still_v = hn::Add(vvs, vov);
+    bool still = false;
     int x = 0;
 #if HWY_TARGET == HWY_AVX3_DL
     for (; x + 64 <= w; x += 64)
-        PrepareTexels64(ft, reinterpret_cast<const uint32_t*>(src), x, vvs.raw, vou.raw, vov.raw, s);
+        still = PrepareTexels64(ft, reinterpret_cast<const uint32_t*>(src), x, vvs.raw, vou.raw, vov.raw, s) || still;
 #endif
     for (; x + N <= w; x += N) {
         const VI tx = hn::LoadU(di, reinterpret_cast<const int32_t*>(src + x));
         const VI q = hn::And(hn::ShiftRight<24>(tx), byte);
         hn::StoreU(hn::Or(hn::And(tx, rgb), alpha), di, reinterpret_cast<int32_t*>(s.color + x));
         const VF us = hn::Add(hn::ConvertTo(df, hn::Add(hn::Set(di, x), iota)), half);
-        if (any_id && hn::AllFalse(di, hn::Or(hn::Lt(q, id_lo), hn::Gt(q, id_hi)))) {
-            hn::StoreU(hn::Add(us, vou), df, s.pos + x);
-            hn::StoreU(still_v, df, s.v + x);
-            continue;
+        if (any_id) {
+            const auto moving = hn::Or(hn::Lt(q, id_lo), hn::Gt(q, id_hi));
+            if (hn::AllFalse(di, moving)) {
+                hn::StoreU(hn::Add(us, vou), df, s.pos + x);
+                hn::StoreU(still_v, df, s.v + x);
+                still = true;
+                continue;
+            }
+            still = still || !hn::AllTrue(di, moving);
         }
 #if HWY_TARGET == HWY_AVX2
         // Each texel's (K1, K2, R) as one 16-byte load, texels i and i + 4 in one register, then a 4x4 transpose
@@ -994,8 +1010,9 @@ inline long long PrepareRow(const ReliefTexture& t, const fast::FastTables& ft, 
         const float* lv = ft.level[tx.q];
         s.pos[size_t(x)] = (us + lv[0]) * lv[2] + ou;  // NaN where the level cannot be pre-warped
         s.v[size_t(x)] = (vs + lv[1]) * lv[2] + ov;
+        still = still || (tx.q >= ft.identity_lo && tx.q <= ft.identity_hi);
     }
-    return dropped;
+    return {dropped, still};
 }
 
 // The marks of storage row r (ReliefTexture::breaks, `breaks` being the relief's or null), or null where none of them

@@ -37,12 +37,13 @@ void HorizontalSteps(const fast::TwoPassJob& job, int s0, int s1, uint32_t* band
     for (int st = s0; st < s1; ++st) {
         const int r = fast::step_row(job, st);
         if (st + 1 < t.height) prefetch_relief_row(t, fast::step_row(job, st + 1));
-        dropped += PrepareRow(t, *job.tables, job.extent, r, s);
+        const PreparedRow prep = PrepareRow(t, *job.tables, job.extent, r, s);
+        dropped += prep.dropped;
         const uint8_t* marks = RowMarks(t, job.breaks, r);
         if (with_d) RowDisplacements(t, *job.ref_tables, r, s);
         uint32_t* rc = band_c + size_t(st - s0) * stride;
         float* rv = band_v + size_t(st - s0) * stride;
-        RowOut out{rc, rv, job.copy_still};
+        RowOut out{rc, rv, job.copy_still && prep.still};
         if (with_d) out.attr2 = rv + job.d_offset;
         std::memset(rc, 0, size_t(ow) * 4);
         // Rows that fold over: backwards, each pixel drawn once (WarpRowBackward). Bumps never folds over.
