@@ -526,32 +526,56 @@ HWY_INLINE void DrawGroup(DF df, const float* pos, const uint32_t* col, const fl
 }
 
 // The spans ending at samples b .. b + N - 1 (the lanes of one vector), each from the sample on its other side (d =
-// -1: the left part's spans s - 1 -> s; d = +1: the right part's s + 1 -> s), if each is one pixel wide on a pixel
-// centre: neighbouring positions exactly 1 apart, sample s on a centre, every pixel inside the line. Span s then
-// writes the one pixel pos[s] - 0.5 with t = 1 exactly (raster_span: (pb - pa) * (1 / (pb - pa))), that is sample s's
-// colour (lerp8 at t = 1) and attribute (attr_lerp: a * 0 + b), and the N spans write pixels x0 .. x0 + N - 1: copied
-// at memory speed. Zero displacement gives such runs (the paper, section 5: skipping the transformation of still
-// texels; the AVX-512 kernels' `ident` runs, warp/simd/avx512_line.h). Returns false, having written nothing,
-// otherwise.
+// -1: the left part's spans s - 1 -> s; d = +1: the right part's s + 1 -> s), where they are one pixel wide on a pixel
+// centre: neighbouring positions exactly 1 apart, sample s on a centre. Span s then writes the one pixel pos[s] - 0.5
+// with t = 1 exactly (raster_span: (pb - pa) * (1 / (pb - pa))), that is sample s's colour (lerp8 at t = 1) and
+// attribute (attr_lerp: a * 0 + b), and consecutive such spans write consecutive pixels: copied at memory speed. Zero
+// displacement gives such runs (the paper, section 5: skipping the transformation of still texels; the AVX-512
+// kernels' `ident` runs, warp/simd/avx512_line.h). Copies the spans that lead in processing order (from lane 0 up in
+// the left part, from lane N - 1 down in the right part) when all N are such spans or, on targets with a masked store,
+// at least kMinGroup of them (the bricks of a wall end inside a vector), every pixel inside the line; returns how many
+// (0: nothing written).
 template <class DF, class Before>
-HWY_INLINE bool CopyStill(DF df, const float* pos, const uint32_t* col, const float* attr, const float* attr2, int b,
-                          int d, int n_out, RowOut out, const Before& before) {
+HWY_INLINE int CopyStill(DF df, const float* pos, const uint32_t* col, const float* attr, const float* attr2, int b,
+                         int d, int n_out, RowOut out, const Before& before) {
     const hn::RebindToSigned<DF> di;
     const int N = int(hn::Lanes(df));
     const auto ps = hn::LoadU(df, pos + b), pn = hn::LoadU(df, pos + b + d);
     const auto step = d < 0 ? hn::Sub(ps, pn) : hn::Sub(pn, ps);
     const auto c = hn::Sub(ps, hn::Set(df, 0.5f));
-    if (!hn::AllTrue(df, hn::And(hn::Eq(step, hn::Set(df, 1.0f)), hn::Eq(hn::Floor(c), c)))) return false;
-    const float x0f = pos[b] - 0.5f;
-    if (!(x0f >= 0.0f && x0f + float(N) <= float(n_out))) return false;
+    const auto still = hn::And(hn::Eq(step, hn::Set(df, 1.0f)), hn::Eq(hn::Floor(c), c));
+    int lead = N;
+    if (!hn::AllTrue(df, still)) {
+        if (!kMaskedStore) return 0;
+        // The lanes in processing order: the right part's reversed.
+        const auto order = d < 0 ? still : hn::MaskFromVec(hn::Reverse(df, hn::VecFromMask(df, still)));
+        lead = int(hn::FindFirstTrue(df, hn::Not(order)));
+        if (lead < kMinGroup) return 0;
+    }
+    // Lanes i0 .. i0 + lead - 1 write pixels x0 .. x0 + lead - 1; the vector is stored from pixel x0 - i0 (inside the
+    // line too: the other lanes masked).
+    const int i0 = d < 0 ? 0 : N - lead;
+    const float x0f = pos[b + i0] - 0.5f;
+    if (!(x0f >= float(i0) && x0f + float(lead) <= float(n_out))) return 0;
     const int x0 = int(x0f);
-    before(x0, x0 + N - 1);
+    before(x0, x0 + lead - 1);
     const auto alpha = hn::Set(di, int32_t(0xFF000000u));
-    hn::StoreU(hn::Or(hn::LoadU(di, reinterpret_cast<const int32_t*>(col + b)), alpha), di,
-               reinterpret_cast<int32_t*>(out.c + x0));
-    hn::StoreU(hn::LoadU(df, attr + b), df, out.v + x0);
-    if (attr2) hn::StoreU(hn::LoadU(df, attr2 + b), df, out.attr2 + x0);
-    return true;
+    const auto cv = hn::Or(hn::LoadU(di, reinterpret_cast<const int32_t*>(col + b)), alpha);
+    const auto av = hn::LoadU(df, attr + b);
+    int32_t* oc = reinterpret_cast<int32_t*>(out.c + x0 - i0);
+    float* ov = out.v + x0 - i0;
+    if (lead == N) {
+        hn::StoreU(cv, di, oc);
+        hn::StoreU(av, df, ov);
+        if (attr2) hn::StoreU(hn::LoadU(df, attr2 + b), df, out.attr2 + x0);
+        return N;
+    }
+    const auto first = hn::FirstN(di, size_t(lead));
+    const auto lanes = d < 0 ? first : hn::MaskFromVec(hn::Reverse(di, hn::VecFromMask(di, first)));
+    hn::BlendedStore(cv, lanes, di, oc);
+    hn::BlendedStore(av, hn::RebindMask(df, lanes), df, ov);
+    if (attr2) hn::BlendedStore(hn::LoadU(df, attr2 + b), hn::RebindMask(df, lanes), df, out.attr2 + x0 - i0);
+    return lead;
 }
 
 // The sample-by-sample paths of the row warps: raster_point, raster_span and raster_span_pixels of samples a and b
@@ -657,10 +681,13 @@ void WarpRow(const float* pos, const uint32_t* col, const float* attr, const flo
         const int w0 = std::min(k, n - N);
         if (prev == k - 1 && prev >= 0 && w0 >= 1) {
             const int skip = k - w0;
-            if (k + N <= split && out.copy && CopyStill(df, pos, col, attr, attr2, k, -1, n_out, out, before)) {
-                k += N;
-                prev = k - 1;
-                continue;
+            if (k + N <= split && out.copy) {
+                const int copied = CopyStill(df, pos, col, attr, attr2, k, -1, n_out, out, before);
+                if (copied) {
+                    k += copied;
+                    prev = k - 1;
+                    continue;
+                }
             }
             bool up;
             int m = std::min(GroupPrefix(df, pos + w0 - 1, pos + w0, true, up, skip), split - k);
@@ -685,10 +712,13 @@ void WarpRow(const float* pos, const uint32_t* col, const float* attr, const flo
         const int b = std::max(k - N + 1, 0);
         if (prev == k + 1 && b + N <= n - 1) {
             const int skip = b + N - 1 - k;
-            if (b >= split && !skip && out.copy && CopyStill(df, pos, col, attr, attr2, b, +1, n_out, out, before)) {
-                k -= N;
-                prev = k + 1;
-                continue;
+            if (b >= split && !skip && out.copy) {
+                const int copied = CopyStill(df, pos, col, attr, attr2, b, +1, n_out, out, before);
+                if (copied) {
+                    k -= copied;
+                    prev = k + 1;
+                    continue;
+                }
             }
             bool up;
             int m = std::min(GroupPrefix(df, pos + b + 1, pos + b, false, up, skip), k - split + 1);
