@@ -1,5 +1,6 @@
 // Per-view tables of the fast pre-warp kernels (warp/simd/schedule.h), built from the reference's PrewarpTables: the
-// AVX-512 kernels read the byte planes, the Highway kernels `level` and the identity range.
+// AVX-512 kernels and the Highway kernels' AVX-512 (VBMI) row set-up read the byte planes, the other Highway targets
+// `level`; every Highway target the identity range.
 #pragma once
 
 #include <cstdint>
@@ -19,11 +20,11 @@ struct alignas(64) FastTables {
     // u_s + margin exactly (likewise v), and a chunk of such texels skips the lookups (prepare_row). 64-aligned.
     uint8_t identity[256];
     // Per level: K1 (NaN at every level that cannot be pre-warped, and at 255, as the planes hold it), K2, R and a
-    // zero, for the Highway row set-up: one 16-byte load a texel on AVX2 (then a transpose), three gathers on the
-    // other targets, where K1, R, K2 and `valid` took four.
+    // zero, for the Highway row set-up but on AVX-512: one 16-byte load a texel on AVX2 (then a transpose), three
+    // gathers on the other targets, where K1, R, K2 and `valid` took four.
     alignas(64) float level[256][4];
     // The first run of consecutive identity levels, [identity_lo, identity_hi] (empty, lo > hi, when there is
-    // none): a vector of texels whose levels all lie in it skips the Highway row set-up's gathers. A monotonic
+    // none): a vector of texels whose levels all lie in it skips the Highway row set-up's lookups. A monotonic
     // quantizer has at most one level at zero displacement; a flat relief may have all of them.
     int identity_lo = 1, identity_hi = 0;
     bool any_dropped = false;

@@ -139,8 +139,9 @@ alignas(16) inline constexpr Compress4Table kCompress4;
 // raster_span computes them (centres in (pa, pb] or [pb, pa), clamped to [0, n_out)), only those in [cl, ch] (the
 // caller's clip range, within [0, n_out); the backward rows draw only the pixels no later span covers), colour by
 // lerp8's integer formula and the carried row coordinate (and out.attr2's attribute, from da and db, where the row
-// carries one) by attr_lerp at each centre. The lanes are consecutive spans
-// of one orientation whose pixels follow the lane order (DrawGroup reverses the lanes where they run the other way):
+// carries one) by attr_lerp at each centre. The lanes are consecutive spans of one orientation, pb > pa in every lane
+// of `span` where fwd and pb < pa elsewhere, whose pixels follow the lane order (DrawGroup reverses the lanes where
+// they run the other way):
 // their pixels are disjoint, in lane order, and together one run xa .. xb, handed to before(xa, xb) before any of them
 // is written. Where the run is at most 4 vectors long (spans of a pixel or two, the usual case), each pixel of it looks
 // up its lane (the lane whose pixels contain it) and the run is computed and stored a vector of pixels at a time;
@@ -156,10 +157,11 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
     const bool with2 = out.attr2 != nullptr;
     const VF half = hn::Set(df, 0.5f), one = hn::Set(df, 1.0f), zero = hn::Zero(df);
     const VF first_px = hn::Set(df, float(cl)), last = hn::Set(df, float(ch));
-    const auto inc = hn::And(span, hn::Gt(pb, pa));
+    // Every lane of `span` goes one way, pb > pa where fwd (its pixels from floor(pa - 0.5) + 1 to floor(pb - 0.5)),
+    // pb < pa elsewhere (ceil(pb - 0.5) to ceil(pa - 0.5) - 1), as raster_span computes them.
     const VF pah = hn::Sub(pa, half), pbh = hn::Sub(pb, half);
-    VF lo = hn::IfThenElse(inc, hn::Add(hn::Floor(pah), one), hn::Ceil(pbh));
-    VF hi = hn::IfThenElse(inc, hn::Floor(pbh), hn::Sub(hn::Ceil(pah), one));
+    VF lo = fwd ? hn::Add(hn::Floor(pah), one) : hn::Ceil(pbh);
+    VF hi = fwd ? hn::Floor(pbh) : hn::Sub(hn::Ceil(pah), one);
     // (pa and pb are finite in the lanes of `span`: Max and Min clamp there as the comparisons would.)
     lo = hn::Max(lo, first_px);
     hi = hn::Min(hi, last);

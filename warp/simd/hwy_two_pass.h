@@ -5,24 +5,24 @@
 // scheduling (warp/simd/schedule.cpp) they share: the output of prewarp()'s two-pass lookup-table path bit for bit.
 //
 // Horizontal steps: each row is set up with the reference's own arithmetic, a vector of texels at a time (row_samples'
-// positions and final row coordinates, NaN where a texel does not take part; the tables' entries gathered by
-// displacement index), and drawn in the reference's occlusion-compatible order: consecutive spans of one orientation
-// (a sub-run, either way along the row) have disjoint pixels and up to a vector of them are drawn together (from 8
-// lanes on, each pixel of the run looks its span up and the run is stored a vector of pixels at a time), everything
-// else sample by sample through raster_point and raster_span. Rows that fold over (FastKernelPolicy::
-// two_pass_reverse) are drawn backwards, each pixel once (WarpRowBackward, as the AVX-512 kernels' backward rows).
-// Vertical steps: the columns advance together, as many in the lanes of a vector as the target has; each lane
-// computes what raster_span / raster_point compute for its column, operation by operation in float (no
-// contraction: the file is compiled with -ffp-contract=off, and SSE4 has no FMA anyway), and the colour with lerp8's
-// integer formula (on AVX-512 as the hand-written kernels compute it: VNNI dot products); each column keeps floor
-// and ceil of its last sample's v - 0.5 (ColumnStep), so a step rounds its new samples only. Where the pixels go
-// (warp/simd/hwy_columns-inl.h): two masked row stores a step where the lanes share a row or the next (AVX-512,
-// AVX2, SVE), otherwise one scatter (AVX-512) or lane by lane; spans of 5 pixels and more row by row over the lanes.
-// Still steps (zero displacement) are copied by the shared scheduling, tested by StillSteps a vector at a time.
-// Surface discontinuities (paper section 4.1.1; TwoPassJob::breaks, threshold): a row's marks end its groups of spans
-// and make the sample after a marked pair a point (WarpRow), marked rows go forwards; with a threshold the rows carry
-// each texel's displacement as a second attribute (RowOut::attr2) and ColumnStep<true> joins two samples of a column
-// only where their displacements differ by at most the threshold.
+// positions and final row coordinates, NaN where a texel does not take part; the tables' entries looked up by
+// displacement index: byte permutes on AVX-512, gathers or loads elsewhere), and drawn in the reference's
+// occlusion-compatible order: consecutive spans of one orientation (a sub-run, either way along the row) have disjoint
+// pixels and up to a vector of them are drawn together (from 8 lanes on, each pixel of the run looks its span up and
+// the run is stored a vector of pixels at a time), everything else sample by sample through raster_point and
+// raster_span. Rows that fold over (FastKernelPolicy:: two_pass_reverse) are drawn backwards, each pixel once
+// (WarpRowBackward, as the AVX-512 kernels' backward rows). Vertical steps: the columns advance together, as many in
+// the lanes of a vector as the target has; each lane computes what raster_span / raster_point compute for its column,
+// operation by operation in float (no contraction: the file is compiled with -ffp-contract=off, and SSE4 has no FMA
+// anyway), and the colour with lerp8's integer formula (on AVX-512 as the hand-written kernels compute it: VNNI dot
+// products); each column keeps floor and ceil of its last sample's v - 0.5 (ColumnStep), so a step rounds its new
+// samples only. Where the pixels go (warp/simd/hwy_columns-inl.h): two masked row stores a step where the lanes share a
+// row or the next (AVX-512, AVX2, SVE), otherwise one scatter (AVX-512) or lane by lane; spans of 5 pixels and more row
+// by row over the lanes. Still steps (zero displacement) are copied by the shared scheduling, tested by StillSteps a
+// vector at a time. Surface discontinuities (paper section 4.1.1; TwoPassJob::breaks, threshold): a row's marks end its
+// groups of spans and make the sample after a marked pair a point (WarpRow), marked rows go forwards; with a threshold
+// the rows carry each texel's displacement as a second attribute (RowOut::attr2) and ColumnStep<true> joins two samples
+// of a column only where their displacements differ by at most the threshold.
 //
 // The building blocks (row set-up, row warp, column step) are shared with the Highway pipelined kernel
 // (warp/simd/hwy_row-inl.h, warp/simd/hwy_columns-inl.h, warp/simd/hwy_pipelined.h). Not yet here
