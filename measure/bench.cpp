@@ -108,7 +108,7 @@ void prewarp_traffic(Reconstruction method, bool exact, bool fast, int w, int h,
     // Texels are 4 bytes; --exact also reads the 4-byte exact displacement.
     const double in = src * (exact ? 8.0 : 4.0);
     // The pipelined reconstruction has no intermediate image; nor have the fast two-pass kernels, which hand each
-    // band of rows to the vertical pass while it is in the cache (warp/simd/avx512_two_pass.h).
+    // band of rows to the vertical pass while it is in the cache (warp/simd/two_pass_job.h).
     if (method == Reconstruction::pipelined || (fast && !exact)) {
         read = in;
         written = out * 4.0;

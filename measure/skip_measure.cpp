@@ -202,7 +202,6 @@ std::vector<StillWallMeasurement> measure_still_wall(int size, int rounds,
     const Camera cam = compare_camera(quad, orbit_view(30.0, 20.0), 512, 512);
     const double still = double(count_still_texels(walls[0], false)) / (double(size) * size);
     std::vector<Isa> isas = {resolve_isa(Isa::automatic)};
-    if (isas[0] == Isa::avx512 && isa_supported(Isa::avx512_hwy)) isas.push_back(Isa::avx512_hwy);
     if (isas[0] != Isa::avx2 && isa_supported(Isa::avx2)) isas.push_back(Isa::avx2);
     std::vector<StillWallMeasurement> out;
     for (Isa isa : isas) {

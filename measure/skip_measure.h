@@ -51,7 +51,7 @@ struct StillWallMeasurement {
 };
 
 // Runs the rounds for two-pass and pipelined at 1 and 2 threads, on the automatic target and, where this CPU has
-// them, avx512-hwy (when the automatic target is avx512) and avx2 (when it is another); a few seconds at 1024^2.
+// it, avx2 (when the automatic target is another); a few seconds at 1024^2.
 std::vector<StillWallMeasurement> measure_still_wall(int size, int rounds,
                                                      const std::function<void(const std::string&)>& progress);
 

@@ -162,7 +162,7 @@ UploadPlan plan_upload(const UploadedTexture& now, const UploadedTexture& last, 
     return u;
 }
 bool zero_runs_fired(const PrewarpStats& stats, long long still) {
-    return still > 0 && (stats.still_copied > 0 || stats.isa == Isa::avx512);
+    return still > 0 && (stats.still_copied > 0 || stats.isa != Isa::generic);
 }
 
 }  // namespace rtm

@@ -143,10 +143,10 @@ struct UploadPlan {
 UploadPlan plan_upload(const UploadedTexture& now, const UploadedTexture& last, bool skips);
 
 // The zero-displacement-runs skip of a pre-warp made with options `o` (paper section 5, the brick wall): texels at
-// zero displacement were copied, not warped. The reference kernels count their copies (stats.still_copied); the
-// avx512 kernels copy one-pixel spans on pixel centres without counting; the Highway kernels (avx2, sse4, neon, sve)
-// draw such spans like any other, so the skip does not fire for them. `still` = count_still_texels of the relief
-// when the options' copy_still_runs is on, else 0. Returns true when the skip fired.
+// zero displacement were copied, not warped. The reference kernels count their copies (stats.still_copied); the SIMD
+// kernels (every target but generic) copy one-pixel spans on pixel centres and still column steps without counting.
+// `still` = count_still_texels of the relief when the options' copy_still_runs is on, else 0. Returns true when the
+// skip fired.
 bool zero_runs_fired(const PrewarpStats& stats, long long still);
 
 }  // namespace rtm

@@ -13,12 +13,12 @@ namespace rtm {
 
 namespace {
 
-constexpr Isa kAll[] = {Isa::avx512, Isa::avx512_hwy, Isa::avx2, Isa::sse4, Isa::neon, Isa::sve, Isa::generic};
+constexpr Isa kAll[] = {Isa::avx512, Isa::avx2, Isa::sse4, Isa::neon, Isa::sve, Isa::generic};
 
-// The Highway targets that stand for `isa` (0 for avx512 and generic, which Highway does not run here).
+// The Highway targets that stand for `isa` (0 for generic).
 int64_t hwy_bits(Isa isa) {
     switch (isa) {
-        case Isa::avx512_hwy: return HWY_AVX3_DL;
+        case Isa::avx512: return HWY_AVX3_DL;
         case Isa::avx2: return HWY_AVX2;
         case Isa::sse4: return HWY_SSE4;
         case Isa::neon: return HWY_NEON;
@@ -49,7 +49,6 @@ const char* isa_name(Isa isa) {
     switch (isa) {
         case Isa::automatic: return "auto";
         case Isa::avx512: return "avx512";
-        case Isa::avx512_hwy: return "avx512-hwy";
         case Isa::avx2: return "avx2";
         case Isa::sse4: return "sse4";
         case Isa::neon: return "neon";
@@ -82,11 +81,11 @@ bool isa_supported(Isa isa) {
     switch (isa) {
         case Isa::automatic:
         case Isa::generic: return true;
-        case Isa::avx512: return fast::cpu_supported();
         // Highway's AVX3_DL target on a CPU with what the kernels use besides: AVX-512 VNNI, which Highway 1.0.3's
         // AVX3_DL does not enable (it names avxvnni), and BMI2, both checked by fast::cpu_supported.
-        case Isa::avx512_hwy:
-            return fast::cpu_supported() && (hwy_supported_targets() & simd::hwy_compiled_targets() & HWY_AVX3_DL);
+        case Isa::avx512:
+            if (!fast::cpu_supported()) return false;
+            [[fallthrough]];
         default: return (hwy_supported_targets() & simd::hwy_compiled_targets() & hwy_bits(isa)) != 0;
     }
 }

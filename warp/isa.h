@@ -2,13 +2,11 @@
 // its names on the command line (--isa) and in the RTM_ISA environment variable, and what this CPU and build
 // support.
 //
-// Targets: avx512 (the hand-written AVX-512 kernels of warp/simd/, needing AVX-512 F/BW/DQ/VL/VBMI/VNNI and BMI2),
-// avx512-hwy (the same CPUs, Highway's AVX3_DL target: the Highway kernels in 16 lanes, which are to replace the
-// hand-written ones once they match them; until then avx512 stays the faster and the default), avx2 and sse4 on
-// x86-64, neon and sve on ARM (kernels written once over Google Highway, warp/simd/hwy_*), and generic (the reference
-// kernels, warp/reference/, which every other target matches bit for bit). A target covers what its kernels implement
-// (fast_prewarp_covers, warp/simd/schedule.h); a pre-warp it does not cover runs on the reference kernels, and
-// PrewarpStats::isa says which ran.
+// Targets: the kernels written once over Google Highway (warp/simd/hwy_*) for avx512 (Highway's AVX3_DL target on a
+// CPU with AVX-512 F/BW/DQ/VL/VBMI/VNNI and BMI2), avx2 and sse4 on x86-64, neon and sve on ARM; and generic (the
+// reference kernels, warp/reference/, which every other target matches bit for bit). A target covers what its kernels
+// implement (fast_prewarp_covers, warp/simd/schedule.h); a pre-warp it does not cover runs on the reference kernels,
+// and PrewarpStats::isa says which ran.
 #pragma once
 
 #include <cstdint>
@@ -18,15 +16,15 @@
 
 namespace rtm {
 
-enum class Isa { automatic, avx512, avx512_hwy, avx2, sse4, neon, sve, generic };
+enum class Isa { automatic, avx512, avx2, sse4, neon, sve, generic };
 
-// "avx512", "avx512-hwy", "avx2", "sse4", "neon", "sve", "generic" ("auto" for automatic).
+// "avx512", "avx2", "sse4", "neon", "sve", "generic" ("auto" for automatic).
 const char* isa_name(Isa isa);
 
 // The target named `name` (one of isa_name's, "auto" included); false for any other name.
 bool parse_isa(std::string_view name, Isa& isa);
 
-// "avx512, avx512-hwy, avx2, sse4, neon, sve, generic": the names, for messages.
+// "avx512, avx2, sse4, neon, sve, generic": the names, for messages.
 std::string isa_names();
 
 // The targets this CPU and this build can run, fastest first, generic last. Honours set_hwy_targets_for_test (the

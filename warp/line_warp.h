@@ -61,12 +61,12 @@ int split_index(double split_pos, int n);
 // (the centre of t's 2^-13 bin) and at most 2^14 - 1 (NaN gives that too), and the channel is
 // (a * (2^14 - w) + b * w + 2^13) >> 14, i.e. a + (b - a) * w / 2^14 rounded. An odd w never makes a tie
 // ((b - a) * w is never an odd multiple of 2^13), so the result is the nearest integer to a + (b - a) * w / 2^14. The
-// vector kernels (warp/simd/avx512_line.h) do the same with integer dot products on packed colours, a third of the work
-// of the float formula uint8_t(a * (1 - t) + b * t + 0.5) it replaced (docs/perf-history.md).
-// Against that formula: |t - w / 2^14| <= 2^-14 moves the exact value a + (b - a) * t by at most 255 / 2^14 < 0.016,
-// and each result rounds its own value (the float one with an error far below that), so the two differ by at most 1
-// level, and only where the exact value lies within 0.016 of a rounding boundary (tests/warp/fast_kernels_test.cpp
-// checks both). t = 0 and t = 1 still give a and b exactly (the value moves by less than 1/2).
+// vector kernels (warp/simd/hwy_columns-inl.h) do the same with integer dot products on packed colours, a third of the
+// work of the float formula uint8_t(a * (1 - t) + b * t + 0.5) it replaced (docs/perf-history.md). Against that
+// formula: |t - w / 2^14| <= 2^-14 moves the exact value a + (b - a) * t by at most 255 / 2^14 < 0.016, and each result
+// rounds its own value (the float one with an error far below that), so the two differ by at most 1 level, and only
+// where the exact value lies within 0.016 of a rounding boundary (tests/warp/fast_kernels_test.cpp checks both). t = 0
+// and t = 1 still give a and b exactly (the value moves by less than 1/2).
 template <class P>
 inline uint8_t lerp8(uint8_t a, uint8_t b, P t) {
     const int w = t >= P(0) ? std::min(int(t * P(16384)) | 1, 16383) : 16383;
@@ -87,7 +87,7 @@ struct AllPixels {
 
 // Pixels x0 .. x1 of the span from pa to pb (pa != pb), colour and attribute interpolated at each centre. A pixel's
 // value depends on x alone, so any part of a span gives the same pixels as the whole (the fast kernels' backward
-// rows, warp/simd/avx512_line.h, draw only the parts no later span covers), and so does any subset: with `wanted`,
+// rows, warp/simd/hwy_row-inl.h, draw only the parts no later span covers), and so does any subset: with `wanted`,
 // only the pixels it accepts are interpolated and put (objects/face_swap.cpp: the pixels an object reads).
 template <class P, class A, class Put, class Wanted = AllPixels>
 inline void raster_span_pixels(P pa, Rgba8 ca, const A& aa, P pb, Rgba8 cb, const A& ab, int x0, int x1, Put&& put,

@@ -1,6 +1,6 @@
 // The synthetic objects' faces (procedural/synthetic_object.h), which carry discontinuity marks (paper section
-// 4.1.1), on the fast two-pass kernels of every SIMD target this machine supports (warp/simd/avx512_two_pass.h,
-// warp/simd/hwy_two_pass.h) against the generic kernels: each face pre-warped alone from random eyes around the box,
+// 4.1.1), on the fast two-pass kernels of every SIMD target this machine supports (warp/simd/hwy_two_pass.h)
+// against the generic kernels: each face pre-warped alone from random eyes around the box,
 // one and two threads, copies of still runs on and off, with and without the side polygons' margins, pixel for pixel;
 // and whole faces of an object (adjacent faces warped onto the face, the face over them, composite and crack closing:
 // ReliefObject::prewarp_face), the same image either way.

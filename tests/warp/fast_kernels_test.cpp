@@ -20,9 +20,9 @@
 #include <vector>
 
 #include "test_util.h"
-#include "warp/simd/avx512_pipelined.h"
+#include "warp/simd/pipelined_job.h"
 #include "warp/simd/schedule.h"
-#include "warp/simd/avx512_two_pass.h"
+#include "warp/simd/two_pass_job.h"
 #include "warp/simd/kernel_policy.h"
 #include "warp/line_warp.h"
 #include "warp/prewarp.h"
@@ -503,8 +503,8 @@ TEST_P(FastKernels, StillBlocksMatchTheReference) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> U(0.0, 1.0);
     auto pick = [&](int n) { return int(rng() % uint64_t(n)); };
-    // The pipelined kernels copy still steps a vector of columns at a time (StillStep in
-    // warp/simd/hwy_columns-inl.h, still_step in warp/simd/avx512_pipelined.cpp), forwards and in reverse mode.
+    // The pipelined kernel copies still steps a vector of columns at a time (StillStep in
+    // warp/simd/hwy_columns-inl.h), forwards and in reverse mode.
     const int cases = test::sweep_cases(method() == Reconstruction::two_pass ? 240 : 160);
     PrewarpWorkspace ws_ref, ws_fast;
     ImageRGBA8 ref, fast;
@@ -657,14 +657,13 @@ TEST(Lerp8, FixedPointWithinOneLevelOfTheFloatFormula) {
     EXPECT_LT(differ, total / 50);
 }
 
-// The pipelined kernel's reverse mode (warp/simd/avx512_pipelined.cpp, reverse_rows, and warp/simd/hwy_pipelined.cpp,
-// RunRows: each pixel written once, by the last emission of the forward order) forced on for whole parts, and off,
-// against the reference, on every SIMD target (PipelinedReverseFastKernels): the random cases
-// above, and foldover-heavy reliefs (noise and steep ridges seen at grazing angles: spans far longer than a pixel,
-// columns whose written rows are not one interval), still texels (samples on pixel centres, spans on both sides
-// of one), empty texels (columns whose runs restart with points), one to three threads (column ranges).
-// The relief of the steady-state allocation tests: 300x200 texels of 0.01, sine ridges across the rows, which fold
-// over from the views they use.
+// The pipelined kernel's reverse mode (warp/simd/hwy_pipelined.cpp, RunRows: each pixel written once, by the last
+// emission of the forward order) forced on for whole parts, and off, against the reference, on every SIMD target
+// (PipelinedReverseFastKernels): the random cases above, and foldover-heavy reliefs (noise and steep ridges seen at
+// grazing angles: spans far longer than a pixel, columns whose written rows are not one interval), still texels
+// (samples on pixel centres, spans on both sides of one), empty texels (columns whose runs restart with points), one to
+// three threads (column ranges). The relief of the steady-state allocation tests: 300x200 texels of 0.01, sine ridges
+// across the rows, which fold over from the views they use.
 ReliefTexture steady_state_relief() {
     ReliefGeometry g;
     g.a = {0.01, 0, 0};
@@ -673,8 +672,8 @@ ReliefTexture steady_state_relief() {
         300, 200, 0.0, 0.5, [](int x, int) { return 0.5 * std::abs(std::sin(x * 0.3)); }, g);
 }
 
-// The suites of the scheduling policies run on every SIMD target this machine supports, each chosen in turn (the
-// hand-written AVX-512 kernels and the Highway ones have the same policies: warp/simd/kernel_policy.h).
+// The suites of the scheduling policies (warp/simd/kernel_policy.h) run on every SIMD target this machine supports,
+// each chosen in turn.
 class PipelinedReverseFastKernels : public ::testing::TestWithParam<Isa> {
 protected:
     Isa isa() const { return GetParam(); }
@@ -1050,13 +1049,12 @@ TEST_P(PipelinedReverseFastKernels, AllocatesNothingInSteadyState) {
             }
 }
 
-// The two-pass kernel's backward rows (warp/simd/avx512_line.h, warp_line_reverse, and warp/simd/hwy_row-inl.h,
-// WarpRowBackward: a row's items in the reverse of the forward order, each pixel shaded once) against the reference,
-// on every SIMD target (TwoPassReverseFastKernels), with each FastKernelPolicy::two_pass_reverse:
-// always takes every row whose samples all take part backwards (also rows without foldovers: copies, spans of one,
-// two and more pixels, clipped on either side of the pixels already written), with two_pass_redo_forwards then
-// redoes the row forwards (the fallback), automatic takes only rows that fold over, never none. Rows with empty texels
-// or texels that cannot be pre-warped always go forwards.
+// The two-pass kernel's backward rows (warp/simd/hwy_row-inl.h, WarpRowBackward: a row's items in the reverse of the
+// forward order, each pixel shaded once) against the reference, on every SIMD target (TwoPassReverseFastKernels), with
+// each FastKernelPolicy::two_pass_reverse: always takes every row whose samples all take part backwards (also rows
+// without foldovers: copies, spans of one, two and more pixels, clipped on either side of the pixels already written),
+// with two_pass_redo_forwards then redoes the row forwards (the fallback), automatic takes only rows that fold over,
+// never none. Rows with empty texels or texels that cannot be pre-warped always go forwards.
 TEST_P(TwoPassReverseFastKernels, RandomCasesMatchTheReference) {
     random_cases_with_policies(isa(), Reconstruction::two_pass, kTwoPassReverse, policy_cases(1200), 80021);
 }
@@ -1066,7 +1064,7 @@ TEST_P(TwoPassReverseFastKernels, FoldoversEmptyRowsAndMarksMatchTheReference) {
     // grazing angles, near, from above and from below the highest texels (texels that cannot be pre-warped), the
     // epipole inside the rows, on a texel boundary, on a texel centre and outside; empty texels in some rows only,
     // so that backward and forward rows meet in one band; and the same reliefs with discontinuity marks, whose
-    // marked rows the fast kernels take forwards whatever the policy says (warp/simd/avx512_two_pass.cpp).
+    // marked rows the fast kernels take forwards whatever the policy says (warp/simd/hwy_two_pass.h).
     const uint64_t seed = test::test_seed(80022);
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> U(0.0, 1.0);
@@ -1177,26 +1175,34 @@ TEST_P(TwoPassReverseFastKernels, AllocatesNothingInSteadyState) {
 }
 
 TEST(FastPrewarpCovers, OnlyOutputsItsKernelsCanAddress) {
-    // The column kernels scatter by 32-bit pixel offsets (store_rows, warp/simd/avx512_columns.h): outputs of 2^31 - 16
-    // pixels or more, and sides over 2^22, go to the generic kernels. Only the decision is tested: no image that
-    // size is allocated.
-    if (!fast_prewarp_available()) GTEST_SKIP() << "no AVX-512 on this CPU";
+    // The column kernels scatter by 32-bit pixel offsets (StoreRows, warp/simd/hwy_columns-inl.h): outputs of
+    // 2^31 - 16 pixels or more, and sides over 2^22, go to the generic kernels, on every target. Only the decision is
+    // tested: no image that size is allocated.
     const ReliefTexture t = test::make_test_relief(
         16, 16, 0.0, 0.1, [](int, int) { return 0.05; }, unit_width_geometry(16));
     const PrewarpCoefficients k = compute_coefficients(t.geometry, {0.1, 0.2, 2.0});
     PrewarpOptions o;
+    Isa isa = Isa::generic;
     auto covers = [&](int ow, int oh) {
         PrewarpExtent e;
         e.right = ow - 16;
         e.top = oh - 16;
-        return fast_prewarp_covers(Isa::avx512, t, k, o, e, nullptr);
+        return fast_prewarp_covers(isa, t, k, o, e, nullptr);
     };
-    EXPECT_TRUE(covers(16, 16));
-    EXPECT_TRUE(covers(46340, 46340));        // 2,147,395,600 pixels: 88,032 under the limit
-    EXPECT_FALSE(covers(46341, 46341));       // 2,147,488,281 pixels: over 2^31 - 16
-    EXPECT_TRUE(covers(1 << 22, 511));        // the longest side, 2,143,289,344 pixels
-    EXPECT_FALSE(covers((1 << 22) + 1, 16));  // a side over 2^22
-    EXPECT_FALSE(covers(16, (1 << 22) + 1));
+    int targets = 0;
+    for (const Isa target : supported_isas()) {
+        if (target == Isa::generic) continue;
+        isa = target;
+        ++targets;
+        SCOPED_TRACE(isa_name(isa));
+        EXPECT_TRUE(covers(16, 16));
+        EXPECT_TRUE(covers(46340, 46340));        // 2,147,395,600 pixels: 88,032 under the limit
+        EXPECT_FALSE(covers(46341, 46341));       // 2,147,488,281 pixels: over 2^31 - 16
+        EXPECT_TRUE(covers(1 << 22, 511));        // the longest side, 2,143,289,344 pixels
+        EXPECT_FALSE(covers((1 << 22) + 1, 16));  // a side over 2^22
+        EXPECT_FALSE(covers(16, (1 << 22) + 1));
+    }
+    if (!targets) GTEST_SKIP() << "no SIMD target on this CPU";
 }
 
 // Surface-discontinuity marks (paper section 4.1.1: ReliefTexture::breaks and discontinuity_threshold), which the
@@ -1224,12 +1230,6 @@ void mark_randomly(ReliefTexture& t, std::mt19937_64& rng, int mode) {
             t.discontinuity_threshold = threshold;
             break;
     }
-}
-
-// The target whose kernels take a marked relief on `isa` with `method`: the hand-written pipelined kernel takes no
-// marks, and the Highway one on the same CPUs does (fast_prewarp).
-Isa marked_target(Isa isa, Reconstruction method) {
-    return isa == Isa::avx512 && method == Reconstruction::pipelined ? Isa::avx512_hwy : isa;
 }
 
 // The random cases with marks (mark_randomly) against the reference on target `isa`, each of `policies`, one and two
@@ -1271,7 +1271,7 @@ void marked_random_cases(Isa isa, Reconstruction method, const NamedPolicy (&pol
                         << policy.name << ", threads " << threads << ", copy " << copy << " " << k.to_string();
                     ASSERT_EQ(sf.dropped, sr.dropped);
                     ASSERT_EQ(sf.extent, sr.extent);
-                    ASSERT_EQ(sf.isa, covers ? marked_target(isa, method) : Isa::generic);
+                    ASSERT_EQ(sf.isa, covers ? isa : Isa::generic);
                 }
         }
     }
@@ -1334,7 +1334,7 @@ void large_marked_cases(Isa isa, Reconstruction method, uint64_t seed_fallback) 
             o.threads = threads;
             const PrewarpStats sf = prewarp(t, k, o, ws_fast, fast);
             ASSERT_EQ(first_difference(ref, fast), "") << "threads " << threads;
-            ASSERT_EQ(sf.isa, marked_target(isa, method)) << "threads " << threads;
+            ASSERT_EQ(sf.isa, isa) << "threads " << threads;
         }
     }
 }
@@ -1347,9 +1347,8 @@ TEST_P(PipelinedReverseFastKernels, LargeMarkedReliefsMatchTheReference) {
     large_marked_cases(isa(), Reconstruction::pipelined, 80044);
 }
 
-// Marked reliefs go to the fast kernels of every SIMD target, both reconstructions (`avx512`'s pipelined ones to the
-// Highway kernel on the same CPUs: marked_target); marks that do not match the texels (a malformed relief) to the
-// reference.
+// Marked reliefs go to the fast kernels of every SIMD target, both reconstructions; marks that do not match the texels
+// (a malformed relief) to the reference.
 TEST(FastKernelCoverage, MarkedReliefsOnTheFastKernels) {
     ReliefTexture t = test::make_test_relief(
         32, 32, 0.0, 0.1, [](int x, int) { return x < 16 ? 0.0 : 0.1; }, unit_width_geometry(32));
@@ -1367,7 +1366,7 @@ TEST(FastKernelCoverage, MarkedReliefsOnTheFastKernels) {
             o.method = method;
             o.isa = isa;
             EXPECT_TRUE(fast_prewarp_covers(isa, t, k, o, e, nullptr));
-            EXPECT_EQ(prewarp(t, k, o, ws, out).isa, marked_target(isa, method));
+            EXPECT_EQ(prewarp(t, k, o, ws, out).isa, isa);
         }
     }
     t.breaks.pop_back();
@@ -1379,12 +1378,8 @@ TEST(FastKernelCoverage, MarkedReliefsOnTheFastKernels) {
 }
 
 // Every SIMD target this machine supports with both reconstructions.
-// A target's name as a test name (letters, digits and underscores: avx512-hwy is avx512_hwy).
-std::string test_name(Isa isa) {
-    std::string s = isa_name(isa);
-    std::replace(s.begin(), s.end(), '-', '_');
-    return s;
-}
+// A target's name as a test name (letters, digits and underscores: every name is one).
+std::string test_name(Isa isa) { return isa_name(isa); }
 
 std::vector<MethodTarget> method_targets() {
     std::vector<MethodTarget> v;

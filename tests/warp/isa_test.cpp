@@ -35,8 +35,7 @@ protected:
 };
 
 TEST_F(IsaTest, NamesRoundTrip) {
-    for (Isa i :
-         {Isa::automatic, Isa::avx512, Isa::avx512_hwy, Isa::avx2, Isa::sse4, Isa::neon, Isa::sve, Isa::generic}) {
+    for (Isa i : {Isa::automatic, Isa::avx512, Isa::avx2, Isa::sse4, Isa::neon, Isa::sve, Isa::generic}) {
         Isa back = Isa::generic;
         ASSERT_TRUE(parse_isa(isa_name(i), back)) << isa_name(i);
         EXPECT_EQ(back, i);
@@ -45,8 +44,10 @@ TEST_F(IsaTest, NamesRoundTrip) {
     EXPECT_FALSE(parse_isa("avx", x));
     EXPECT_FALSE(parse_isa("", x));
     EXPECT_FALSE(parse_isa("AVX2", x));
+    EXPECT_FALSE(parse_isa("avx512-hwy",
+                           x));  // the Highway AVX-512 target's name while hand-written kernels were avx512
     EXPECT_EQ(x, Isa::sse4);
-    EXPECT_EQ(isa_names(), "avx512, avx512-hwy, avx2, sse4, neon, sve, generic");
+    EXPECT_EQ(isa_names(), "avx512, avx2, sse4, neon, sve, generic");
 }
 
 TEST_F(IsaTest, GenericIsAlwaysSupportedAndLast) {
@@ -71,11 +72,15 @@ TEST_F(IsaTest, GenericIsAlwaysSupportedAndLast) {
 TEST_F(IsaTest, ForcedHighwayTargetsRestrictTheChoice) {
 #if defined(__x86_64__)
     if (!isa_supported(Isa::avx2)) GTEST_SKIP() << "no AVX2 on this CPU";
-    set_hwy_targets_for_test(HWY_SSE4);  // as on a CPU with SSE4 but no AVX2
+    const bool avx512 = isa_supported(Isa::avx512);
+    set_hwy_targets_for_test(HWY_SSE4);        // as on a CPU with SSE4 but no AVX2
+    EXPECT_FALSE(isa_supported(Isa::avx512));  // a Highway target too (AVX3_DL)
     EXPECT_FALSE(isa_supported(Isa::avx2));
     EXPECT_TRUE(isa_supported(Isa::sse4));
+    EXPECT_EQ(default_isa(), Isa::sse4);
     set_hwy_targets_for_test(0);
     EXPECT_TRUE(isa_supported(Isa::avx2));
+    EXPECT_EQ(isa_supported(Isa::avx512), avx512);
 #elif defined(__aarch64__)
     if (!isa_supported(Isa::sve)) GTEST_SKIP() << "no SVE on this CPU";
     set_hwy_targets_for_test(HWY_NEON);  // as on a CPU with NEON but no SVE

@@ -1,6 +1,5 @@
 // Per-view tables of the fast pre-warp kernels (warp/simd/schedule.h), built from the reference's PrewarpTables: the
-// AVX-512 kernels and the Highway kernels' AVX-512 (VBMI) row set-up read the byte planes, the other Highway targets
-// `level`; every Highway target the identity range.
+// AVX-512 (VBMI) row set-up reads the byte planes, the other targets `level`; every Highway target the identity range.
 #pragma once
 
 #include <cstdint>

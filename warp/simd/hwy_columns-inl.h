@@ -3,8 +3,8 @@
 // lanes of one vector, each lane computing what raster_span / raster_point (warp/line_warp.h, the naive reference)
 // computes for its column, operation by operation in float (no contraction), the colour with lerp8's integer formula.
 //
-// Where the pixels go (the structure of the hand-written AVX-512 kernels, warp/simd/avx512_columns.h, over Highway
-// 1.0.3, which has no masked scatter):
+// Where the pixels go (the structure of the hand-written AVX-512 kernels these replaced, docs/perf-history.md, over
+// Highway 1.0.3, which has no masked scatter):
 // - short spans and points (at most 4 pixels a lane): the first pixel of every lane, then the second of those that
 //   have one, ...; each step writes its lanes with two masked row stores (BlendedStore) when they all lie on the
 //   first active lane's row or the next (neighbouring columns mostly do), lane by lane otherwise;
@@ -210,7 +210,7 @@ HWY_INLINE hn::Vec<hn::RebindToSigned<DF>> SpanColour(DF df, hn::Vec<DF> yc, hn:
                                                       hn::Vec<hn::RebindToSigned<DF>> pc,
                                                       hn::Vec<hn::RebindToSigned<DF>> c) {
 #if RTM_HWY_X86_VECTORS
-    // lerp8's weight straight from inv * 2^13 (the AVX-512 kernels' span_weight, warp/simd/avx512_line.h): w = 2n + 1
+    // lerp8's weight straight from inv * 2^13 (the hand-written AVX-512 kernels' span_weight): w = 2n + 1
     // with n = int(max(min((yc - pv) * (inv * 2^13), 8191), 0)), which equals min(int(t * 2^14) | 1, 2^14 - 1) for
     // t = clamp((yc - pv) * inv, 0, 1): scaling by a power of two commutes with the rounding of the product and with
     // the clamp (where the product is subnormal t * 2^13 < 1 either way; where inv * 2^13 overflows, t is 0 or 1

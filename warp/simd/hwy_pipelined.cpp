@@ -322,7 +322,7 @@ HWY_INLINE void TrackRange(const RowScratch& s, int w, RowRange& range) {
 }
 
 // A row whose spans cover more than this many rows per column switches the rest of the part to reverse mode
-// (RunRows; the AVX-512 kernel's threshold, warp/simd/avx512_pipelined.cpp).
+// (RunRows; the threshold of the hand-written AVX-512 kernel it replaced).
 constexpr float kReverseDrawn = 3.0f;
 
 // Rows [r0, r1) of part `part` (counted in the part's order), columns [x0, x1), drawn into `pixels` (an image of
@@ -331,7 +331,7 @@ constexpr float kReverseDrawn = 3.0f;
 // task's first row, forwards or in reverse mode. Returns the range of the row coordinates of the samples warped
 // (with `track`).
 //
-// Reverse mode (the AVX-512 kernel's, warp/simd/avx512_pipelined.cpp, reverse_rows; FastKernelPolicy::
+// Reverse mode (the hand-written AVX-512 kernel's reverse_rows before it; FastKernelPolicy::
 // pipelined_reverse): the rest of the part's rows with the painter's algorithm run backwards. Row j's emissions are
 // logged, then replayed from the last to the first once row j - step has been warped (its final samples are the
 // ones row j's spans start from), the rows from the part's last back to the first in reverse mode (whose spans
@@ -490,7 +490,8 @@ void PipelinedChunk(const fast::PipelinedJob& job, fast::PipelinedChunk& c) {
 // The scratch images of chunks (every one but each part's first) over the output, v-rows [y0, y1) of each chunk's
 // ylo .. yhi: the pixels a chunk wrote (alpha set) replace the output's and are cleared in its scratch, which is left
 // all 0 for the next pre-warp. A vector at a time (the scalar loop took 0.12 to 0.27 ms, bricks 1024^2 on two
-// threads, where the AVX-512 kernels' took 0.03); the output's vector is stored only where a pixel of it changes.
+// threads, where the hand-written AVX-512 kernels' took 0.03); the output's vector is stored only where a pixel of it
+// changes.
 void Composite(const fast::PipelinedJob& job, const fast::PipelinedChunk* chunks, int n, int y0, int y1) {
     const hn::ScalableTag<int32_t> di;
     const int N = int(hn::Lanes(di));
@@ -548,7 +549,7 @@ PipelinedKernels hwy_pipelined_kernels(Isa isa) {
     { &NS::PipelinedPart, &NS::PipelinedChunk, &NS::Composite, &seam }
     switch (isa) {
 #if HWY_TARGETS & HWY_AVX3_DL
-        case Isa::avx512_hwy: return RTM_HWY_PIPELINED(N_AVX3_DL);
+        case Isa::avx512: return RTM_HWY_PIPELINED(N_AVX3_DL);
 #endif
 #if HWY_TARGETS & HWY_AVX2
         case Isa::avx2: return RTM_HWY_PIPELINED(N_AVX2);

@@ -203,8 +203,8 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
 #if HWY_TARGET == HWY_AVX2
     // Every lane's span one or two pixels wide (bumps: nearly every group): the lanes' first pixels, then their
     // second ones where they have one, a vector each from the lanes' own samples (no lookup), the two interleaved
-    // into pixel order and compressed into place with masked stores (the AVX-512 kernels' spans of up to two pixels,
-    // warp/simd/avx512_line.h).
+    // into pixel order and compressed into place with masked stores (as the hand-written AVX-512 kernels
+    // drew spans of up to two pixels).
     if (narrow) {
         int32_t* oc = reinterpret_cast<int32_t*>(out.c + xa);
         float* ov = out.v + xa;
@@ -458,7 +458,7 @@ inline void SpanPixels(float pa, float pb, int n, int& xa, int& xb) {
     xa = int(lo), xb = int(hi);
 }
 
-// Sub-runs shorter than this go span by span (the AVX-512 line kernel's kScalarSpans + 1, warp/simd/avx512_line.h).
+// Sub-runs shorter than this go span by span (the hand-written AVX-512 line kernel's kScalarSpans + 1).
 constexpr int kMinGroup = 3;
 
 // The spans from sample pa[i] to sample pb[i], i = 0 .. N - 1 (the lanes of one vector, in memory order), taken from
@@ -533,7 +533,7 @@ HWY_INLINE void DrawGroup(DF df, const float* pos, const uint32_t* col, const fl
 // with t = 1 exactly (raster_span: (pb - pa) * (1 / (pb - pa))), that is sample s's colour (lerp8 at t = 1) and
 // attribute (attr_lerp: a * 0 + b), and consecutive such spans write consecutive pixels: copied at memory speed. Zero
 // displacement gives such runs (the paper, section 5: skipping the transformation of still texels; the AVX-512
-// kernels' `ident` runs, warp/simd/avx512_line.h). Copies the spans that lead in processing order (from lane 0 up in
+// kernels' `ident` runs). Copies the spans that lead in processing order (from lane 0 up in
 // the left part, from lane N - 1 down in the right part) when all N are such spans or, on targets with a masked store,
 // at least kMinGroup of them (the bricks of a wall end inside a vector), every pixel inside the line; returns how many
 // (0: nothing written).
@@ -744,7 +744,7 @@ void WarpRow(const float* pos, const uint32_t* col, const float* attr, const flo
 
 // Whether WarpRowBackward should take the row: every sample takes part and (unless any_row, the tests' policy) at
 // least one span in kFoldShare folds over (left of the split positions going down, right of it going up: later
-// spans overwrite earlier ones). The AVX-512 kernels' rule (warp/simd/avx512_line.h, line_folds_over): bricks (8 to
+// spans overwrite earlier ones). The hand-written AVX-512 kernels' rule (line_folds_over): bricks (8 to
 // 31 foldover spans a row of 256 to 1024) stays forwards, ridges (a quarter to a half) goes backwards.
 constexpr int kFoldShare = 16;
 inline bool RowFoldsOver(const float* pos, int n, int split, bool any_row) {
@@ -778,7 +778,7 @@ inline bool RowFoldsOver(const float* pos, int n, int split, bool any_row) {
 }
 
 // warp_line_to of one row whose samples all take part (RowFoldsOver), with the painter's algorithm run backwards
-// (the AVX-512 kernels' warp_line_reverse, warp/simd/avx512_line.h): the items (points, groups of spans, single
+// (the hand-written AVX-512 kernels' warp_line_reverse): the items (points, groups of spans, single
 // spans, the seam) in the reverse of WarpRow's order, each drawing only the pixels no later item (in WarpRow's order)
 // writes. A pixel's value does not depend on which other pixels are drawn, and WarpRow leaves every pixel with the
 // value of the last item that writes it, the first one here to reach it: the same row. The pixels written so far
@@ -986,8 +986,8 @@ inline PreparedRow PrepareRow(const ReliefTexture& t, const fast::FastTables& ft
     const VI byte = hn::Set(di, 0xFF), rgb = hn::Set(di, 0xFFFFFF), alpha = hn::Set(di, int32_t(0xFF000000u));
     const VI iota = hn::Iota(di, 0);
     // Texels at zero displacement (the brick wall's bricks, paper section 5): (u_s + +-0) * 1 + ou is u_s + ou
-    // exactly (u_s >= 0.5, never zero), and v likewise: a vector of them needs no lookup (the AVX-512 row set-up's
-    // shortcut, warp/simd/avx512_row.h).
+    // exactly (u_s >= 0.5, never zero), and v likewise: a vector of them needs no lookup (the hand-written AVX-512
+    // row set-up's shortcut).
     const bool any_id = ft.identity_lo <= ft.identity_hi;
     const VI id_lo = hn::Set(di, ft.identity_lo), id_hi = hn::Set(di, ft.identity_hi);
     const VF still_v = hn::Add(vvs, vov);

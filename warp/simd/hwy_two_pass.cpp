@@ -60,7 +60,7 @@ void HorizontalSteps(const fast::TwoPassJob& job, int s0, int s1, uint32_t* band
     if (dropped) *job.dropped += dropped;
 }
 
-// The vertical pass over steps [s0, s1) for columns [x0, x1) (see avx512_two_pass.h's vertical_steps).
+// The vertical pass over steps [s0, s1) for columns [x0, x1) (see hwy_two_pass.h's VerticalStepsFn).
 void VerticalSteps(const fast::TwoPassJob& job, int s0, int s1, const uint32_t* band_c, const float* band_v,
                    size_t stride, int x0, int x1) {
     const int h = job.relief->height, ow = job.out->width, oh = job.out->height;
@@ -135,7 +135,7 @@ namespace rtm::simd {
 TwoPassKernels hwy_two_pass_kernels(Isa isa) {
     switch (isa) {
 #if HWY_TARGETS & HWY_AVX3_DL
-        case Isa::avx512_hwy: return {&N_AVX3_DL::HorizontalSteps, &N_AVX3_DL::VerticalSteps, &N_AVX3_DL::StillSteps};
+        case Isa::avx512: return {&N_AVX3_DL::HorizontalSteps, &N_AVX3_DL::VerticalSteps, &N_AVX3_DL::StillSteps};
 #endif
 #if HWY_TARGETS & HWY_AVX2
         case Isa::avx2: return {&N_AVX2::HorizontalSteps, &N_AVX2::VerticalSteps, &N_AVX2::StillSteps};

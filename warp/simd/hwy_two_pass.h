@@ -1,8 +1,8 @@
 // The two-pass pre-warp kernels written once over Google Highway, compiled for every SIMD target of this
 // architecture (x86-64: AVX-512 with VBMI/VNNI, AVX2 and SSE4; ARM: NEON and SVE) and chosen at run time
-// (warp/isa.h). Same
-// contract as the hand-written AVX-512 kernels of warp/simd/avx512_two_pass.h, whose job they take and whose
-// scheduling (warp/simd/schedule.cpp) they share: the output of prewarp()'s two-pass lookup-table path bit for bit.
+// (warp/isa.h). Their job is warp/simd/two_pass_job.h's, their scheduling warp/simd/schedule.cpp's; their output
+// is prewarp()'s two-pass lookup-table path's bit for bit. (They replaced hand-written AVX-512 kernels of the same
+// design: docs/perf-history.md.)
 //
 // Horizontal steps: each row is set up with the reference's own arithmetic, a vector of texels at a time (row_samples'
 // positions and final row coordinates, NaN where a texel does not take part; the tables' entries looked up by
@@ -11,10 +11,10 @@
 // pixels and up to a vector of them are drawn together (from 8 lanes on, each pixel of the run looks its span up and
 // the run is stored a vector of pixels at a time), everything else sample by sample through raster_point and
 // raster_span. Rows that fold over (FastKernelPolicy:: two_pass_reverse) are drawn backwards, each pixel once
-// (WarpRowBackward, as the AVX-512 kernels' backward rows). Vertical steps: the columns advance together, as many in
+// (WarpRowBackward). Vertical steps: the columns advance together, as many in
 // the lanes of a vector as the target has; each lane computes what raster_span / raster_point compute for its column,
 // operation by operation in float (no contraction: the file is compiled with -ffp-contract=off, and SSE4 has no FMA
-// anyway), and the colour with lerp8's integer formula (on AVX-512 as the hand-written kernels compute it: VNNI dot
+// anyway), and the colour with lerp8's integer formula (on AVX-512 by VNNI dot
 // products); each column keeps floor and ceil of its last sample's v - 0.5 (ColumnStep), so a step rounds its new
 // samples only. Where the pixels go (warp/simd/hwy_columns-inl.h): two masked row stores a step where the lanes share a
 // row or the next (AVX-512, AVX2, SVE), otherwise one scatter (AVX-512) or lane by lane; spans of 5 pixels and more row
@@ -25,16 +25,16 @@
 // of a column only where their displacements differ by at most the threshold.
 //
 // The building blocks (row set-up, row warp, column step) are shared with the Highway pipelined kernel
-// (warp/simd/hwy_row-inl.h, warp/simd/hwy_columns-inl.h, warp/simd/hwy_pipelined.h). Not yet here
-// (docs/BENCHMARKS.md, "SIMD targets"): the AVX-512 kernels' span search over sub-runs of any length (here a group
-// ends after a vector of spans) and their copies of still runs in the row warp.
+// (warp/simd/hwy_row-inl.h, warp/simd/hwy_columns-inl.h, warp/simd/hwy_pipelined.h). Not here (docs/BENCHMARKS.md,
+// "SIMD targets"): the hand-written AVX-512 kernels' span search over sub-runs of any length (here a group ends after
+// a vector of spans) and their set-up of each row's spans once per row.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 
 #include "warp/isa.h"
-#include "warp/simd/avx512_two_pass.h"
+#include "warp/simd/two_pass_job.h"
 
 namespace rtm::simd {
 
@@ -55,8 +55,8 @@ struct TwoPassKernels {
     StillStepsFn still = nullptr;  // null: the plain C++ test
 };
 
-// The Highway kernels compiled for `isa` (avx2, sse4, neon, sve); null pointers for any other target or one this
-// build did not compile.
+// The Highway kernels compiled for `isa` (avx512, avx2, sse4, neon, sve); null pointers for any other target or one
+// this build did not compile.
 TwoPassKernels hwy_two_pass_kernels(Isa isa);
 
 // The Highway targets this file was compiled for (HWY_TARGETS).

@@ -9,14 +9,14 @@ namespace rtm {
 enum class KernelChoice { automatic, always, never };
 
 struct FastKernelPolicy {
-    // The pipelined kernel's reverse mode (warp/simd/avx512_pipelined.cpp, reverse_rows; warp/simd/hwy_pipelined.cpp,
-    // RunRows): automatic switches a part to it where its rows overdraw much; always runs whole parts in it.
+    // The pipelined kernel's reverse mode (warp/simd/hwy_pipelined.cpp, RunRows): automatic switches a part to it where
+    // its rows overdraw much; always runs whole parts in it.
     KernelChoice pipelined_reverse = KernelChoice::automatic;
     // Threads of the pipelined kernel on chunks of rows rather than ranges of columns (warp/simd/schedule.cpp,
     // pipelined_row_chunks): automatic takes row chunks with threads and one part.
     KernelChoice pipelined_row_chunks = KernelChoice::automatic;
-    // The two-pass kernel's backward rows (warp/simd/avx512_line.h, warp_line_reverse; warp/simd/hwy_row-inl.h,
-    // WarpRowBackward): automatic takes the rows that fold over; always every row whose samples all take part.
+    // The two-pass kernel's backward rows (warp/simd/hwy_row-inl.h, WarpRowBackward): automatic takes the rows that
+    // fold over; always every row whose samples all take part.
     KernelChoice two_pass_reverse = KernelChoice::automatic;
     // With two_pass_reverse: clear each backward row and warp it forwards again (the fallback for a backward warp
     // that fails, otherwise unreachable).

@@ -1,8 +1,5 @@
 #include "warp/simd/schedule.h"
 
-#if RTM_AVX512_KERNELS
-#include <immintrin.h>
-#endif
 #include <tbb/blocked_range.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
@@ -17,8 +14,6 @@
 #include <limits>
 #include <memory>
 
-#include "warp/simd/avx512_pipelined.h"
-#include "warp/simd/avx512_two_pass.h"
 #include "warp/simd/hwy_pipelined.h"
 #include "warp/simd/hwy_two_pass.h"
 #include "warp/simd/kernel_policy.h"
@@ -32,7 +27,7 @@ namespace {
 
 // Largest output side the kernels accept: pixel indices and span ends stay exact in float far below 2^24.
 constexpr int kMaxSide = 1 << 22;
-// Largest output the kernels accept: the column kernels' scatter (store_rows, warp/simd/avx512_columns.h) addresses
+// Largest output the kernels accept: the column kernels' scatter (StoreRows, warp/simd/hwy_columns-inl.h) addresses
 // pixels by 32-bit offsets of up to the whole image from its last storage row. 2^31 - 16 pixels is 8 GiB of RGBA8.
 constexpr long long kMaxPixels = (1ll << 31) - 16;
 
@@ -79,14 +74,14 @@ void ensure_size(Image2D<T>& img, int w, int h) {
 namespace fast {
 
 bool cpu_supported() {
-#if RTM_AVX512_KERNELS
+#if defined(__x86_64__)
     __builtin_cpu_init();
     return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
            __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vl") &&
            __builtin_cpu_supports("avx512vbmi") && __builtin_cpu_supports("avx512vnni") &&
            __builtin_cpu_supports("bmi2");
 #else
-    return false;  // not compiled (not x86-64: warp/CMakeLists.txt)
+    return false;  // not x86-64
 #endif
 }
 
@@ -127,11 +122,6 @@ ScopedKernelPolicy::ScopedKernelPolicy(const FastKernelPolicy& policy) : saved_(
 ScopedKernelPolicy::~ScopedKernelPolicy() { g_policy = saved_; }
 }  // namespace simd::testing
 
-bool fast_prewarp_available() {
-    static const bool ok = fast::cpu_supported();
-    return ok;
-}
-
 void balance_row_chunks(std::vector<int>& bounds, const double* ms) {
     const int n = int(bounds.size()) - 1;
     if (n < 2 || n > 64) return;
@@ -154,28 +144,17 @@ void balance_row_chunks(std::vector<int>& bounds, const double* ms) {
     }
 }
 
-namespace {
-// Whether the relief has surface-discontinuity marks or a threshold (paper section 4.1.1).
-bool marked(const ReliefTexture& relief) { return !relief.breaks.empty() || relief.discontinuity_threshold > 0.0; }
-}  // namespace
-
 bool fast_prewarp_covers(Isa isa, const ReliefTexture& relief, const PrewarpCoefficients& k,
                          const PrewarpOptions& options, const PrewarpExtent& e, const Image2D<uint8_t>* displ_out) {
     if (options.exact || displ_out || options.filter != Filter::point) return false;
     if (isa == Isa::automatic || isa == Isa::generic) return false;
-    if (isa != Isa::avx512 && !(options.method == Reconstruction::two_pass ? !!simd::hwy_two_pass_kernels(isa).vertical
-                                                                           : !!simd::hwy_pipelined_kernels(isa).part))
-        return false;
-    // Discontinuity marks (paper section 4.1.1): the two-pass kernels (TwoPassJob::breaks, threshold) and the Highway
-    // pipelined kernel (PipelinedJob::breaks, threshold), which also takes them for `avx512` (fast_prewarp).
-    if (marked(relief) && options.method == Reconstruction::pipelined && isa == Isa::avx512 &&
-        !isa_supported(Isa::avx512_hwy))
+    if (!(options.method == Reconstruction::two_pass ? !!simd::hwy_two_pass_kernels(isa).vertical
+                                                     : !!simd::hwy_pipelined_kernels(isa).part))
         return false;
     if (!relief.breaks.empty() && relief.breaks.size() != relief.texels.size()) return false;
     if (k.side == ViewSide::on_plane || relief.width <= 0 || relief.height <= 0) return false;
     const long long ow = (long long)relief.width + e.left + e.right, oh = (long long)relief.height + e.bottom + e.top;
-    if (ow > kMaxSide || oh > kMaxSide || ow * oh > kMaxPixels) return false;
-    return isa != Isa::avx512 || fast_prewarp_available();
+    return ow <= kMaxSide && oh <= kMaxSide && ow * oh <= kMaxPixels;
 }
 
 namespace {
@@ -224,27 +203,6 @@ uint32_t still_steps(const fast::TwoPassJob& job, int s0, int s1, const uint32_t
     }
     return bits;
 }
-
-#if RTM_AVX512_KERNELS
-// The same with AVX-512, the hand-written kernels' TwoPassKernels::still (only where they run: the CPU has been
-// checked). The test in plain C++ compiled for the baseline (SSE2) and a kernel call per group and run of steps made
-// the brick wall 1024^2 slower than the kernels on every step (3.9 against 3.4 ms, 1 thread); the Highway kernels
-// have a test of their own too (StillSteps, hwy_two_pass.cpp).
-__attribute__((target("avx512f,avx512dq"))) uint32_t still_steps16(const fast::TwoPassJob& job, int s0, int s1,
-                                                                   const uint32_t* band_c, const float* band_v,
-                                                                   size_t stride, int gx0, int width) {
-    if (width != 16) return still_steps(job, s0, s1, band_c, band_v, stride, gx0, width);
-    uint32_t bits = 0;
-    for (int st = s0; st < s1; ++st) {
-        const __m512 centre = _mm512_set1_ps(float(step_line(job, st)) + 0.5f);
-        const __m512 v = _mm512_loadu_ps(band_v + size_t(st - s0) * stride + gx0);
-        const __m512i c = _mm512_loadu_si512(band_c + size_t(st - s0) * stride + gx0);
-        const __mmask16 m = _mm512_cmp_ps_mask(v, centre, _CMP_EQ_OQ) & _mm512_movepi32_mask(c);
-        bits |= uint32_t(m == 0xFFFF) << (st - s0);
-    }
-    return bits;
-}
-#endif
 
 // The vertical pass of steps [s0, s1) (one band, at most 32 steps) for columns [x0, x1), x0 a multiple of 16: the
 // kernels' vertical_steps, with the still steps of each group copied (see above). Neighbouring groups with the same
@@ -378,7 +336,7 @@ PrewarpStats fast_two_pass(const simd::TwoPassKernels& kernels, const ReliefText
     job.col_c = mc;
     job.seam_v = mv + stride;
     job.seam_c = mc + stride;
-    job.col_ok = reinterpret_cast<uint16_t*>(mc + 2 * size_t(stride));
+    job.col_ok = reinterpret_cast<int32_t*>(mc + 2 * size_t(stride));
     job.copy_still = options.copy_still_runs;
     job.reverse = simd::testing::kernel_policy().two_pass_reverse;
     job.redo_forwards = simd::testing::kernel_policy().two_pass_redo_forwards;
@@ -616,22 +574,7 @@ PrewarpStats fast_prewarp(Isa isa, const ReliefTexture& relief, const PrewarpCoe
     const PrewarpTables ref_tables = PrewarpTables::build(k, relief.quant);
     const fast::FastTables tables = fast::make_fast_tables(ref_tables);
     PrewarpStats stats;
-    if (isa == Isa::avx512 && options.method == Reconstruction::pipelined && marked(relief)) {
-        // The hand-written pipelined kernel takes no discontinuity marks; the Highway one on the same CPUs does
-        // (fast_prewarp_covers has checked that this CPU runs it).
-        isa = Isa::avx512_hwy;
-        stats = fast_pipelined(simd::hwy_pipelined_kernels(isa), relief, k, options, e, ref_tables, tables, ws, out);
-    } else if (isa == Isa::avx512) {
-#if RTM_AVX512_KERNELS
-        if (options.method == Reconstruction::pipelined)
-            stats = fast_pipelined({&fast::pipelined_part, &fast::pipelined_chunk, &fast::pipelined_composite,
-                                    &fast::pipelined_seam},
-                                   relief, k, options, e, ref_tables, tables, ws, out);
-        else
-            stats = fast_two_pass({&fast::horizontal_steps, &fast::vertical_steps, &still_steps16}, relief, k, options,
-                                  e, ref_tables, tables, ws, out);
-#endif
-    } else if (options.method == Reconstruction::pipelined) {
+    if (options.method == Reconstruction::pipelined) {
         stats = fast_pipelined(simd::hwy_pipelined_kernels(isa), relief, k, options, e, ref_tables, tables, ws, out);
     } else {
         stats = fast_two_pass(simd::hwy_two_pass_kernels(isa), relief, k, options, e, ref_tables, tables, ws, out);

@@ -3,24 +3,22 @@
 // pixel over random reliefs, views, sizes and thread counts).
 //
 // Covered: the lookup-table path (not --exact) with the point filter, without depth output (displ_out), margins
-// (keep_outliers) or not; on the avx512 target (a CPU with AVX-512 F, BW, DQ, VL, VBMI, VNNI and BMI2: the
-// hand-written kernels warp/simd/avx512_*) and on the Highway targets (avx2, sse4, neon, sve:
-// warp/simd/hwy_two_pass.h, warp/simd/hwy_pipelined.h), both reconstructions. Surface-discontinuity marks or a
-// threshold (paper section 4.1.1): the avx512 two-pass kernels only (warp/simd/avx512_two_pass.h, TwoPassJob::breaks
-// and threshold). Everything else stays with the generic implementation, which remains the reference.
+// (keep_outliers) or not, reliefs with surface-discontinuity marks or a threshold (paper section 4.1.1) or without,
+// both reconstructions, on every SIMD target (avx512, avx2, sse4, neon, sve: the kernels written once over Google
+// Highway, warp/simd/hwy_two_pass.h and warp/simd/hwy_pipelined.h). Everything else stays with the generic
+// implementation, which remains the reference.
 //
 // Still texels (PrewarpOptions::copy_still_runs): the row warps copy runs of spans one pixel wide on pixel centres
-// (what zero displacement gives: 16 spans at a time on avx512, a vector's worth on the Highway targets, CopyStill)
-// instead of interpolating them; with the option off they interpolate them too, so that the copy can be measured.
-// The two-pass vertical pass copies blocks of still pixels, 16 columns by consecutive rows (schedule.cpp,
-// vertical_with_still); the pipelined kernels copy a vector of columns whose column spans are still steps (one pixel
-// on a centre, t = 1: StillStep in warp/simd/hwy_columns-inl.h, still_step in warp/simd/avx512_pipelined.cpp),
-// forwards and in reverse mode. The row set-ups skip the table lookups of still texels whatever the option (64
-// texels at a time on avx512, a vector on the Highway targets: FastTables' identity levels,
-// warp/simd/fast_tables.h). The output is the same either way. The copies are not counted
-// (PrewarpStats::still_copied stays 0 here; tests/objects/skips_test.cpp relies on that).
+// (what zero displacement gives: a vector's worth at a time, CopyStill) instead of interpolating them; with the option
+// off they interpolate them too, so that the copy can be measured. The two-pass vertical pass copies blocks of still
+// pixels, 16 columns by consecutive rows (schedule.cpp, vertical_with_still); the pipelined kernel copies a vector of
+// columns whose column spans are still steps (one pixel on a centre, t = 1: StillStep in
+// warp/simd/hwy_columns-inl.h), forwards and in reverse mode. The row set-ups skip the table lookups of a vector of
+// still texels whatever the option (FastTables' identity levels, warp/simd/fast_tables.h). The output is the same
+// either way. The copies are not counted (PrewarpStats::still_copied stays 0 here; tests/objects/skips_test.cpp
+// relies on that).
 //
-// Scheduling lives here, kernels in warp/simd/avx512_two_pass.cpp and warp/simd/avx512_pipelined.cpp: a kernel takes a
+// Scheduling lives here, kernels in warp/simd/hwy_two_pass.cpp and warp/simd/hwy_pipelined.cpp: a kernel takes a
 // range of rows or columns and every output pixel is computed by exactly one call, or (the pipelined kernel's row
 // chunks) by the chunks whose rows reach it, the last of them in the painter's order winning in the composite, so the
 // output does not depend on the number of threads. Steady state allocates nothing: intermediate and scratch images live
@@ -50,12 +48,9 @@ PrewarpStats fast_prewarp(Isa isa, const ReliefTexture& relief, const PrewarpCoe
 
 // Asks the CPU to bring storage row r of the relief into the cache (nothing where r is not a row of it): each kernel
 // calls it for the row it sets up next, a row ahead. The hardware prefetchers did not keep up with the row set-ups'
-// reads of the texels: the AVX-512 two-pass brick wall 1024^2 (one thread) took 3.4-3.8 ms without, 2.6-2.7 with
-// (docs/perf-history.md, "Prefetching the next row").
+// reads of the texels: the hand-written AVX-512 two-pass kernels (since retired) took 3.4-3.8 ms for the brick wall
+// 1024^2 (one thread) without, 2.6-2.7 with (docs/perf-history.md, "Prefetching the next row").
 void prefetch_relief_row(const ReliefTexture& relief, int r);
-
-// True when this CPU can run the hand-written AVX-512 kernels (the avx512 target).
-bool fast_prewarp_available();
 
 // The pipelined kernel's row chunks (warp/simd/schedule.cpp): `bounds` (n + 1 increasing rows, 0 first, the part's
 // row count last) of n chunks that took ms[0 .. n) are moved half-way towards the bounds that would give every

@@ -1,6 +1,5 @@
-// The fast two-pass pre-warp kernels (AVX-512): the same output as prewarp()'s two-pass lookup-table path
-// (warp/reference/) bit for bit, for reliefs with or without discontinuity marks, without depth output. Scheduling
-// (threads, bands of rows) lives in warp/simd/schedule.cpp; these functions only work on the ranges they are given.
+// The job of the fast two-pass pre-warp kernels (warp/simd/hwy_two_pass.h): what one pre-warp hands to the horizontal
+// and vertical steps that warp/simd/schedule.cpp schedules (threads, bands of rows), and the order of the steps.
 //
 // The two passes are interleaved row by row instead of going through a whole intermediate image. The reference's
 // vertical pass warps each column of the intermediate image in occlusion-compatible order: the bottom part from
@@ -8,14 +7,9 @@
 // epipole. Columns are independent, so all of them can advance together, one intermediate row at a time, if the
 // rows are produced in that order: "step" s = 0, 1, ... h - 1 is intermediate row j = s (v order, 0 = bottom) for
 // s < split_v, then j = h - 1 - (s - split_v). A band of steps is warped horizontally (rows independent: any order,
-// any thread), then handed to the vertical kernel, which keeps per column the last sample it received and
-// rasterizes the span from it to the new one (warp/simd/avx512_columns.h), for 16 columns at a time. Bands must reach
-// the vertical kernel in step order; different column ranges may run concurrently.
-//
-// Horizontal pass, per row: u_i = (u_s + K1[q]) * R[q] + left margin and the final row coordinate
-// v_i = (v_s + K2[q]) * R[q] + bottom margin in float exactly as the reference computes them; the row is warped by
-// the line kernel of warp/simd/avx512_line.h into one row of the band (colour with alpha 255 where written, 0
-// elsewhere; v_i).
+// any thread), then handed to the vertical step, which keeps per column the last sample it received and rasterizes
+// the span from it to the new one, as many columns at a time as the target has lanes. Bands must reach the vertical
+// step in step order; different column ranges may run concurrently.
 #pragma once
 
 #include <atomic>
@@ -39,14 +33,13 @@ struct TwoPassJob {
     ImageRGBA8* out = nullptr;     // out width x out height
     // Per output column (out width entries, rounded up to 16; 64-byte aligned): the last sample the column
     // received (final row coordinate, colour, floor and ceil of its v - 0.5 clamped to [-1, out height]) and whether
-    // it has one (col_ok: one bit a column for these kernels; the Highway kernels, warp/simd/hwy_two_pass.h, read the
-    // same memory as one int32_t a column, -1 where it has one and 0 elsewhere); and the last sample of the bottom
-    // part (colour alpha 0 where none), for the span across the epipole.
+    // it has one (col_ok, read as one int32_t a column: -1 where it has one and 0 elsewhere); and the last sample of
+    // the bottom part (colour alpha 0 where none), for the span across the epipole.
     float* col_v = nullptr;
     uint32_t* col_c = nullptr;
     int32_t* col_fl = nullptr;
     int32_t* col_ce = nullptr;
-    uint16_t* col_ok = nullptr;
+    int32_t* col_ok = nullptr;
     float* seam_v = nullptr;
     uint32_t* seam_c = nullptr;
     // Surface discontinuities (paper section 4.1.1; the two-pass kernels, fast_prewarp_covers): the relief's
@@ -77,16 +70,5 @@ inline int step_line(const TwoPassJob& job, int s) {
     const int j = s < job.split_v ? s : job.relief->height - 1 - (s - job.split_v);
     return j + job.extent.bottom;
 }
-
-// Steps [s0, s1) warped horizontally into band rows 0 .. s1 - s0 - 1 (colour and v, `stride` elements apart).
-// `scratch` (the Highway kernels' row scratch, warp/simd/hwy_two_pass.h) is not used here.
-void horizontal_steps(const TwoPassJob& job, int s0, int s1, uint32_t* band_c, float* band_v, size_t stride,
-                      float* scratch = nullptr);
-
-// The vertical pass over steps [s0, s1) (band rows as written by horizontal_steps) for output columns [x0, x1),
-// x0 a multiple of 16, in step order for each column range. The call with s0 = 0 first clears those columns of
-// the output; the call that reaches step h also draws the span across the epipole.
-void vertical_steps(const TwoPassJob& job, int s0, int s1, const uint32_t* band_c, const float* band_v, size_t stride,
-                    int x0, int x1);
 
 }  // namespace rtm::fast

@@ -1,17 +1,15 @@
-// The fast pipelined pre-warp kernel (AVX-512): the same output as prewarp()'s pipelined lookup-table path
-// (warp/reference/, paper section 3.2.2) bit for bit, for reliefs without discontinuity marks and without depth
-// output. Scheduling lives in warp/simd/schedule.cpp.
+// The job of the fast pipelined pre-warp kernel (warp/simd/hwy_pipelined.h; paper section 3.2.2) and its entry
+// points as a set (PipelinedKernels), which warp/simd/schedule.cpp schedules.
 //
 // A part (the rows below the epipole, bottom up, or the rows above it, top down) is processed row by row: each row
-// is prepared and warped by the line kernel of warp/simd/avx512_line.h into a row buffer, and every group of pixels the
-// line kernel reports is rasterized at once into its columns, 16 columns at a time, each connected to the last
-// sample its column received from the previous row (warp/simd/avx512_columns.h: 16 columns in the lanes of a register).
-// A part can be split into column ranges that run on different threads: each range warps every row (the
-// horizontal work is repeated) and rasterizes only its own columns. Or into chunks of consecutive rows: the column
-// state carried from row to row is only the previous row's last emission per column, so a chunk starts exactly by
-// warping the row before it without drawing; the part's first chunk draws into the output, every other one into a
-// scratch image of its own, and the scratch images are composited over the output in row order (the painter's
-// order: a later row's pixels replace an earlier row's).
+// is prepared and warped into a row buffer, and every group of pixels the row warp reports is rasterized at once into
+// its columns, as many columns at a time as the target has lanes, each connected to the last sample its column
+// received from the previous row. A part can be split into column ranges that run on different threads: each range
+// warps every row (the horizontal work is repeated) and rasterizes only its own columns. Or into chunks of
+// consecutive rows: the column state carried from row to row is only the previous row's last emission per column,
+// so a chunk starts exactly by warping the row before it without drawing; the part's first chunk draws into the
+// output, every other one into a scratch image of its own, and the scratch images are composited over the output in
+// row order (the painter's order: a later row's pixels replace an earlier row's).
 #pragma once
 
 #include <atomic>
@@ -54,10 +52,6 @@ struct PipelinedJob {
     std::atomic<int>* next_task = nullptr;
 };
 
-// Part 0 (rows from the bottom up to the split, output v-rows [0, ysplit)) or 1 (rows from the top down to the
-// split, output v-rows [ysplit, out height)), output columns [x0, x1): clears that region, then fills it.
-void pipelined_part(const PipelinedJob& job, int part, int x0, int x1);
-
 // Rows [r0, r1) of part `part` (0: the part's first row in its order), all columns. The chunk with r0 == 0 draws
 // into job.out (clearing the part's output rows first); any other draws into `scratch`, an image of the output's
 // size that is 0 everywhere, and records the output v-rows it may have written in [ylo, yhi) (pixels written there
@@ -68,21 +62,20 @@ struct PipelinedChunk {
     ImageRGBA8* scratch = nullptr;
     int ylo = 0, yhi = 0;
 };
-void pipelined_chunk(const PipelinedJob& job, PipelinedChunk& chunk);
-
-// Output v-rows [y0, y1): the pixels the scratch chunks wrote (alpha not 0) replace the output's, chunk after chunk
-// in the order given (the parts' row order), and the scratch rows are cleared to 0 again.
-void pipelined_composite(const PipelinedJob& job, const PipelinedChunk* chunks, int n, int y0, int y1);
-
-// The span between the last rows of the two parts, in every column where both have a sample.
-void pipelined_seam(const PipelinedJob& job);
 
 }  // namespace rtm::fast
 
 namespace rtm::simd {
 
-// The four entry points above of one target's pipelined kernel (the scheduling in warp/simd/schedule.cpp takes
-// them as a set): the hand-written AVX-512 ones, or the Highway ones (warp/simd/hwy_pipelined.h).
+// The entry points of one target's pipelined kernel (warp/simd/hwy_pipelined.h):
+// part(job, part, x0, x1): part 0 (rows from the bottom up to the split, output v-rows [0, ysplit)) or 1 (rows from
+// the top down to the split, output v-rows [ysplit, out height)), output columns [x0, x1): clears that region, then
+// fills it.
+// chunk(job, chunk): a PipelinedChunk.
+// composite(job, chunks, n, y0, y1): output v-rows [y0, y1): the pixels the scratch chunks wrote (alpha not 0)
+// replace the output's, chunk after chunk in the order given (the parts' row order), and the scratch rows are cleared
+// to 0 again.
+// seam(job): the span between the last rows of the two parts, in every column where both have a sample.
 struct PipelinedKernels {
     void (*part)(const fast::PipelinedJob&, int, int, int) = nullptr;
     void (*chunk)(const fast::PipelinedJob&, fast::PipelinedChunk&) = nullptr;
