@@ -527,6 +527,31 @@ HWY_INLINE void DrawGroup(DF df, const float* pos, const uint32_t* col, const fl
               da, db, up, out, before, cl, ch);
 }
 
+// Whole vectors of spans after a group of them, while every lane goes the part's usual way (a smooth row, where
+// positions increase along the row: the left part's spans k - 1 -> k going up, the right part's k + 1 -> k going
+// down), without finding a prefix: what GroupPrefix and DrawGroup do for such a vector (all of it, no lane skipped or
+// reversed), from sample k (d = -1: the left part, lanes k .. k + N - 1 while they end before `end` = the split; d =
+// +1: the right part, lanes k - N + 1 .. k while they start at or after `end` = the split). Returns the next k.
+template <class DF, class Before>
+HWY_INLINE int SpanRun(DF df, const float* pos, const uint32_t* col, const float* attr, const float* attr2, int k,
+                       int end, int d, int n_out, RowOut out, const Before& before) {
+    const hn::RebindToSigned<DF> di;
+    const int N = int(hn::Lanes(df));
+    for (;;) {
+        const int b0 = d < 0 ? k : k - N + 1;  // the lanes' later samples (b0 + i), their earlier ones b0 + i + d
+        if (d < 0 ? k + N > end : b0 < end) return k;
+        const auto pa = hn::LoadU(df, pos + b0 + d), pb = hn::LoadU(df, pos + b0);
+        const auto usual = d < 0 ? hn::Ge(pb, pa) : hn::Le(pb, pa);
+        if (!hn::AllTrue(df, hn::And(usual, hn::And(hn::IsFinite(pa), hn::IsFinite(pb))))) return k;
+        const auto da = attr2 ? hn::LoadU(df, attr2 + b0 + d) : hn::Zero(df);
+        const auto db = attr2 ? hn::LoadU(df, attr2 + b0) : hn::Zero(df);
+        SpanLanes(df, di, hn::Ne(pb, pa), pa, pb, hn::LoadU(di, reinterpret_cast<const int32_t*>(col + b0 + d)),
+                  hn::LoadU(di, reinterpret_cast<const int32_t*>(col + b0)), hn::LoadU(df, attr + b0 + d),
+                  hn::LoadU(df, attr + b0), da, db, d < 0, out, before, 0, n_out - 1);
+        k -= d * N;
+    }
+}
+
 // The spans ending at samples b .. b + N - 1 (the lanes of one vector), each from the sample on its other side (d =
 // -1: the left part's spans s - 1 -> s; d = +1: the right part's s + 1 -> s), where they are one pixel wide on a pixel
 // centre: neighbouring positions exactly 1 apart, sample s on a centre. Span s then writes the one pixel pos[s] - 0.5
@@ -697,6 +722,7 @@ void WarpRow(const float* pos, const uint32_t* col, const float* attr, const flo
             if (m >= kMinGroup) {
                 DrawGroup(df, pos, col, attr, attr2, w0 - 1, w0, m, true, up, out, before, 0, n_out - 1, skip);
                 k += m;
+                if (!marks && !out.copy) k = SpanRun(df, pos, col, attr, attr2, k, split, -1, n_out, out, before);
                 prev = k - 1;
                 continue;
             }
@@ -728,6 +754,7 @@ void WarpRow(const float* pos, const uint32_t* col, const float* attr, const flo
             if (m >= kMinGroup) {
                 DrawGroup(df, pos, col, attr, attr2, b + 1, b, m, false, up, out, before, 0, n_out - 1, skip);
                 k -= m;
+                if (!marks && !out.copy) k = SpanRun(df, pos, col, attr, attr2, k, split, +1, n_out, out, before);
                 prev = k + 1;
                 continue;
             }
