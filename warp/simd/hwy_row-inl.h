@@ -529,13 +529,12 @@ HWY_INLINE void DrawGroup(DF df, const float* pos, const uint32_t* col, const fl
 
 // Whole vectors of spans after a group of them, while every lane goes the part's usual way (a smooth row, where
 // positions increase along the row: the left part's spans k - 1 -> k going up, the right part's k + 1 -> k going
-// down), without finding a prefix: what GroupPrefix and DrawGroup do for such a vector (all of it, no lane skipped or
-// reversed), from sample k (d = -1: the left part, lanes k .. k + N - 1 while they end before `end` = the split; d =
+// down), without finding a prefix: DrawGroup of each such vector (all of it, no lane skipped or reversed), from
+// sample k (d = -1: the left part, lanes k .. k + N - 1 while they end before `end` = the split; d =
 // +1: the right part, lanes k - N + 1 .. k while they start at or after `end` = the split). Returns the next k.
 template <class DF, class Before>
 HWY_INLINE int SpanRun(DF df, const float* pos, const uint32_t* col, const float* attr, const float* attr2, int k,
                        int end, int d, int n_out, RowOut out, const Before& before) {
-    const hn::RebindToSigned<DF> di;
     const int N = int(hn::Lanes(df));
     for (;;) {
         const int b0 = d < 0 ? k : k - N + 1;  // the lanes' later samples (b0 + i), their earlier ones b0 + i + d
@@ -543,11 +542,7 @@ HWY_INLINE int SpanRun(DF df, const float* pos, const uint32_t* col, const float
         const auto pa = hn::LoadU(df, pos + b0 + d), pb = hn::LoadU(df, pos + b0);
         const auto usual = d < 0 ? hn::Ge(pb, pa) : hn::Le(pb, pa);
         if (!hn::AllTrue(df, hn::And(usual, hn::And(hn::IsFinite(pa), hn::IsFinite(pb))))) return k;
-        const auto da = attr2 ? hn::LoadU(df, attr2 + b0 + d) : hn::Zero(df);
-        const auto db = attr2 ? hn::LoadU(df, attr2 + b0) : hn::Zero(df);
-        SpanLanes(df, di, hn::Ne(pb, pa), pa, pb, hn::LoadU(di, reinterpret_cast<const int32_t*>(col + b0 + d)),
-                  hn::LoadU(di, reinterpret_cast<const int32_t*>(col + b0)), hn::LoadU(df, attr + b0 + d),
-                  hn::LoadU(df, attr + b0), da, db, d < 0, out, before, 0, n_out - 1);
+        DrawGroup(df, pos, col, attr, attr2, b0 + d, b0, N, d < 0, d < 0, out, before, 0, n_out - 1);
         k -= d * N;
     }
 }
@@ -557,8 +552,8 @@ HWY_INLINE int SpanRun(DF df, const float* pos, const uint32_t* col, const float
 // centre: neighbouring positions exactly 1 apart, sample s on a centre. Span s then writes the one pixel pos[s] - 0.5
 // with t = 1 exactly (raster_span: (pb - pa) * (1 / (pb - pa))), that is sample s's colour (lerp8 at t = 1) and
 // attribute (attr_lerp: a * 0 + b), and consecutive such spans write consecutive pixels: copied at memory speed. Zero
-// displacement gives such runs (the paper, section 5: skipping the transformation of still texels; the AVX-512
-// kernels' `ident` runs). Copies the spans that lead in processing order (from lane 0 up in
+// displacement gives such runs (the paper, section 5: skipping the transformation of still texels; the hand-written
+// AVX-512 kernels' `ident` runs). Copies the spans that lead in processing order (from lane 0 up in
 // the left part, from lane N - 1 down in the right part) when all N are such spans or, on targets with a masked store,
 // at least kMinGroup of them (the bricks of a wall end inside a vector), every pixel inside the line; returns how many
 // (0: nothing written).
