@@ -529,9 +529,11 @@ HWY_INLINE void DrawGroup(DF df, const float* pos, const uint32_t* col, const fl
 
 // Whole vectors of spans after a group of them, while every lane goes the part's usual way (a smooth row, where
 // positions increase along the row: the left part's spans k - 1 -> k going up, the right part's k + 1 -> k going
-// down), without finding a prefix: DrawGroup of each such vector (all of it, no lane skipped or reversed), from
-// sample k (d = -1: the left part, lanes k .. k + N - 1 while they end before `end` = the split; d =
-// +1: the right part, lanes k - N + 1 .. k while they start at or after `end` = the split). Returns the next k.
+// down), without the loop's other tests: DrawGroup of each vector GroupPrefix finds whole that way (all of it, no lane
+// skipped or reversed), from sample k (d = -1: the left part, lanes k .. k + N - 1 while they end before `end` = the
+// split; d = +1: the right part, lanes k - N + 1 .. k while they start at or after `end` = the split). Returns the next
+// k; the loop takes the vector that stopped the run (a vector of equal positions, which GroupPrefix calls up, too: it
+// draws nothing either way).
 template <class DF, class Before>
 HWY_INLINE int SpanRun(DF df, const float* pos, const uint32_t* col, const float* attr, const float* attr2, int k,
                        int end, int d, int n_out, RowOut out, const Before& before) {
@@ -539,9 +541,8 @@ HWY_INLINE int SpanRun(DF df, const float* pos, const uint32_t* col, const float
     for (;;) {
         const int b0 = d < 0 ? k : k - N + 1;  // the lanes' later samples (b0 + i), their earlier ones b0 + i + d
         if (d < 0 ? k + N > end : b0 < end) return k;
-        const auto pa = hn::LoadU(df, pos + b0 + d), pb = hn::LoadU(df, pos + b0);
-        const auto usual = d < 0 ? hn::Ge(pb, pa) : hn::Le(pb, pa);
-        if (!hn::AllTrue(df, hn::And(usual, hn::And(hn::IsFinite(pa), hn::IsFinite(pb))))) return k;
+        bool up;
+        if (GroupPrefix(df, pos + b0 + d, pos + b0, d < 0, up) != N || up != (d < 0)) return k;
         DrawGroup(df, pos, col, attr, attr2, b0 + d, b0, N, d < 0, d < 0, out, before, 0, n_out - 1);
         k -= d * N;
     }
