@@ -8,6 +8,7 @@
 #include <hwy/highway.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 
@@ -26,14 +27,15 @@ namespace rtm::simd::HWY_NAMESPACE {
 // marks breaking spans in WarpRow (the backward order needs one connected path of samples). With a discontinuity
 // threshold the row also carries each texel's displacement (the reference's RowAttr::d) as a second attribute,
 // interpolated with the same parameter as v, into band rows job.d_offset floats after the v rows.
-void HorizontalSteps(const fast::TwoPassJob& job, int s0, int s1, uint32_t* band_c, float* band_v, size_t stride,
-                     float* scratch) {
+uint32_t HorizontalSteps(const fast::TwoPassJob& job, int s0, int s1, uint32_t* band_c, float* band_v, size_t stride,
+                         float* scratch) {
     const ReliefTexture& t = *job.relief;
     const int w = t.width, ow = job.out->width;
     const bool with_d = job.threshold > 0.0f;
     const RowScratch s{scratch, scratch + w, reinterpret_cast<uint32_t*>(scratch + 2 * size_t(w)),
                        with_d ? scratch + 3 * size_t(w) : nullptr};
     long long dropped = 0;
+    uint32_t still_rows = 0;
     for (int st = s0; st < s1; ++st) {
         const int r = fast::step_row(job, st);
         if (st + 1 < t.height) prefetch_relief_row(t, fast::step_row(job, st + 1));
@@ -44,6 +46,7 @@ void HorizontalSteps(const fast::TwoPassJob& job, int s0, int s1, uint32_t* band
         uint32_t* rc = band_c + size_t(st - s0) * stride;
         float* rv = band_v + size_t(st - s0) * stride;
         RowOut out{rc, rv, job.copy_still && prep.still};
+        still_rows |= uint32_t(out.copy) << (st - s0);
         if (with_d) out.attr2 = rv + job.d_offset;
         std::memset(rc, 0, size_t(ow) * 4);
         // Rows that fold over: backwards, each pixel drawn once (WarpRowBackward). Bumps never folds over.
@@ -58,6 +61,7 @@ void HorizontalSteps(const fast::TwoPassJob& job, int s0, int s1, uint32_t* band
         if (!backward) WarpRow(s.pos, s.color, s.v, s.d, w, job.split_u, ow, out, NoRange{}, marks);
     }
     if (dropped) *job.dropped += dropped;
+    return still_rows;
 }
 
 // The vertical pass over steps [s0, s1) for columns [x0, x1) (see hwy_two_pass.h's VerticalStepsFn).
@@ -104,13 +108,14 @@ void VerticalSteps(const fast::TwoPassJob& job, int s0, int s1, const uint32_t* 
 }
 
 // The still-step test (hwy_two_pass.h, StillStepsFn), a vector of columns at a time.
-uint32_t StillSteps(const fast::TwoPassJob& job, int s0, int s1, const uint32_t* band_c, const float* band_v,
-                    size_t stride, int gx0, int width) {
+uint32_t StillSteps(const fast::TwoPassJob& job, int s0, int s1, uint32_t steps, const uint32_t* band_c,
+                    const float* band_v, size_t stride, int gx0, int width) {
     const hn::ScalableTag<float> df;
     const hn::RebindToSigned<decltype(df)> di;
     const int N = int(hn::Lanes(df));
     uint32_t bits = 0;
-    for (int st = s0; st < s1; ++st) {
+    for (uint32_t left = steps & (s1 - s0 < 32 ? (1u << (s1 - s0)) - 1u : ~0u); left; left &= left - 1) {
+        const int st = s0 + std::countr_zero(left);
         const auto centre = hn::Set(df, float(fast::step_line(job, st)) + 0.5f);
         const float* v = band_v + size_t(st - s0) * stride + gx0;
         const int32_t* c = reinterpret_cast<const int32_t*>(band_c + size_t(st - s0) * stride + gx0);

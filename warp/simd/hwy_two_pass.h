@@ -40,14 +40,17 @@ namespace rtm::simd {
 
 // The horizontal pass of steps [s0, s1) into one band; `scratch` holds 3 * source width floats (4 with a
 // discontinuity threshold, TwoPassJob::threshold) that no other call uses at the same time (one per band slot: the
-// kernels then allocate nothing, whichever thread runs them).
-using HorizontalStepsFn = void (*)(const fast::TwoPassJob&, int, int, uint32_t*, float*, size_t, float* scratch);
+// kernels then allocate nothing, whichever thread runs them). Returns the steps whose rows may hold still pixels (bit
+// i: step s0 + i's row has a texel at zero displacement and TwoPassJob::copy_still is on), the only ones the
+// vertical pass tests for still steps.
+using HorizontalStepsFn = uint32_t (*)(const fast::TwoPassJob&, int, int, uint32_t*, float*, size_t, float* scratch);
 using VerticalStepsFn = void (*)(const fast::TwoPassJob&, int, int, const uint32_t*, const float*, size_t, int, int);
 // The still-step test of the vertical pass (warp/simd/schedule.cpp, vertical_with_still): bit i set where step
-// s0 + i holds in every column of [gx0, gx0 + width) (width <= 16) a written pixel (alpha 255) on the centre of its
-// own output line (v == fast::step_line + 0.5). Band rows are read a whole vector past gx0 + width.
-using StillStepsFn = uint32_t (*)(const fast::TwoPassJob&, int s0, int s1, const uint32_t* band_c, const float* band_v,
-                                  size_t stride, int gx0, int width);
+// s0 + i is one of `steps` (bit i likewise) and holds in every column of [gx0, gx0 + width) (width <= 16) a written
+// pixel (alpha 255) on the centre of its own output line (v == fast::step_line + 0.5). Band rows are read a whole
+// vector past gx0 + width.
+using StillStepsFn = uint32_t (*)(const fast::TwoPassJob&, int s0, int s1, uint32_t steps, const uint32_t* band_c,
+                                  const float* band_v, size_t stride, int gx0, int width);
 
 struct TwoPassKernels {
     HorizontalStepsFn horizontal = nullptr;

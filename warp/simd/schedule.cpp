@@ -186,14 +186,15 @@ struct StillColumns {
     uint8_t* group_still = nullptr;
 };
 
-// Bit i: step s0 + i holds in every column of [gx0, gx0 + width) a written pixel on the centre of its own output
+// Bit i: step s0 + i is one of `steps` (bit i likewise) and holds in every column of [gx0, gx0 + width) a written pixel on the centre of its own output
 // line. Alpha 255 is tested (the sign bit: written pixels have it, unwritten ones are 0), stricter than the
 // kernels' "alpha != 0": a pixel this turns down goes to the kernels, exact either way.
 // (The kernels' own test, TwoPassKernels::still, where they have one.)
-uint32_t still_steps(const fast::TwoPassJob& job, int s0, int s1, const uint32_t* band_c, const float* band_v,
-                     size_t stride, int gx0, int width) {
+uint32_t still_steps(const fast::TwoPassJob& job, int s0, int s1, uint32_t steps, const uint32_t* band_c,
+                     const float* band_v, size_t stride, int gx0, int width) {
     uint32_t bits = 0;
     for (int st = s0; st < s1; ++st) {
+        if (!((steps >> (st - s0)) & 1u)) continue;
         const float centre = float(step_line(job, st)) + 0.5f;
         const uint32_t* c = band_c + size_t(st - s0) * stride + gx0;
         const float* v = band_v + size_t(st - s0) * stride + gx0;
@@ -206,12 +207,19 @@ uint32_t still_steps(const fast::TwoPassJob& job, int s0, int s1, const uint32_t
 
 // The vertical pass of steps [s0, s1) (one band, at most 32 steps) for columns [x0, x1), x0 a multiple of 16: the
 // kernels' vertical_steps, with the still steps of each group copied (see above). Neighbouring groups with the same
-// steps to copy (a brick's width) go together: one kernel call per run of steps for all of them.
-void vertical_with_still(const StillColumns& sc, int s0, int s1, const uint32_t* band_c, const float* band_v,
-                         size_t stride, int x0, int x1) {
+// steps to copy (a brick's width) go together: one kernel call per run of steps for all of them. Only the steps of
+// `still_rows` (the horizontal pass's: rows with a texel at zero displacement) are tested: elsewhere a pixel on its
+// own line's centre is rare (the kernels draw it the same), and a band without such rows (a relief or a view without
+// still texels) is the kernels' alone, the test's reads of the band saved.
+void vertical_with_still(const StillColumns& sc, int s0, int s1, uint32_t still_rows, const uint32_t* band_c,
+                         const float* band_v, size_t stride, int x0, int x1) {
     const fast::TwoPassJob& job = *sc.job;
     const simd::TwoPassKernels& k = *sc.kernels;
-    if (!job.copy_still) {
+    if (!job.copy_still || !still_rows) {
+        // No step of this band is copied, and so none of the next band's first step (a group's flag says whether
+        // the last step handed to the vertical pass was still in all its columns).
+        if (job.copy_still)
+            std::fill(sc.group_still + (x0 >> 4), sc.group_still + ((x1 + 15) >> 4), uint8_t(0));
         k.vertical(job, s0, s1, band_c, band_v, stride, x0, x1);
         return;
     }
@@ -239,8 +247,8 @@ void vertical_with_still(const StillColumns& sc, int s0, int s1, const uint32_t*
     uint32_t copy = 0;
     auto group_copy = [&](int g0) {
         const int width = std::min(16, x1 - g0);
-        const uint32_t still = k.still ? k.still(job, s0, s1, band_c, band_v, stride, g0, width)
-                                       : still_steps(job, s0, s1, band_c, band_v, stride, g0, width);
+        const uint32_t still = k.still ? k.still(job, s0, s1, still_rows, band_c, band_v, stride, g0, width)
+                                       : still_steps(job, s0, s1, still_rows, band_c, band_v, stride, g0, width);
         uint8_t& prev = sc.group_still[g0 >> 4];
         const uint32_t c = still & ((still << 1) | prev) & first_bits;
         prev = uint8_t((still >> (s1 - 1 - s0)) & 1u);
@@ -353,8 +361,11 @@ PrewarpStats fast_two_pass(const simd::TwoPassKernels& kernels, const ReliefText
     auto band_c = [&](int slot) { return mc + size_t(4 + slot * band) * stride; };
     auto band_v = [&](int slot) { return mv + size_t(4 + slot * band) * stride; };
     const int bands = (h + band - 1) / band;
+    // Per band slot: the rows of its band that may hold still pixels (HorizontalStepsFn), written by its horizontal
+    // pass, read by its vertical pass (after it, in the pipeline too).
+    uint32_t still_rows[kBandSlots] = {};
     auto horizontal = [&](int b) {
-        kernels.horizontal(job, b * band, std::min(h, (b + 1) * band), band_c(b % slots), band_v(b % slots),
+        still_rows[b % slots] = kernels.horizontal(job, b * band, std::min(h, (b + 1) * band), band_c(b % slots), band_v(b % slots),
                            size_t(stride), mv + (size_t(4 + band * slots) + (b % slots) * scratch_rows) * stride);
     };
     StillColumns still;
@@ -362,8 +373,8 @@ PrewarpStats fast_two_pass(const simd::TwoPassKernels& kernels, const ReliefText
     still.job = &job;
     still.group_still = reinterpret_cast<uint8_t*>(mc + size_t(4 + band * slots) * stride);
     auto vertical = [&](int b, int x0, int x1) {
-        vertical_with_still(still, b * band, std::min(h, (b + 1) * band), band_c(b % slots), band_v(b % slots),
-                            size_t(stride), x0, x1);
+        vertical_with_still(still, b * band, std::min(h, (b + 1) * band), still_rows[b % slots], band_c(b % slots),
+                            band_v(b % slots), size_t(stride), x0, x1);
     };
     if (options.threads == 1 || bands < 2) {
         for (int b = 0; b < bands; ++b) {
