@@ -186,10 +186,10 @@ struct StillColumns {
     uint8_t* group_still = nullptr;
 };
 
-// Bit i: step s0 + i is one of `steps` (bit i likewise) and holds in every column of [gx0, gx0 + width) a written pixel on the centre of its own output
-// line. Alpha 255 is tested (the sign bit: written pixels have it, unwritten ones are 0), stricter than the
-// kernels' "alpha != 0": a pixel this turns down goes to the kernels, exact either way.
-// (The kernels' own test, TwoPassKernels::still, where they have one.)
+// Bit i: step s0 + i is one of `steps` (bit i likewise) and holds in every column of [gx0, gx0 + width) a written pixel
+// on the centre of its own output line. Alpha 255 is tested (the sign bit: written pixels have it, unwritten ones are
+// 0), stricter than the kernels' "alpha != 0": a pixel this turns down goes to the kernels, exact either way. (The
+// kernels' own test, TwoPassKernels::still, where they have one.)
 uint32_t still_steps(const fast::TwoPassJob& job, int s0, int s1, uint32_t steps, const uint32_t* band_c,
                      const float* band_v, size_t stride, int gx0, int width) {
     uint32_t bits = 0;
@@ -218,8 +218,7 @@ void vertical_with_still(const StillColumns& sc, int s0, int s1, uint32_t still_
     if (!job.copy_still || !still_rows) {
         // No step of this band is copied, and so none of the next band's first step (a group's flag says whether
         // the last step handed to the vertical pass was still in all its columns).
-        if (job.copy_still)
-            std::fill(sc.group_still + (x0 >> 4), sc.group_still + ((x1 + 15) >> 4), uint8_t(0));
+        if (job.copy_still) std::fill(sc.group_still + (x0 >> 4), sc.group_still + ((x1 + 15) >> 4), uint8_t(0));
         k.vertical(job, s0, s1, band_c, band_v, stride, x0, x1);
         return;
     }
@@ -365,8 +364,10 @@ PrewarpStats fast_two_pass(const simd::TwoPassKernels& kernels, const ReliefText
     // pass, read by its vertical pass (after it, in the pipeline too).
     uint32_t still_rows[kBandSlots] = {};
     auto horizontal = [&](int b) {
-        still_rows[b % slots] = kernels.horizontal(job, b * band, std::min(h, (b + 1) * band), band_c(b % slots), band_v(b % slots),
-                           size_t(stride), mv + (size_t(4 + band * slots) + (b % slots) * scratch_rows) * stride);
+        still_rows[b % slots] = kernels.horizontal(job, b * band, std::min(h, (b + 1) * band), band_c(b % slots),
+                                                   band_v(b % slots), size_t(stride),
+                                                   mv + (size_t(4 + band * slots) + (b % slots) * scratch_rows) *
+                                                            stride);
     };
     StillColumns still;
     still.kernels = &kernels;
