@@ -129,7 +129,7 @@ void add_bench_command(CLI::App& app) {
     sub->add_option("--methods", a->methods, "Reconstructions, e.g. two-pass,pipelined (default both)");
     sub->add_option("--threads", a->threads, "Thread counts of the fast kernels, e.g. 1,2");
     sub->add_option("--isa", a->isa,
-                    "SIMD targets to measure side by side, e.g. avx512,avx2,sse4,generic (default: "
+                    "SIMD targets to measure side by side, e.g. avx512,avx3,avx2,sse4,generic (default: "
                     "auto, i.e. RTM_ISA or the fastest)");
     sub->add_option("--min-time", a->min_time, "Seconds of repeats per measurement (default 0.25)")
         ->each([a](const std::string&) { a->min_time_given = true; });

@@ -125,7 +125,7 @@ void add_prewarp_command(CLI::App& app) {
     sub->add_option("--repeat", a->repeat, "Run N times after one warm-up, for timing")->capture_default_str();
     sub->add_option("--threads", a->threads, "Threads (0 = all)")->capture_default_str();
     sub->add_option("--isa", a->isa,
-                    "SIMD target: auto, avx512, avx2, sse4, neon, sve or generic (the reference "
+                    "SIMD target: auto, avx512, avx3, avx2, sse4, neon, sve or generic (the reference "
                     "kernels); auto follows RTM_ISA, else the fastest")
         ->capture_default_str();
     sub->add_option("--json", a->json, "Write figures as JSON");

@@ -972,7 +972,7 @@ Passes choose_passes(Isa isa) {
     Passes p;
 #ifdef RTM_ADJACENT_VARIANTS
     const Isa target = resolve_isa(isa);
-    if (target == Isa::avx512 || target == Isa::avx2)
+    if (target == Isa::avx512 || target == Isa::avx3 || target == Isa::avx2)
         p = {row_ranges_avx2, row_pass_avx2, column_pass_avx2};
     else if (target == Isa::sse4)
         p = {row_ranges_sse4, row_pass_sse4, column_pass_sse4};

@@ -13,12 +13,13 @@ namespace rtm {
 
 namespace {
 
-constexpr Isa kAll[] = {Isa::avx512, Isa::avx2, Isa::sse4, Isa::neon, Isa::sve, Isa::generic};
+constexpr Isa kAll[] = {Isa::avx512, Isa::avx3, Isa::avx2, Isa::sse4, Isa::neon, Isa::sve, Isa::generic};
 
 // The Highway targets that stand for `isa` (0 for generic).
 int64_t hwy_bits(Isa isa) {
     switch (isa) {
         case Isa::avx512: return HWY_AVX3_DL;
+        case Isa::avx3: return HWY_AVX3;
         case Isa::avx2: return HWY_AVX2;
         case Isa::sse4: return HWY_SSE4;
         case Isa::neon: return HWY_NEON;
@@ -49,6 +50,7 @@ const char* isa_name(Isa isa) {
     switch (isa) {
         case Isa::automatic: return "auto";
         case Isa::avx512: return "avx512";
+        case Isa::avx3: return "avx3";
         case Isa::avx2: return "avx2";
         case Isa::sse4: return "sse4";
         case Isa::neon: return "neon";

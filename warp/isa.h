@@ -3,7 +3,10 @@
 // support.
 //
 // Targets: the kernels written once over Google Highway (warp/simd/hwy_*) for avx512 (Highway's AVX3_DL target on a
-// CPU with AVX-512 F/BW/DQ/VL/VBMI/VNNI and BMI2), avx2 and sse4 on x86-64, neon and sve on ARM; and generic (the
+// CPU with AVX-512 F/BW/DQ/VL/VBMI/VNNI and BMI2: Ice Lake and later, Zen 4 and later), avx3 (Highway's AVX3 target:
+// AVX-512 F/BW/DQ/VL without VBMI or VNNI, as on Skylake-X and Cascade Lake; the byte-permute table lookups and
+// VNNI colour products of avx512 are gathers and 16-bit products there), avx2 and sse4 on x86-64, neon and sve on
+// ARM; and generic (the
 // reference kernels, warp/reference/, which every other target matches bit for bit). A target covers what its kernels
 // implement (fast_prewarp_covers, warp/simd/schedule.h); a pre-warp it does not cover runs on the reference kernels,
 // and PrewarpStats::isa says which ran.
@@ -16,15 +19,15 @@
 
 namespace rtm {
 
-enum class Isa { automatic, avx512, avx2, sse4, neon, sve, generic };
+enum class Isa { automatic, avx512, avx3, avx2, sse4, neon, sve, generic };
 
-// "avx512", "avx2", "sse4", "neon", "sve", "generic" ("auto" for automatic).
+// "avx512", "avx3", "avx2", "sse4", "neon", "sve", "generic" ("auto" for automatic).
 const char* isa_name(Isa isa);
 
 // The target named `name` (one of isa_name's, "auto" included); false for any other name.
 bool parse_isa(std::string_view name, Isa& isa);
 
-// "avx512, avx2, sse4, neon, sve, generic": the names, for messages.
+// "avx512, avx3, avx2, sse4, neon, sve, generic": the names, for messages.
 std::string isa_names();
 
 // The targets this CPU and this build can run, fastest first, generic last. Honours set_hwy_targets_for_test (the

@@ -281,7 +281,7 @@ TEST(FramePlan, ZeroRunsFireOnlyWithStillTexels) {
     EXPECT_FALSE(zero_runs_fired(stats, 0));
     // The SIMD kernels copy still spans without counting them: every target but generic fires on still texels alone.
     stats.still_copied = 0;
-    for (Isa isa : {Isa::avx512, Isa::avx2, Isa::sse4, Isa::neon, Isa::sve}) {
+    for (Isa isa : {Isa::avx512, Isa::avx3, Isa::avx2, Isa::sse4, Isa::neon, Isa::sve}) {
         stats.isa = isa;
         EXPECT_TRUE(zero_runs_fired(stats, 10)) << isa_name(isa);
         EXPECT_FALSE(zero_runs_fired(stats, 0)) << isa_name(isa);

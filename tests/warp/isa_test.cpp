@@ -35,7 +35,7 @@ protected:
 };
 
 TEST_F(IsaTest, NamesRoundTrip) {
-    for (Isa i : {Isa::automatic, Isa::avx512, Isa::avx2, Isa::sse4, Isa::neon, Isa::sve, Isa::generic}) {
+    for (Isa i : {Isa::automatic, Isa::avx512, Isa::avx3, Isa::avx2, Isa::sse4, Isa::neon, Isa::sve, Isa::generic}) {
         Isa back = Isa::generic;
         ASSERT_TRUE(parse_isa(isa_name(i), back)) << isa_name(i);
         EXPECT_EQ(back, i);
@@ -47,7 +47,8 @@ TEST_F(IsaTest, NamesRoundTrip) {
     EXPECT_FALSE(parse_isa("avx512-hwy",
                            x));  // the Highway AVX-512 target's name while hand-written kernels were avx512
     EXPECT_EQ(x, Isa::sse4);
-    EXPECT_EQ(isa_names(), "avx512, avx2, sse4, neon, sve, generic");
+    EXPECT_FALSE(parse_isa("AVX3", x));
+    EXPECT_EQ(isa_names(), "avx512, avx3, avx2, sse4, neon, sve, generic");
 }
 
 TEST_F(IsaTest, GenericIsAlwaysSupportedAndLast) {
@@ -64,6 +65,7 @@ TEST_F(IsaTest, GenericIsAlwaysSupportedAndLast) {
 #elif defined(__aarch64__)
     EXPECT_FALSE(isa_supported(Isa::avx2));
     EXPECT_FALSE(isa_supported(Isa::avx512));  // not compiled on ARM
+    EXPECT_FALSE(isa_supported(Isa::avx3));
     EXPECT_THROW(resolve_isa(Isa::avx2), std::invalid_argument);
     EXPECT_TRUE(isa_supported(Isa::neon));  // every 64-bit ARM CPU has NEON
 #endif
@@ -73,14 +75,26 @@ TEST_F(IsaTest, ForcedHighwayTargetsRestrictTheChoice) {
 #if defined(__x86_64__)
     if (!isa_supported(Isa::avx2)) GTEST_SKIP() << "no AVX2 on this CPU";
     const bool avx512 = isa_supported(Isa::avx512);
+    const bool avx3 = isa_supported(Isa::avx3);
+    EXPECT_TRUE(!avx512 || avx3);              // AVX3_DL's CPUs have AVX3
     set_hwy_targets_for_test(HWY_SSE4);        // as on a CPU with SSE4 but no AVX2
     EXPECT_FALSE(isa_supported(Isa::avx512));  // a Highway target too (AVX3_DL)
+    EXPECT_FALSE(isa_supported(Isa::avx3));
     EXPECT_FALSE(isa_supported(Isa::avx2));
     EXPECT_TRUE(isa_supported(Isa::sse4));
     EXPECT_EQ(default_isa(), Isa::sse4);
+    if (avx3) {
+        // As on Skylake-X or Cascade Lake: AVX-512 without VBMI/VNNI, the avx3 target first.
+        set_hwy_targets_for_test(HWY_AVX3 | HWY_AVX2 | HWY_SSE4);
+        EXPECT_FALSE(isa_supported(Isa::avx512));
+        EXPECT_TRUE(isa_supported(Isa::avx3));
+        EXPECT_EQ(default_isa(), Isa::avx3);
+        EXPECT_EQ(supported_isas(), (std::vector<Isa>{Isa::avx3, Isa::avx2, Isa::sse4, Isa::generic}));
+    }
     set_hwy_targets_for_test(0);
     EXPECT_TRUE(isa_supported(Isa::avx2));
     EXPECT_EQ(isa_supported(Isa::avx512), avx512);
+    EXPECT_EQ(isa_supported(Isa::avx3), avx3);
 #elif defined(__aarch64__)
     if (!isa_supported(Isa::sve)) GTEST_SKIP() << "no SVE on this CPU";
     set_hwy_targets_for_test(HWY_NEON);  // as on a CPU with NEON but no SVE

@@ -186,6 +186,20 @@ HWY_INLINE hn::Vec512<int32_t> Lerp8Channels16(hn::Vec512<int32_t> ca, hn::Vec51
     const __m512i rg = _mm512_mask_multishift_epi64_epi8(rr, 0x2222222222222222ull, sel, g);
     return hn::Vec512<int32_t>{_mm512_mask_multishift_epi64_epi8(rg, 0xCCCCCCCCCCCCCCCCull, sel, b)};
 }
+#elif HWY_TARGET <= HWY_AVX3
+// AVX-512 without VBMI/VNNI (the avx3 target): the 16-bit products above, per 128-bit block (AVX-512 BW).
+HWY_INLINE hn::Vec512<int32_t> Lerp8Channels16(hn::Vec512<int32_t> ca, hn::Vec512<int32_t> cb, hn::Vec512<int32_t> wt) {
+    const __m512i zero = _mm512_setzero_si512(), w2 = _mm512_add_epi32(wt.raw, wt.raw);
+    const __m512i wlo = _mm512_shuffle_epi8(
+        w2, _mm512_broadcast_i32x4(_mm_load_si128(reinterpret_cast<const __m128i*>(kWeightWords[0]))));
+    const __m512i whi = _mm512_shuffle_epi8(
+        w2, _mm512_broadcast_i32x4(_mm_load_si128(reinterpret_cast<const __m128i*>(kWeightWords[1]))));
+    const __m512i alo = _mm512_unpacklo_epi8(ca.raw, zero), ahi = _mm512_unpackhi_epi8(ca.raw, zero);
+    const __m512i blo = _mm512_unpacklo_epi8(cb.raw, zero), bhi = _mm512_unpackhi_epi8(cb.raw, zero);
+    const __m512i rlo = _mm512_add_epi16(alo, _mm512_mulhrs_epi16(_mm512_sub_epi16(blo, alo), wlo));
+    const __m512i rhi = _mm512_add_epi16(ahi, _mm512_mulhrs_epi16(_mm512_sub_epi16(bhi, ahi), whi));
+    return hn::Vec512<int32_t>{_mm512_or_si512(_mm512_packus_epi16(rlo, rhi), _mm512_set1_epi32(int32_t(0xFF000000u)))};
+}
 #endif
 #endif
 

@@ -551,6 +551,9 @@ PipelinedKernels hwy_pipelined_kernels(Isa isa) {
 #if HWY_TARGETS & HWY_AVX3_DL
         case Isa::avx512: return RTM_HWY_PIPELINED(N_AVX3_DL);
 #endif
+#if HWY_TARGETS & HWY_AVX3
+        case Isa::avx3: return RTM_HWY_PIPELINED(N_AVX3);
+#endif
 #if HWY_TARGETS & HWY_AVX2
         case Isa::avx2: return RTM_HWY_PIPELINED(N_AVX2);
 #endif

@@ -142,6 +142,9 @@ TwoPassKernels hwy_two_pass_kernels(Isa isa) {
 #if HWY_TARGETS & HWY_AVX3_DL
         case Isa::avx512: return {&N_AVX3_DL::HorizontalSteps, &N_AVX3_DL::VerticalSteps, &N_AVX3_DL::StillSteps};
 #endif
+#if HWY_TARGETS & HWY_AVX3
+        case Isa::avx3: return {&N_AVX3::HorizontalSteps, &N_AVX3::VerticalSteps, &N_AVX3::StillSteps};
+#endif
 #if HWY_TARGETS & HWY_AVX2
         case Isa::avx2: return {&N_AVX2::HorizontalSteps, &N_AVX2::VerticalSteps, &N_AVX2::StillSteps};
 #endif
