@@ -1050,6 +1050,18 @@ inline PreparedRow PrepareRow(const ReliefTexture& t, const fast::FastTables& ft
         const __m256 t2 = _mm256_unpacklo_ps(r2, r3), t3 = _mm256_unpackhi_ps(r2, r3);
         const VF k1{_mm256_shuffle_ps(t0, t2, 0x44)}, k2{_mm256_shuffle_ps(t0, t2, 0xEE)};
         const VF rcp{_mm256_shuffle_ps(t1, t3, 0x44)};
+#elif HWY_TARGET == HWY_SSE4 || HWY_TARGET == HWY_NEON
+        // The same with 4 lanes: each texel's (K1, K2, R) as one 16-byte load, and a 4x4 transpose; fewer operations
+        // than three emulated 4-lane gathers (12 single loads and their inserts).
+        HWY_ALIGN int32_t qi[4];
+        hn::Store(q, di, qi);
+        const float* lv = &ft.level[0][0];
+        const VF r0 = hn::Load(df, lv + 4 * qi[0]), r1 = hn::Load(df, lv + 4 * qi[1]);
+        const VF r2 = hn::Load(df, lv + 4 * qi[2]), r3 = hn::Load(df, lv + 4 * qi[3]);
+        const VF t01 = hn::InterleaveLower(df, r0, r1), t23 = hn::InterleaveLower(df, r2, r3);  // K1 K1 K2 K2
+        const VF u01 = hn::InterleaveUpper(df, r0, r1), u23 = hn::InterleaveUpper(df, r2, r3);  // R R - -
+        const VF k1 = hn::ConcatLowerLower(df, t23, t01), k2 = hn::ConcatUpperUpper(df, t23, t01);
+        const VF rcp = hn::ConcatLowerLower(df, u23, u01);
 #else
         const VI q4 = hn::ShiftLeft<2>(q);  // four floats a level
         const VF k1 = hn::GatherIndex(df, &ft.level[0][0], q4), k2 = hn::GatherIndex(df, &ft.level[0][1], q4);
