@@ -4,12 +4,11 @@
 //
 // Targets: the kernels written once over Google Highway (warp/simd/hwy_*) for avx512 (Highway's AVX3_DL target on a
 // CPU with AVX-512 F/BW/DQ/VL/VBMI/VNNI and BMI2: Ice Lake and later, Zen 4 and later), avx3 (Highway's AVX3 target:
-// AVX-512 F/BW/DQ/VL without VBMI or VNNI, as on Skylake-X and Cascade Lake; the byte-permute table lookups and
+// AVX-512 F/BW/DQ/VL lacking VBMI or VNNI, as on Skylake-X and Cascade Lake; the byte-permute table lookups and
 // VNNI colour products of avx512 are gathers and 16-bit products there), avx2 and sse4 on x86-64, neon and sve on
-// ARM; and generic (the
-// reference kernels, warp/reference/, which every other target matches bit for bit). A target covers what its kernels
-// implement (fast_prewarp_covers, warp/simd/schedule.h); a pre-warp it does not cover runs on the reference kernels,
-// and PrewarpStats::isa says which ran.
+// ARM; and generic (the reference kernels, warp/reference/, which every other target matches bit for bit). A target
+// covers what its kernels implement (fast_prewarp_covers, warp/simd/schedule.h); a pre-warp it does not cover runs on
+// the reference kernels, and PrewarpStats::isa says which ran.
 #pragma once
 
 #include <cstdint>

@@ -1,5 +1,5 @@
 // The two-pass pre-warp kernels written once over Google Highway, compiled for every SIMD target of this
-// architecture (x86-64: AVX-512 with VBMI/VNNI, AVX2 and SSE4; ARM: NEON and SVE) and chosen at run time
+// architecture (x86-64: AVX-512 with VBMI/VNNI and without, AVX2, SSE4; ARM: NEON and SVE) and chosen at run time
 // (warp/isa.h). Their job is warp/simd/two_pass_job.h's, their scheduling warp/simd/schedule.cpp's; their output
 // is prewarp()'s two-pass lookup-table path's bit for bit. (They replaced hand-written AVX-512 kernels of the same
 // design: docs/perf-history.md.)
