@@ -135,6 +135,36 @@ struct Compress4Table {
 alignas(16) inline constexpr Compress4Table kCompress4;
 #endif
 
+// Pixels x .. x + count - 1 (count >= 1) of row `out` from the first lanes of col and v (and of d, where the row
+// carries out.attr2): a whole vector where count >= N; else by a masked store instruction where the target has one (no
+// pixel past them touched), otherwise one by one (SSE4's and NEON's BlendedStore stores the whole vector).
+template <class DF, class DI>
+HWY_INLINE void StorePixels(DF df, DI di, const RowOut& out, int x, int count, hn::Vec<DI> col, hn::Vec<DF> v,
+                            hn::Vec<DF> d) {
+    const bool with2 = out.attr2 != nullptr;
+    if (count >= int(hn::Lanes(df))) {
+        hn::StoreU(col, di, reinterpret_cast<int32_t*>(out.c + x));
+        hn::StoreU(v, df, out.v + x);
+        if (with2) hn::StoreU(d, df, out.attr2 + x);
+    } else if (kMaskedStore) {
+        const auto m = hn::FirstN(di, size_t(count));
+        hn::BlendedStore(col, m, di, reinterpret_cast<int32_t*>(out.c + x));
+        hn::BlendedStore(v, hn::RebindMask(df, m), df, out.v + x);
+        if (with2) hn::BlendedStore(d, hn::RebindMask(df, m), df, out.attr2 + x);
+    } else {
+        HWY_ALIGN int32_t tc[HWY_MAX_BYTES / 4] = {};
+        HWY_ALIGN float tv[HWY_MAX_BYTES / 4] = {}, td[HWY_MAX_BYTES / 4] = {};
+        hn::Store(col, di, tc);
+        hn::Store(v, df, tv);
+        hn::Store(d, df, td);
+        for (int i = 0; i < count; ++i) {
+            out.c[x + i] = uint32_t(tc[i]);
+            out.v[x + i] = tv[i];
+            if (with2) out.attr2[x + i] = td[i];
+        }
+    }
+}
+
 // The spans of lanes `span` (pa != pb, from sample a to sample b) into row `out`: each lane's pixels lo .. hi as
 // raster_span computes them (centres in (pa, pb] or [pb, pa), clamped to [0, n_out)), only those in [cl, ch] (the
 // caller's clip range, within [0, n_out); the backward rows draw only the pixels no later span covers), colour by
@@ -370,27 +400,7 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
             const VI col = Lerp8At(df, di, tt, hn::TableLookupLanes(ca, ixi), hn::TableLookupLanes(cb, ixi));
             const VF v = AttrLerp(hn::TableLookupLanes(va, ix), hn::TableLookupLanes(vb, ix), tt, one);
             const VF d = with2 ? AttrLerp(hn::TableLookupLanes(da, ix), hn::TableLookupLanes(db, ix), tt, one) : zero;
-            if (j + N <= len) {
-                hn::StoreU(col, di, reinterpret_cast<int32_t*>(out.c + xa + j));
-                hn::StoreU(v, df, out.v + xa + j);
-                if (with2) hn::StoreU(d, df, out.attr2 + xa + j);
-            } else if (kMaskedStore) {  // a masked store instruction: no pixel past the run is touched
-                const auto m = hn::FirstN(di, size_t(len - j));
-                hn::BlendedStore(col, m, di, reinterpret_cast<int32_t*>(out.c + xa + j));
-                hn::BlendedStore(v, hn::RebindMask(df, m), df, out.v + xa + j);
-                if (with2) hn::BlendedStore(d, hn::RebindMask(df, m), df, out.attr2 + xa + j);
-            } else {  // the last pixels one by one (SSE4's and NEON's BlendedStore store the whole vector)
-                HWY_ALIGN int32_t tc[HWY_MAX_BYTES / 4] = {};
-                HWY_ALIGN float tv[HWY_MAX_BYTES / 4] = {}, td[HWY_MAX_BYTES / 4] = {};
-                hn::Store(col, di, tc);
-                hn::Store(v, df, tv);
-                hn::Store(d, df, td);
-                for (int i = 0; i < len - j; ++i) {
-                    out.c[xa + j + i] = uint32_t(tc[i]);
-                    out.v[xa + j + i] = tv[i];
-                    if (with2) out.attr2[xa + j + i] = td[i];
-                }
-            }
+            StorePixels(df, di, out, xa + j, len - j, col, v, d);
         }
         return;
     }
@@ -425,8 +435,8 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
 // position is NaN where they do not take part. Consecutive spans of one orientation (a sub-run: positions
 // non-decreasing along the row, or non-increasing, which folds over what came before) have disjoint pixels, end to
 // end: up to a vector of them at a time (GroupPrefix: at least kMinGroup) are drawn together (DrawGroup, SpanLanes),
-// at their place in the reference's order; everything else goes sample by sample through the reference's
-// raster_point / raster_span, in the reference's order.
+// at their place in the reference's order; everything else goes sample by sample, in the reference's order, through
+// its raster_point / raster_span (DrawSpan: spans of kWideSpan pixels or more a vector of pixels at a time).
 //
 // With a `range` other than NoRange, range.before(xa, xb) precedes each group of pixels written (one sample's, or
 // one vector of spans'): pixels xa .. xb, every one of them written by the group (its pixels are contiguous: one
@@ -601,8 +611,8 @@ HWY_INLINE int CopyStill(DF df, const float* pos, const uint32_t* col, const flo
     return lead;
 }
 
-// The sample-by-sample paths of the row warps: raster_point, raster_span and raster_span_pixels of samples a and b
-// of one row carrying its attribute attr (and attr2, where not null, as TwoAttrs) into out.
+// The sample-by-sample paths of the row warps: raster_point and raster_span_pixels of samples a and b of one row
+// carrying its attribute attr (and attr2, where not null, as TwoAttrs) into out.
 struct ScalarRow {
     const float* pos;
     const uint32_t* col;
@@ -628,13 +638,6 @@ struct ScalarRow {
         else
             raster_point(pos[k], unpack(col[k]), attr[k], n_out, put1());
     }
-    void span(int a, int b, int n_out) const {
-        if (attr2)
-            raster_span(pos[a], unpack(col[a]), TwoAttrs{attr[a], attr2[a]}, pos[b], unpack(col[b]),
-                        TwoAttrs{attr[b], attr2[b]}, n_out, put2());
-        else
-            raster_span(pos[a], unpack(col[a]), attr[a], pos[b], unpack(col[b]), attr[b], n_out, put1());
-    }
     void span_pixels(int a, int b, int x0, int x1) const {
         if (attr2)
             raster_span_pixels(pos[a], unpack(col[a]), TwoAttrs{attr[a], attr2[a]}, pos[b], unpack(col[b]),
@@ -643,6 +646,43 @@ struct ScalarRow {
             raster_span_pixels(pos[a], unpack(col[a]), attr[a], pos[b], unpack(col[b]), attr[b], x0, x1, put1());
     }
 };
+
+// Spans of at least this many pixels go a vector of pixels at a time (DrawSpan): a brick's edge, stretched by
+// the parallax between its face and the mortar, or a texel magnified by the view.
+constexpr int kWideSpan = 4;
+
+// raster_span_pixels of samples a and b, pixels x0 .. x1, into s.out (DrawSpan: from kWideSpan pixels on) a vector of
+// pixels at a time, with the scalar formula's operations in its order, so the same bits: inv = 1 / (pb - pa), at each
+// centre x + 0.5 (exact: pixel indices are below 2^22) t = clamp((x + 0.5 - pa) * inv, 0, 1), lerp8 (Lerp8At) and
+// attr_lerp. (Not inlined: in the row warps' loops it slowed bumps and ridges, which have few such spans, by 2%.)
+template <class DF>
+HWY_NOINLINE void WideSpan(DF df, const ScalarRow& s, int a, int b, int x0, int x1) {
+    using VF = hn::Vec<DF>;
+    const hn::RebindToSigned<DF> di;
+    const int N = int(hn::Lanes(df));
+    const bool with2 = s.attr2 != nullptr;
+    const VF zero = hn::Zero(df), one = hn::Set(df, 1.0f), half = hn::Set(df, 0.5f);
+    const VF pa = hn::Set(df, s.pos[a]);
+    const VF inv = hn::Set(df, 1.0f / (s.pos[b] - s.pos[a]));
+    const auto ca = hn::Set(di, int32_t(s.col[a])), cb = hn::Set(di, int32_t(s.col[b]));
+    const VF va = hn::Set(df, s.attr[a]), vb = hn::Set(df, s.attr[b]);
+    const VF da = with2 ? hn::Set(df, s.attr2[a]) : zero, db = with2 ? hn::Set(df, s.attr2[b]) : zero;
+    const auto iota = hn::Iota(di, 0);
+    for (int x = x0; x <= x1; x += N) {
+        const VF xc = hn::Add(hn::ConvertTo(df, hn::Add(hn::Set(di, x), iota)), half);
+        VF tt = hn::Mul(hn::Sub(xc, pa), inv);
+        tt = hn::IfThenElse(hn::Lt(tt, zero), zero, hn::IfThenElse(hn::Lt(one, tt), one, tt));  // std::clamp
+        const VF d = with2 ? AttrLerp(da, db, tt, one) : zero;
+        StorePixels(df, di, s.out, x, x1 - x + 1, Lerp8At(df, di, tt, ca, cb), AttrLerp(va, vb, tt, one), d);
+    }
+}
+template <class DF>
+HWY_INLINE void DrawSpan(DF df, const ScalarRow& s, int a, int b, int x0, int x1) {
+    if (x1 - x0 + 1 >= kWideSpan)
+        WideSpan(df, s, a, b, x0, x1);
+    else
+        s.span_pixels(a, b, x0, x1);
+}
 
 // How many of the `count` spans keyed first, first + dir, ... lead before one whose pair the row's marks break
 // (kBreakRight on the pair's left texel, which is the key itself: the left part's span k joins k - 1 and k and is
@@ -671,12 +711,11 @@ void WarpRow(const float* pos, const uint32_t* col, const float* attr, const flo
         if constexpr (kRange) range.before(xa, xb);
     };
     auto span = [&](int a, int b) {
-        if constexpr (kRange) {
-            int xa, xb;
-            SpanPixels(pos[a], pos[b], n_out, xa, xb);
-            if (xa <= xb) before(xa, xb);
-        }
-        scalar.span(a, b, n_out);
+        int xa, xb;
+        SpanPixels(pos[a], pos[b], n_out, xa, xb);
+        if (xa > xb) return;
+        before(xa, xb);
+        DrawSpan(df, scalar, a, b, xa, xb);
     };
     auto ok = [&](int k) { return std::isfinite(pos[k]); };
     // Samples a and b (adjacent) joined: the reference's RowConnected.
@@ -837,7 +876,7 @@ inline bool WarpRowBackward(const float* pos, const uint32_t* col, const float* 
     auto span = [&](int a, int b) -> bool {
         int lo, hi;
         SpanPixels(pos[a], pos[b], n_out, lo, hi);
-        return item(lo, hi, [&](int cl, int ch) { scalar.span_pixels(a, b, cl, ch); });
+        return item(lo, hi, [&](int cl, int ch) { DrawSpan(df, scalar, a, b, cl, ch); });
     };
     auto point = [&](int k) -> bool {
         int lo, hi;
