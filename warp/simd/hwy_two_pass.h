@@ -55,7 +55,7 @@ using StillStepsFn = uint32_t (*)(const fast::TwoPassJob&, int s0, int s1, uint3
 struct TwoPassKernels {
     HorizontalStepsFn horizontal = nullptr;
     VerticalStepsFn vertical = nullptr;
-    StillStepsFn still = nullptr;  // null: the plain C++ test
+    StillStepsFn still = nullptr;
 };
 
 // The Highway kernels compiled for `isa` (avx512, avx2, sse4, neon, sve); null pointers for any other target or one

@@ -186,25 +186,6 @@ struct StillColumns {
     uint8_t* group_still = nullptr;
 };
 
-// Bit i: step s0 + i is one of `steps` (bit i likewise) and holds in every column of [gx0, gx0 + width) a written pixel
-// on the centre of its own output line. Alpha 255 is tested (the sign bit: written pixels have it, unwritten ones are
-// 0), stricter than the kernels' "alpha != 0": a pixel this turns down goes to the kernels, exact either way. (The
-// kernels' own test, TwoPassKernels::still, where they have one.)
-uint32_t still_steps(const fast::TwoPassJob& job, int s0, int s1, uint32_t steps, const uint32_t* band_c,
-                     const float* band_v, size_t stride, int gx0, int width) {
-    uint32_t bits = 0;
-    for (int st = s0; st < s1; ++st) {
-        if (!((steps >> (st - s0)) & 1u)) continue;
-        const float centre = float(step_line(job, st)) + 0.5f;
-        const uint32_t* c = band_c + size_t(st - s0) * stride + gx0;
-        const float* v = band_v + size_t(st - s0) * stride + gx0;
-        int all = 1;
-        for (int x = 0; x < width; ++x) all &= int(int32_t(c[x]) < 0) & int(v[x] == centre);
-        bits |= uint32_t(all) << (st - s0);
-    }
-    return bits;
-}
-
 // The vertical pass of steps [s0, s1) (one band, at most 32 steps) for columns [x0, x1), x0 a multiple of 16: the
 // kernels' vertical_steps, with the still steps of each group copied (see above). Neighbouring groups with the same
 // steps to copy (a brick's width) go together: one kernel call per run of steps for all of them. Only the steps of
@@ -246,8 +227,7 @@ void vertical_with_still(const StillColumns& sc, int s0, int s1, uint32_t still_
     uint32_t copy = 0;
     auto group_copy = [&](int g0) {
         const int width = std::min(16, x1 - g0);
-        const uint32_t still = k.still ? k.still(job, s0, s1, still_rows, band_c, band_v, stride, g0, width)
-                                       : still_steps(job, s0, s1, still_rows, band_c, band_v, stride, g0, width);
+        const uint32_t still = k.still(job, s0, s1, still_rows, band_c, band_v, stride, g0, width);
         uint8_t& prev = sc.group_still[g0 >> 4];
         const uint32_t c = still & ((still << 1) | prev) & first_bits;
         prev = uint8_t((still >> (s1 - 1 - s0)) & 1u);
