@@ -676,6 +676,9 @@ HWY_NOINLINE void WideSpan(DF df, const ScalarRow& s, int a, int b, int x0, int 
         StorePixels(df, di, s.out, x, x1 - x + 1, Lerp8At(df, di, tt, ca, cb), AttrLerp(va, vb, tt, one), d);
     }
 }
+
+// raster_span_pixels of samples a and b, pixels x0 .. x1 (x0 <= x1): WideSpan from kWideSpan pixels on, else the
+// reference's loop.
 template <class DF>
 HWY_INLINE void DrawSpan(DF df, const ScalarRow& s, int a, int b, int x0, int x1) {
     if (x1 - x0 + 1 >= kWideSpan)
