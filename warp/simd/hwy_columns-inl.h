@@ -203,6 +203,14 @@ HWY_INLINE hn::Vec512<int32_t> Lerp8Channels16(hn::Vec512<int32_t> ca, hn::Vec51
 #endif
 #endif
 
+// std::clamp(t, 0, 1) per lane, as raster_span_pixels clamps its t: below 0 gives 0, above 1 gives 1, anything else
+// (NaN included) stays.
+template <class V>
+HWY_INLINE V Clamp01(V tt) {
+    const V zero = hn::Zero(hn::DFromV<V>()), one = hn::Set(hn::DFromV<V>(), 1.0f);
+    return hn::IfThenElse(hn::Lt(tt, zero), zero, hn::IfThenElse(hn::Lt(one, tt), one, tt));
+}
+
 // lerp8 of packed colours ca -> cb at parameters tt in [0, 1] or NaN (per lane): the weight of Lerp8Weight, each
 // channel (a * (2^14 - w) + b * w + 2^13) >> 14, alpha 255.
 template <class DF, class DI>
@@ -236,10 +244,7 @@ HWY_INLINE hn::Vec<hn::RebindToSigned<DF>> SpanColour(DF df, hn::Vec<DF> yc, hn:
     const auto n = TruncateInRange(di, hn::Max(hn::Min(s, hn::Set(df, 8191.0f)), hn::Zero(df)));
     return Lerp8Channels16(pc, c, hn::Add(hn::Add(n, n), hn::Set(di, 1)));
 #else
-    const hn::Vec<DF> zero = hn::Zero(df), one = hn::Set(df, 1.0f);
-    hn::Vec<DF> tt = hn::Mul(hn::Sub(yc, pv), inv);
-    tt = hn::IfThenElse(hn::Lt(tt, zero), zero, hn::IfThenElse(hn::Lt(one, tt), one, tt));  // std::clamp
-    return Lerp8At(df, hn::RebindToSigned<DF>(), tt, pc, c);
+    return Lerp8At(df, hn::RebindToSigned<DF>(), Clamp01(hn::Mul(hn::Sub(yc, pv), inv)), pc, c);
 #endif
 }
 

@@ -395,8 +395,7 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
             own = hn::Min(own, hn::Set(di, lastl));  // the pixels past the run (not stored)
             const auto ix = hn::IndicesFromVec(df, own);
             const auto ixi = hn::IndicesFromVec(di, own);
-            VF tt = hn::Mul(hn::Sub(xc, hn::TableLookupLanes(pa, ix)), hn::TableLookupLanes(inv, ix));
-            tt = hn::IfThenElse(hn::Lt(tt, zero), zero, hn::IfThenElse(hn::Lt(one, tt), one, tt));  // std::clamp
+            const VF tt = Clamp01(hn::Mul(hn::Sub(xc, hn::TableLookupLanes(pa, ix)), hn::TableLookupLanes(inv, ix)));
             const VI col = Lerp8At(df, di, tt, hn::TableLookupLanes(ca, ixi), hn::TableLookupLanes(cb, ixi));
             const VF v = AttrLerp(hn::TableLookupLanes(va, ix), hn::TableLookupLanes(vb, ix), tt, one);
             const VF d = with2 ? AttrLerp(hn::TableLookupLanes(da, ix), hn::TableLookupLanes(db, ix), tt, one) : zero;
@@ -410,8 +409,7 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
     VF xc = hn::Add(hn::ConvertTo(df, xlo), half);
     auto on = todo;
     while (!hn::AllFalse(di, on)) {
-        VF tt = hn::Mul(hn::Sub(xc, pa), inv);
-        tt = hn::IfThenElse(hn::Lt(tt, zero), zero, hn::IfThenElse(hn::Lt(one, tt), one, tt));  // std::clamp
+        const VF tt = Clamp01(hn::Mul(hn::Sub(xc, pa), inv));
         const VI col = Lerp8At(df, di, tt, ca, cb);
         const VF v = AttrLerp(va, vb, tt, one);
         hn::Store(x, di, lane_x);
@@ -670,8 +668,7 @@ HWY_NOINLINE void WideSpan(DF df, const ScalarRow& s, int a, int b, int x0, int 
     const auto iota = hn::Iota(di, 0);
     for (int x = x0; x <= x1; x += N) {
         const VF xc = hn::Add(hn::ConvertTo(df, hn::Add(hn::Set(di, x), iota)), half);
-        VF tt = hn::Mul(hn::Sub(xc, pa), inv);
-        tt = hn::IfThenElse(hn::Lt(tt, zero), zero, hn::IfThenElse(hn::Lt(one, tt), one, tt));  // std::clamp
+        const VF tt = Clamp01(hn::Mul(hn::Sub(xc, pa), inv));
         const VF d = with2 ? AttrLerp(da, db, tt, one) : zero;
         StorePixels(df, di, s.out, x, x1 - x + 1, Lerp8At(df, di, tt, ca, cb), AttrLerp(va, vb, tt, one), d);
     }
