@@ -277,17 +277,21 @@ struct Coalescer {
     const E& emit;
     mutable int pa = 0, pb = -1;  // the pending run (pa > pb: none)
 
-    void before(int xa, int xb) const {
-        if (pa > pb) {
-            pa = xa, pb = xb;
-        } else if (xb == pa - 1) {
+    // Inlined into the row warp's loops: most groups extend the pending run (a call each cost bricks 1024^2 pipelined
+    // 7% of its time in the function's entry and exit alone, avx512).
+    HWY_INLINE void before(int xa, int xb) const {
+        if (xb == pa - 1 && pa <= pb) {
             pa = xa;
-        } else if (xa == pb + 1) {
+        } else if (xa == pb + 1 && pa <= pb) {
             pb = xb;
         } else {
-            emit(pa, pb);
-            pa = xa, pb = xb;
+            restart(xa, xb);
         }
+    }
+    // Hands the pending run (if any) to the emitter and starts one with xa .. xb.
+    HWY_NOINLINE void restart(int xa, int xb) const {
+        if (pa <= pb) emit(pa, pb);
+        pa = xa, pb = xb;
     }
     void done() const {
         if (pa <= pb) emit(pa, pb);
