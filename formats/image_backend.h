@@ -1,5 +1,6 @@
-// The image backend: what reads and writes image files, behind formats/image_io.h. One implementation,
-// formats/image_io_oiio.cpp over OpenImageIO, built as the module librtm_imageio.so.
+// The image backend: what reads and writes image files, behind formats/image_io.h, but for the usual PNG files
+// (formats/png_io.h). One implementation, formats/image_io_oiio.cpp over OpenImageIO, built as the module
+// librtm_imageio.so.
 //
 // Why a module: Debian's OpenImageIO brings about 260 shared libraries (OpenCV, FFmpeg, GDAL, ...), and loading them
 // costs a process about 0.35 s at start (an empty program linked with OpenImageIO, on a Zen 5 guest; rtm --help took

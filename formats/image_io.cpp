@@ -1,6 +1,7 @@
-// Image files: formats/image_io.h's functions, forwarded to the image backend (formats/image_backend.h). The backend
-// is the program's own copy of image_io_oiio.cpp if it links one, else the module librtm_imageio.so, loaded on the
-// first call (not at start: see image_backend.h for the cost that avoids).
+// Image files: formats/image_io.h's functions. The usual PNG files go through libpng here (formats/png_io.h); the
+// others are forwarded to the image backend (formats/image_backend.h), the program's own copy of image_io_oiio.cpp if
+// it links one, else the module librtm_imageio.so, loaded on the first such call (not at start: see image_backend.h
+// for the cost that avoids).
 #include "formats/image_io.h"
 
 #include <dlfcn.h>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "formats/image_backend.h"
+#include "formats/png_io.h"
 
 // Weak: null unless the program links image_io_oiio.cpp itself (and then taken from an archive only when the program
 // asks for it, as formats/CMakeLists.txt says).
@@ -81,12 +83,23 @@ const ImageBackend& backend(const std::string& path) {
 void set_quiet_image_library_stderr(bool on) { g_quiet_stderr = on; }
 bool quiet_image_library_stderr() { return g_quiet_stderr.load(); }
 
-ImageRGBA8 read_rgba8(const std::string& path) { return backend(path).read_rgba8(path, g_quiet_stderr.load()); }
-ImageF read_gray(const std::string& path) { return backend(path).read_gray(path, g_quiet_stderr.load()); }
+// PNG files of the usual kinds through libpng (formats/png_io.h), everything else through the backend.
+ImageRGBA8 read_rgba8(const std::string& path) {
+    ImageRGBA8 img;
+    if (png::read_rgba8(path, img)) return img;
+    return backend(path).read_rgba8(path, g_quiet_stderr.load());
+}
+ImageF read_gray(const std::string& path) {
+    ImageF img;
+    if (png::read_gray(path, img)) return img;
+    return backend(path).read_gray(path, g_quiet_stderr.load());
+}
 void write_rgba8(const std::string& path, const ImageRGBA8& img) {
+    if (png::writes(path)) return png::write_rgba8(path, img);
     backend(path).write_rgba8(path, img, g_quiet_stderr.load());
 }
 void write_gray(const std::string& path, const ImageF& img) {
+    if (png::writes(path)) return png::write_gray(path, img);
     backend(path).write_gray(path, img, g_quiet_stderr.load());
 }
 

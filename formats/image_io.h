@@ -1,4 +1,5 @@
-// Image files through OpenImageIO (formats/image_backend.h: loaded on first use). Errors throw rtm::IoError whose
+// Image files: the usual PNG files through libpng (formats/png_io.h), every other image through OpenImageIO
+// (formats/image_backend.h: loaded on first use), with the same pixels either way. Errors throw rtm::IoError whose
 // message names the file and what is wrong.
 #pragma once
 

@@ -86,6 +86,10 @@ if ldd "$RTM" | grep -q OpenImageIO; then
   fails=$((fails + 1))
 fi
 RTM_IMAGEIO_MODULE=$T/no_module.so expect_ok --version
+# PNG files of the usual kinds need no module (formats/png_io.h): a relief of PNG images pre-warped to a PNG.
+RTM_IMAGEIO_MODULE=$T/no_module.so expect_ok prewarp --relief "$SRC/media/bumps.relief.json" --eye 0.5,0.5,3 \
+  --out "$T/o_png.png"
+[ -s "$T/o_png.png" ] || { echo "FAIL: o_png.png not written without the image module"; fails=$((fails + 1)); }
 RTM_IMAGEIO_MODULE=$T/no_module.so expect_fail 1 'c\.ppm: cannot load the image module \(.*no_module\.so' -- \
   prewarp --relief "$R" --eye 0.5,0.5,3 --out "$T/o_mod.png"
 [ -e "$T/o_mod.png" ] && { echo "FAIL: o_mod.png written without an image module"; fails=$((fails + 1)); }

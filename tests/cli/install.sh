@@ -29,10 +29,10 @@ for f in bin/rtm bin/rtm-make-media "$LIB"/rtm/librtm_imageio.so "$LIB"/librtm_w
   check "installed $f" test -f "$PREFIX/$f"
 done
 check "installed rtm --version" grep -qx "rtm $version" <("$PREFIX/bin/rtm" --version)
-# The installed rtm reads and writes images through its image module in $PREFIX/$LIB/rtm, not the build tree's
-# (formats/image_backend.h; the dynamic loader's log names the file it loaded).
+# The installed rtm reads and writes images other than PNG through its image module in $PREFIX/$LIB/rtm, not the
+# build tree's (formats/image_backend.h; the dynamic loader's log names the file it loaded): a TIFF output here.
 check "installed rtm reads and writes images" env LD_DEBUG=files LD_DEBUG_OUTPUT="$T/ld" "$PREFIX/bin/rtm" prewarp \
-  --relief "$SRC/media/bumps.relief.json" --eye 0.3,0.4,1.5 --out "$T/installed.png"
+  --relief "$SRC/media/bumps.relief.json" --eye 0.3,0.4,1.5 --out "$T/installed.tif"
 check "installed rtm loads $PREFIX/$LIB/rtm/librtm_imageio.so" grep -q "file=$PREFIX/$LIB/rtm/librtm_imageio.so" \
   "$T"/ld.*
 

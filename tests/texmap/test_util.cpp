@@ -142,6 +142,8 @@ std::string encode_png(int width, int height, int channels, int bit_depth, const
            chunk("IEND", "");
 }
 
+std::string png_chunk(const std::string& type, const std::string& data) { return chunk(type, data); }
+
 std::string png_claiming_size(uint32_t width, uint32_t height) {
     // A few bytes of a zlib stream, so a reader gets past the header into the (absent) pixel data.
     std::string z("\x78\x01\x00\x00\x80\xff\x7f", 7);

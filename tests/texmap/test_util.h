@@ -33,6 +33,8 @@ std::string read_bytes(const std::string& path);
 // `samples` holds width*height*channels values, row 0 first (the top row), each < 2^bit_depth.
 // colour type from channels: 1 grey, 2 grey+alpha, 3 RGB, 4 RGBA; bit_depth 8 or 16.
 std::string encode_png(int width, int height, int channels, int bit_depth, const std::vector<uint16_t>& samples);
+// One PNG chunk: length, type, data and CRC.
+std::string png_chunk(const std::string& type, const std::string& data);
 // A PNG whose header claims width x height (RGBA8) followed by the start of an IDAT chunk and nothing else.
 std::string png_claiming_size(uint32_t width, uint32_t height);
 
