@@ -170,13 +170,9 @@ void write_png(const std::string& path, int width, int height, int bit_depth, in
         if (!w.png || !w.info) throw_io_error(path, "cannot write: libpng could not start (out of memory?)");
         if (!WriteRows(w, width, height, bit_depth, color_type, row.data(), get))
             throw_io_error(path, "cannot write: " + libpng_message(w.error));
+        // A short write already failed above (libpng's writer checks each fwrite); fclose reports the last flush.
         std::FILE* f = w.file;
         w.file = nullptr;
-        if (std::fflush(f) != 0 || std::ferror(f)) {
-            const int err = errno;
-            std::fclose(f);
-            throw_io_error(path, std::string("cannot write: ") + std::strerror(err));
-        }
         if (std::fclose(f) != 0) throw_io_error(path, std::string("cannot write: ") + std::strerror(errno));
     }
     atomic.commit();
