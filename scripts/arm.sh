@@ -51,8 +51,9 @@ cmake --build build-arm -j"$(nproc)" --target warp_tests
 unset QEMU_LD_PREFIX
 export RTM_SWEEP_CASES=${RTM_SWEEP_CASES:-200}
 filter=${RTM_ARM_TESTS:-'*FastKernels*:IsaTest.*:FastPrewarpCovers.*-*AllocatesNothing*'}
-# qemu-user runs a program's threads on one host thread: the tests go in GoogleTest shards (GTEST_TOTAL_SHARDS,
-# GTEST_SHARD_INDEX: every shard-th test of the filter), as many processes side by side as the machine has cores.
+# One emulated process keeps about one core busy (most of the tests run on one thread): the tests go in GoogleTest
+# shards (GTEST_TOTAL_SHARDS, GTEST_SHARD_INDEX: every shard-th test of the filter), as many processes side by side
+# as the machine has cores.
 cores=$(nproc)
 # Runs filter $2 under QEMU_CPU=$1 in $3 shards, $cores at a time; prints each shard's output in order and fails if
 # any shard fails.
