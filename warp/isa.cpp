@@ -4,7 +4,12 @@
 
 #include <atomic>
 #include <cstdlib>
+#include <cstring>
 #include <stdexcept>
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <cpuid.h>
+#endif
 
 #include "warp/simd/fast_tables.h"
 #include "warp/simd/hwy_two_pass.h"
@@ -39,6 +44,29 @@ int64_t hwy_supported_targets() {
         g_hwy_targets.store(t, std::memory_order_relaxed);
     }
     return t;
+}
+
+bool avx2_masked_store_slow(std::string_view vendor, unsigned family) {
+    return (vendor == "AuthenticAMD" || vendor == "HygonGenuine") && family <= 0x19;
+}
+
+bool avx2_masked_store_slow() {
+    static const bool slow = [] {
+#if defined(__x86_64__) || defined(__i386__)
+        unsigned a = 0, b = 0, c = 0, d = 0;
+        if (!__get_cpuid(0, &a, &b, &c, &d)) return false;
+        char vendor[12];
+        std::memcpy(vendor, &b, 4);
+        std::memcpy(vendor + 4, &d, 4);
+        std::memcpy(vendor + 8, &c, 4);
+        if (!__get_cpuid(1, &a, &b, &c, &d)) return false;
+        const unsigned base = (a >> 8) & 0xF, family = base == 0xF ? base + ((a >> 20) & 0xFF) : base;
+        return avx2_masked_store_slow(std::string_view(vendor, 12), family);
+#else
+        return false;
+#endif
+    }();
+    return slow;
 }
 
 void set_hwy_targets_for_test(int64_t targets) {

@@ -42,6 +42,15 @@ Isa default_isa();
 // build cannot run it.
 Isa resolve_isa(Isa isa);
 
+// Whether AVX2's masked store (vpmaskmovd, vmaskmovps to memory) is slow on this CPU: AMD's and Hygon's cores up to
+// Zen 4 (CPUID family 0x19 and below) run it as 42 micro-ops that hold the store pipe for 12 cycles (uops.info's
+// measurements; LLVM's znver3 and znver4 scheduling models), where Intel's cores and Zen 5 store in about a cycle.
+// The avx2 kernels then load, blend and store whole vectors they own instead (warp/simd/hwy_columns-inl.h,
+// StoreOwned). From CPUID's vendor and family, detected once; false on other architectures.
+bool avx2_masked_store_slow();
+// The rule itself: `vendor` CPUID's 12-character vendor string, `family` the display family (base plus extended).
+bool avx2_masked_store_slow(std::string_view vendor, unsigned family);
+
 // hwy::SupportedTargets(), detected once: Highway 1.0.3 runs CPUID on every call unless a test set the targets, 5.6
 // us a call in a virtual machine (where CPUID traps), and every pre-warp asks (2% of a 256^2 one, more of smaller).
 int64_t hwy_supported_targets();

@@ -759,6 +759,32 @@ void random_cases_with_policies(Isa isa, Reconstruction method, const NamedPolic
     }
 }
 
+// The avx2 kernels' two ways of storing some lanes of a vector they own (FastKernelPolicy::avx2_blend_stores: a load,
+// blend and store, or AVX2's masked store; this CPU's automatic choice runs in every other test), each with the
+// reconstructions' own policies: the same output to the bit.
+FastKernelPolicy blend_policy(bool blend, FastKernelPolicy p) {
+    p.avx2_blend_stores = blend ? KernelChoice::always : KernelChoice::never;
+    return p;
+}
+const NamedPolicy kBlendPipelined[] = {
+    {"blend stores, reverse mode always", blend_policy(true, pipelined_policy(KernelChoice::always))},
+    {"blend stores, reverse mode never", blend_policy(true, pipelined_policy(KernelChoice::never))},
+    {"blend stores, row chunks always",
+     blend_policy(true, pipelined_policy(KernelChoice::automatic, KernelChoice::always))},
+    {"masked stores, reverse mode always", blend_policy(false, pipelined_policy(KernelChoice::always))},
+    {"masked stores, reverse mode never", blend_policy(false, pipelined_policy(KernelChoice::never))}};
+const NamedPolicy kBlendTwoPass[] = {
+    {"blend stores, backward rows always", blend_policy(true, two_pass_policy(KernelChoice::always))},
+    {"blend stores, backward rows never", blend_policy(true, two_pass_policy(KernelChoice::never))},
+    {"masked stores, backward rows always", blend_policy(false, two_pass_policy(KernelChoice::always))},
+    {"masked stores, backward rows never", blend_policy(false, two_pass_policy(KernelChoice::never))}};
+
+TEST(Avx2Stores, BlendedAndMaskedMatchTheReference) {
+    if (!isa_supported(Isa::avx2)) GTEST_SKIP() << "no AVX2 on this CPU";
+    random_cases_with_policies(Isa::avx2, Reconstruction::pipelined, kBlendPipelined, policy_cases(1500), 80021);
+    random_cases_with_policies(Isa::avx2, Reconstruction::two_pass, kBlendTwoPass, policy_cases(1500), 80022);
+}
+
 TEST_P(PipelinedReverseFastKernels, RandomCasesMatchTheReference) {
     random_cases_with_policies(isa(), Reconstruction::pipelined, kPipelinedReverse, policy_cases(1500), 80011);
 }

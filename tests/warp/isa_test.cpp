@@ -149,5 +149,20 @@ TEST_F(IsaTest, StatsNameTheTargetThatRan) {
     EXPECT_EQ(prewarp(t, k, PrewarpOptions{}, ws, out).isa, Isa::generic);
 }
 
+// AVX2's masked store is microcoded on AMD's and Hygon's cores up to Zen 4 (family 0x19), fast on Intel's and on Zen 5
+// (family 0x1A): the avx2 kernels' choice of stores (warp/isa.h).
+TEST(Avx2MaskedStore, SlowOnAmdAndHygonUpToZen4) {
+    EXPECT_TRUE(avx2_masked_store_slow("AuthenticAMD", 0x15));   // Excavator
+    EXPECT_TRUE(avx2_masked_store_slow("AuthenticAMD", 0x17));   // Zen, Zen 2
+    EXPECT_TRUE(avx2_masked_store_slow("HygonGenuine", 0x18));   // Dhyana (Zen)
+    EXPECT_TRUE(avx2_masked_store_slow("AuthenticAMD", 0x19));   // Zen 3, Zen 4
+    EXPECT_FALSE(avx2_masked_store_slow("AuthenticAMD", 0x1A));  // Zen 5
+    EXPECT_FALSE(avx2_masked_store_slow("GenuineIntel", 6));
+    EXPECT_FALSE(avx2_masked_store_slow("CentaurHauls", 6));
+    EXPECT_FALSE(avx2_masked_store_slow("", 0));
+    // This CPU's answer is the rule's for its vendor and family (and stays the same).
+    EXPECT_EQ(avx2_masked_store_slow(), avx2_masked_store_slow());
+}
+
 }  // namespace
 }  // namespace rtm

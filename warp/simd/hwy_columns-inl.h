@@ -6,13 +6,14 @@
 // Where the pixels go (the structure of the hand-written AVX-512 kernels these replaced, docs/perf-history.md, over
 // Highway 1.0.3, which has no masked scatter):
 // - short spans and points (at most 4 pixels a lane): the first pixel of every lane, then the second of those that
-//   have one, ...; each step writes its lanes with two masked row stores (BlendedStore) when they all lie on the
+//   have one, ...; each step writes its lanes with two masked row stores (StoreOwned) when they all lie on the
 //   first active lane's row or the next (neighbouring columns mostly do), lane by lane otherwise;
 // - long spans (5 pixels or more, common where rows fold over) go row by row over the rows they share, one masked
 //   store a row for all of them; lanes far apart from the others go alone through raster_span_pixels.
 // Masked stores are used only where the whole vector lies in the caller's columns [x0, x1) (`full`): on SSE4 and
-// NEON BlendedStore loads, blends and stores the whole vector, which must not touch another task's columns or run
-// past the end of a row. Elsewhere (the last vector of a task) every pixel is written lane by lane.
+// NEON, and on AVX2 where its masked store is slow, they load, blend and store the whole vector (StoreOwned), which
+// must not touch another task's columns or run past the end of a row. Elsewhere (the last vector of a task) every pixel
+// is written lane by lane.
 #if defined(RTM_WARP_SIMD_HWY_COLUMNS_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef RTM_WARP_SIMD_HWY_COLUMNS_INL_H_
 #undef RTM_WARP_SIMD_HWY_COLUMNS_INL_H_
@@ -38,6 +39,7 @@ namespace hn = hwy::HWY_NAMESPACE;
 struct ColumnTarget {
     uint32_t* pixels;
     int ow, oh, y0, y1;
+    bool blend = false;  // StoreOwned's load, blend and store on AVX2 (the job's blend_stores)
     uint32_t* vline(int y) const { return pixels + size_t(oh - 1 - y) * size_t(ow); }
 };
 
@@ -262,13 +264,32 @@ HWY_INLINE void StoreLanes(DI di, const ColumnTarget& o, int x, MI on, hn::Vec<D
 
 // Writes the lanes `act` of col to pixels (x + lane, v-row y[lane]): two masked row stores when every lane is on the
 // first active lane's row or the next (and the vector is `full`), else lane by lane.
-// Targets whose BlendedStore is a masked store instruction (AVX2, AVX-512, SVE); elsewhere it loads, blends and
-// stores the whole vector, which costs more than the lanes one by one.
+// Targets where storing some lanes of a whole vector pays: a masked store instruction (AVX2, AVX-512, SVE; on AVX2 8
+// lanes loaded, blended and stored where that instruction is slow, StoreOwned); with 4 lanes (SSE4, NEON), whose
+// masked store is a load, blend and store, that costs more than the lanes one by one.
 #if HWY_TARGET == HWY_SSE4 || HWY_TARGET == HWY_NEON
 constexpr bool kMaskedStore = false;
 #else
 constexpr bool kMaskedStore = true;
 #endif
+
+// Stores the lanes m of v at p, whose whole vector [p, p + N) is the caller's (no other thread writes it meanwhile, and
+// it lies inside its array). On AVX2 with `blend` (where its masked store is slow: avx2_masked_store_slow, warp/isa.h,
+// 12 cycles of the store pipe on Zen 2 to Zen 4) a load, blend and store of the whole vector. Else BlendedStore: AVX2's
+// masked store (about a plain store's cost on Intel's cores and Zen 5, and cheaper there than a load, blend and store,
+// whose store waits for the load: docs/perf-history.md, "AVX2's masked stores"), AVX-512's and SVE's masked stores,
+// SSE4's and NEON's load, blend and store.
+template <class D, class M, typename T>
+HWY_INLINE void StoreOwned(hn::Vec<D> v, M m, D d, T* p, bool blend) {
+#if HWY_TARGET == HWY_AVX2
+    if (blend) {
+        hn::StoreU(hn::IfThenElse(m, v, hn::LoadU(d, p)), d, p);
+        return;
+    }
+#endif
+    (void)blend;
+    hn::BlendedStore(v, m, d, p);
+}
 
 template <class DI, class MI>
 HWY_INLINE void StoreRows(DI di, const ColumnTarget& o, int x, bool full, MI act, hn::Vec<DI> y, hn::Vec<DI> col) {
@@ -281,8 +302,8 @@ HWY_INLINE void StoreRows(DI di, const ColumnTarget& o, int x, bool full, MI act
         const auto next = hn::And(act, hn::Eq(d, hn::Set(di, 1)));
         if (hn::AllFalse(di, hn::AndNot(hn::Or(same, next), act))) {
             int32_t* row = reinterpret_cast<int32_t*>(o.vline(yf) + x);
-            hn::BlendedStore(col, same, di, row);
-            if (!hn::AllFalse(di, next)) hn::BlendedStore(col, next, di, row - o.ow);
+            StoreOwned(col, same, di, row, o.blend);
+            if (!hn::AllFalse(di, next)) StoreOwned(col, next, di, row - o.ow, o.blend);
             return;
         }
     }
@@ -370,7 +391,7 @@ HWY_NOINLINE void ColumnLongSpans(DF df, const ColumnTarget& o, int x, MI lng, h
     hn::Vec<DF> yc = hn::Set(df, float(ymin) + 0.5f);  // steps by 1 exactly
     for (int yy = ymin; yy <= ymax; ++yy) {
         const auto act = hn::And(rowwise, hn::And(hn::Lt(ylo, hn::Set(di, yy + 1)), hn::Gt(yhi, hn::Set(di, yy - 1))));
-        hn::BlendedStore(SpanColour(df, yc, pv, inv, pc, c), act, di, reinterpret_cast<int32_t*>(o.vline(yy) + x));
+        StoreOwned(SpanColour(df, yc, pv, inv, pc, c), act, di, reinterpret_cast<int32_t*>(o.vline(yy) + x), o.blend);
         yc = hn::Add(yc, hn::Set(df, 1.0f));
     }
 }
@@ -584,7 +605,7 @@ HWY_INLINE void ColumnDrawRev(DF df, const ColumnTarget& o, const ColumnsWritten
             if (hn::AllFalse(di, inside))
                 hn::StoreU(cy, di, row);
             else if (!hn::AllTrue(di, inside))
-                hn::BlendedStore(cy, hn::Not(inside), di, row);  // `full`: the whole vector is the caller's
+                StoreOwned(cy, hn::Not(inside), di, row, o.blend);  // `full`: the whole vector is the caller's
             return;
         }
     }
@@ -603,9 +624,9 @@ HWY_INLINE void ColumnDrawRev(DF df, const ColumnTarget& o, const ColumnsWritten
     const auto go = hn::And(outside, hn::AndNot(fb, todo));
     const auto inv = hn::Div(hn::Set(df, 1.0f), hn::Sub(v, pv));
     if (!hn::AllFalse(di, go)) {
-        // cw.lo / hi are the task's own, padded: a whole-vector store (SSE4, NEON) touches no one else's.
-        hn::BlendedStore(hn::IfThenElse(emp, ylo, hn::Min(ylo, clo)), go, di, cw.lo + x);
-        hn::BlendedStore(hn::IfThenElse(emp, yhi, hn::Max(yhi, chi)), go, di, cw.hi + x);
+        // cw.lo / hi are the task's own, padded: a whole-vector store (StoreOwned) touches no one else's.
+        StoreOwned(hn::IfThenElse(emp, ylo, hn::Min(ylo, clo)), go, di, cw.lo + x, o.blend);
+        StoreOwned(hn::IfThenElse(emp, yhi, hn::Max(yhi, chi)), go, di, cw.hi + x, o.blend);
         // Below the interval (everything where the column has none), above it, or both.
         const auto low = hn::And(go, hn::Or(emp, hn::Lt(ylo, clo)));
         const auto high = hn::And(go, hn::AndNot(emp, hn::Gt(yhi, chi)));

@@ -55,9 +55,9 @@ struct PipeBuffers {
 PipeBuffers task_buffers(const fast::PipelinedJob& job) {
     const int w = job.relief->width, ow = job.out->width;
     std::vector<float>& v = (*job.task_buffers)[size_t(job.next_task->fetch_add(1))];
-    // Arrays are read and written (BlendedStore: on SSE4 and NEON a whole vector) up to a whole vector past the
-    // output width: 64 lanes is SVE's most. Sizes are rounded up to 64, so that outputs a few pixels wider (the next
-    // view's margins) fit.
+    // Arrays are read and written (StoreOwned: on SSE4 and NEON, and AVX2 where it blends, a whole vector) up to a
+    // whole vector past the output width: 64 lanes is SVE's most. Sizes are rounded up to 64, so that outputs a few
+    // pixels wider (the next view's margins) fit.
     const size_t n = (size_t(ow) + 63) / 64 * 64 + 64, nr = 4 * ((size_t(w) + 63) / 64 * 64);
     if (v.size() < nr + 11 * n) v.resize(nr + 11 * n);
     float* p = v.data();
@@ -198,13 +198,13 @@ struct Emitter {
             if (threshold > 0.0f) {
                 const VF d = hn::IfThenElseZero(m, hn::LoadU(df, b.rd + x));
                 pok = hn::And(pok, WithinThreshold(df, hn::LoadU(df, b.prev_d + x), d, threshold));
-                hn::BlendedStore(d, fin, df, b.cur_d + x);
+                StoreOwned(d, fin, df, b.cur_d + x, o.blend);
             }
             const VF pv = hn::LoadU(df, b.prev_v + x);
             const VI pc = hn::LoadU(di, reinterpret_cast<const int32_t*>(b.prev_c + x));
-            hn::BlendedStore(v, fin, df, b.cur_v + x);
-            hn::BlendedStore(c, fini, di, reinterpret_cast<int32_t*>(b.cur_c + x));
-            hn::BlendedStore(hn::Set(di, -1), fini, di, b.cur_ok + x);
+            StoreOwned(v, fin, df, b.cur_v + x, o.blend);
+            StoreOwned(c, fini, di, reinterpret_cast<int32_t*>(b.cur_c + x), o.blend);
+            StoreOwned(hn::Set(di, -1), fini, di, b.cur_ok + x, o.blend);
             ColumnDraw(df, o, x, x + N <= x1, copy, fin, pok, pv, pc, v, c);
             if (drawn) [[unlikely]] {
                 const VF d = hn::Min(hn::Abs(hn::Sub(v, pv)), hn::Set(df, float(o.oh)));
@@ -222,6 +222,7 @@ struct Logger {
     EmitLog& log;
     int x0, x1;
     bool with_d = false;
+    bool blend = false;  // the job's blend_stores (StoreOwned)
 
     void operator()(int xa, int xb) const {
         const hn::ScalableTag<float> df;
@@ -254,13 +255,13 @@ struct Logger {
             hn::StoreU(hn::IfThenElse(fin, v, nan), df, log.v.data() + log.n * size_t(N));
             hn::StoreU(c, di, reinterpret_cast<int32_t*>(log.c.data() + log.n * size_t(N)));
             ++log.n;
-            hn::BlendedStore(v, fin, df, r.fin_v.data() + x);
-            hn::BlendedStore(c, fini, di, reinterpret_cast<int32_t*>(r.fin_c.data() + x));
-            hn::BlendedStore(hn::Set(di, -1), fini, di, r.fin_ok.data() + x);
+            StoreOwned(v, fin, df, r.fin_v.data() + x, blend);
+            StoreOwned(c, fini, di, reinterpret_cast<int32_t*>(r.fin_c.data() + x), blend);
+            StoreOwned(hn::Set(di, -1), fini, di, r.fin_ok.data() + x, blend);
             if (with_d) {
                 const VF d = hn::IfThenElseZero(m, hn::LoadU(df, b.rd + x));
                 hn::StoreU(d, df, log.d.data() + (log.n - 1) * size_t(N));
-                hn::BlendedStore(d, fin, df, r.fin_d.data() + x);
+                StoreOwned(d, fin, df, r.fin_d.data() + x, blend);
             }
         }
     }
@@ -359,6 +360,7 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
     uint32_t* rc = b.rc;
     float* rv = b.rv;
     RowOut out{rc, rv, job.copy_still};
+    out.blend = job.blend_stores;
     if (with_d) out.attr2 = b.rd;
     std::fill(b.prev_ok + x0, b.prev_ok + x1, 0);
     RowRange range{std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
@@ -380,7 +382,8 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
         std::fill(b.cur_ok + x0, b.cur_ok + x1, 0);
         const bool copy = job.copy_still && prep.still;
         out.copy = copy;
-        const Emitter emit{b, ColumnTarget{pixels, ow, oh, ya, yb}, x0, x1, drawn, copy, job.threshold};
+        const Emitter emit{
+            b, ColumnTarget{pixels, ow, oh, ya, yb, job.blend_stores}, x0, x1, drawn, copy, job.threshold};
         WarpRow(s.pos, s.color, s.v, s.d, w, job.split_u, ow, out, Coalescer<Emitter>{emit}, marks);
         std::swap(b.prev_c, b.cur_c);
         std::swap(b.prev_v, b.cur_v);
@@ -408,14 +411,14 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
         std::fill(r.hi.data() + x0, r.hi.data() + x1, -(1 << 30));
         std::fill(r.bits_on.data() + x0, r.bits_on.data() + x1, 0);
         const ColumnsWritten cw{r.lo.data(), r.hi.data(), r.bits_on.data(), r.bits.data(), r.nw};
-        const ColumnTarget o{pixels, ow, oh, p.y0, p.y1};
+        const ColumnTarget o{pixels, ow, oh, p.y0, p.y1, job.blend_stores};
         auto warp = [&](int j, EmitLog& log) {
             const PreparedRow prep = prepare(j, j - p.step);
             out.copy = job.copy_still && prep.still;
             if (x0 == 0) dropped += prep.dropped;
             std::fill(r.fin_ok.data() + x0, r.fin_ok.data() + x1, 0);
             log.n = 0;
-            const Logger logger{b, r, log, x0, x1, with_d};
+            const Logger logger{b, r, log, x0, x1, with_d, job.blend_stores};
             WarpRow(s.pos, s.color, s.v, s.d, w, job.split_u, ow, out, Coalescer<Logger>{logger}, marks);
         };
         const hn::ScalableTag<float> df;

@@ -57,6 +57,7 @@ struct RowOut {
     // A second attribute carried like the first (the displacement, for a discontinuity threshold), pixel x at
     // attr2[x]; null: none (then the row warps take no second attribute either).
     float* attr2 = nullptr;
+    bool blend = false;  // StoreOwned's load, blend and store on AVX2 where a vector lies in the row (the job's)
 };
 
 // attr_lerp (warp/line_warp.h) a vector at a time: a * (1 - t) + b * t, operation by operation (no contraction).
@@ -103,13 +104,15 @@ struct Compress8Table {
 inline constexpr Compress8Table kCompress8;
 
 // The lanes of v where `bits` is set, moved to the lowest lanes in order, stored at p (the other lanes not written:
-// a masked store); returns how many.
-HWY_INLINE int CompressStore8(__m256i v, unsigned bits, int32_t* p) {
+// StoreOwned, the whole vector loaded, blended and stored with `blend`); returns how many.
+HWY_INLINE int CompressStore8(__m256i v, unsigned bits, int32_t* p, bool blend) {
     const __m256i idx = _mm256_srlv_epi32(_mm256_set1_epi32(int32_t(kCompress8.packed[bits])),
                                           _mm256_setr_epi32(0, 4, 8, 12, 16, 20, 24, 28));
     const int n = __builtin_popcount(bits);
+    const hn::Full256<int32_t> di;
     const __m256i keep = _mm256_cmpgt_epi32(_mm256_set1_epi32(n), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
-    _mm256_maskstore_epi32(p, keep, _mm256_permutevar8x32_epi32(v, idx));
+    StoreOwned(hn::Vec256<int32_t>{_mm256_permutevar8x32_epi32(v, idx)}, hn::MaskFromVec(hn::Vec256<int32_t>{keep}), di,
+               p, blend);
     return n;
 }
 #endif
@@ -136,8 +139,10 @@ alignas(16) inline constexpr Compress4Table kCompress4;
 #endif
 
 // Pixels x .. x + count - 1 (count >= 1) of row `out` from the first lanes of col and v (and of d, where the row
-// carries out.attr2): a whole vector where count >= N; else by a masked store instruction where the target has one (no
-// pixel past them touched), otherwise one by one (SSE4's and NEON's BlendedStore stores the whole vector).
+// carries out.attr2): a whole vector where count >= N; else, where the target stores some lanes of a vector
+// (kMaskedStore), StoreOwned (the pixels past them unchanged: with out.blend, a load, blend and store on AVX2 where
+// the vector lies in the row; a masked store instruction otherwise), elsewhere one by one (SSE4's and NEON's
+// BlendedStore stores the whole vector).
 template <class DF, class DI>
 HWY_INLINE void StorePixels(DF df, DI di, const RowOut& out, int x, int count, hn::Vec<DI> col, hn::Vec<DF> v,
                             hn::Vec<DF> d) {
@@ -148,9 +153,10 @@ HWY_INLINE void StorePixels(DF df, DI di, const RowOut& out, int x, int count, h
         if (with2) hn::StoreU(d, df, out.attr2 + x);
     } else if (kMaskedStore) {
         const auto m = hn::FirstN(di, size_t(count));
-        hn::BlendedStore(col, m, di, reinterpret_cast<int32_t*>(out.c + x));
-        hn::BlendedStore(v, hn::RebindMask(df, m), df, out.v + x);
-        if (with2) hn::BlendedStore(d, hn::RebindMask(df, m), df, out.attr2 + x);
+        const bool blend = out.blend && x + int(hn::Lanes(df)) <= out.width;  // the whole vector in the row
+        StoreOwned(col, m, di, reinterpret_cast<int32_t*>(out.c + x), blend);
+        StoreOwned(v, hn::RebindMask(df, m), df, out.v + x, blend);
+        if (with2) StoreOwned(d, hn::RebindMask(df, m), df, out.attr2 + x, blend);
     } else {
         HWY_ALIGN int32_t tc[HWY_MAX_BYTES / 4] = {};
         HWY_ALIGN float tv[HWY_MAX_BYTES / 4] = {}, td[HWY_MAX_BYTES / 4] = {};
@@ -233,21 +239,22 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
 #if HWY_TARGET == HWY_AVX2
     // Every lane's span one or two pixels wide (bumps: nearly every group): the lanes' first pixels, then their
     // second ones where they have one, a vector each from the lanes' own samples (no lookup), the two interleaved
-    // into pixel order and compressed into place with masked stores (as the hand-written AVX-512 kernels
-    // drew spans of up to two pixels).
+    // into pixel order and compressed into place with masked stores (StoreOwned; as the hand-written AVX-512
+    // kernels drew spans of up to two pixels).
     if (narrow) {
         int32_t* oc = reinterpret_cast<int32_t*>(out.c + xa);
         float* ov = out.v + xa;
         int32_t* od = with2 ? reinterpret_cast<int32_t*>(out.attr2 + xa) : nullptr;
+        const bool blend = out.blend && xb + 8 < out.width;  // every vector stored below lies in the row
         VI c1;
         VF v1, d1 = zero;
         at(xc0, c1, v1, d1);
         const auto two = hn::And(todo, hn::Lt(xlo, xhi));
         const unsigned b1 = unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(hn::VecFromMask(di, todo).raw)));
         if (hn::AllFalse(di, two)) {
-            CompressStore8(c1.raw, b1, oc);
-            CompressStore8(_mm256_castps_si256(v1.raw), b1, reinterpret_cast<int32_t*>(ov));
-            if (with2) CompressStore8(_mm256_castps_si256(d1.raw), b1, od);
+            CompressStore8(c1.raw, b1, oc, blend);
+            CompressStore8(_mm256_castps_si256(v1.raw), b1, reinterpret_cast<int32_t*>(ov), blend);
+            if (with2) CompressStore8(_mm256_castps_si256(d1.raw), b1, od, blend);
             return;
         }
         VI c2;
@@ -266,15 +273,15 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
         const unsigned bl = unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(ml4)));
         const unsigned bh = unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(mh4)));
         int32_t* ovi = reinterpret_cast<int32_t*>(ov);
-        const int n1 = CompressStore8(cl4, bl, oc);
-        CompressStore8(vl4, bl, ovi);
-        CompressStore8(ch4, bh, oc + n1);
-        CompressStore8(vh4, bh, ovi + n1);
+        const int n1 = CompressStore8(cl4, bl, oc, blend);
+        CompressStore8(vl4, bl, ovi, blend);
+        CompressStore8(ch4, bh, oc + n1, blend);
+        CompressStore8(vh4, bh, ovi + n1, blend);
         if (with2) {
             __m256i dl4, dh4;
             zip(_mm256_castps_si256(d1.raw), _mm256_castps_si256(d2.raw), dl4, dh4);
-            CompressStore8(dl4, bl, od);
-            CompressStore8(dh4, bh, od + n1);
+            CompressStore8(dl4, bl, od, blend);
+            CompressStore8(dh4, bh, od + n1, blend);
         }
         return;
     }
@@ -603,9 +610,10 @@ HWY_INLINE int CopyStill(DF df, const float* pos, const uint32_t* col, const flo
     }
     const auto first = hn::FirstN(di, size_t(lead));
     const auto lanes = d < 0 ? first : hn::MaskFromVec(hn::Reverse(di, hn::VecFromMask(di, first)));
-    hn::BlendedStore(cv, lanes, di, oc);
-    hn::BlendedStore(av, hn::RebindMask(df, lanes), df, ov);
-    if (attr2) hn::BlendedStore(hn::LoadU(df, attr2 + b), hn::RebindMask(df, lanes), df, out.attr2 + x0 - i0);
+    const bool blend = out.blend && x0 - i0 + N <= n_out;  // the whole vector in the row (StoreOwned)
+    StoreOwned(cv, lanes, di, oc, blend);
+    StoreOwned(av, hn::RebindMask(df, lanes), df, ov, blend);
+    if (attr2) StoreOwned(hn::LoadU(df, attr2 + b), hn::RebindMask(df, lanes), df, out.attr2 + x0 - i0, blend);
     return lead;
 }
 
@@ -1077,12 +1085,12 @@ inline PreparedRow PrepareRow(const ReliefTexture& t, const fast::FastTables& ft
 #if HWY_TARGET == HWY_AVX2
         // Each texel's (K1, K2, R) as one 16-byte load, texels i and i + 4 in one register, then a 4x4 transpose
         // within each 128-bit half: fewer operations than three 8-lane gathers.
-        HWY_ALIGN int32_t qi[8];
-        hn::Store(q, di, qi);
+        // The levels read from the texels' bytes (a byte load each), not extracted from q's lanes.
+        const uint8_t* qb = &src[x].q;
         const float* lv = &ft.level[0][0];
         auto pair = [&](int i) {
-            return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_load_ps(lv + 4 * qi[i])),
-                                        _mm_load_ps(lv + 4 * qi[i + 4]), 1);
+            return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_load_ps(lv + 4 * size_t(qb[4 * i]))),
+                                        _mm_load_ps(lv + 4 * size_t(qb[4 * i + 16])), 1);
         };
         const __m256 r0 = pair(0), r1 = pair(1), r2 = pair(2), r3 = pair(3);
         const __m256 t0 = _mm256_unpacklo_ps(r0, r1), t1 = _mm256_unpackhi_ps(r0, r1);
@@ -1092,11 +1100,10 @@ inline PreparedRow PrepareRow(const ReliefTexture& t, const fast::FastTables& ft
 #elif HWY_TARGET == HWY_SSE4 || HWY_TARGET == HWY_NEON
         // The same with 4 lanes: each texel's (K1, K2, R) as one 16-byte load, and a 4x4 transpose; fewer operations
         // than three emulated 4-lane gathers (12 single loads and their inserts).
-        HWY_ALIGN int32_t qi[4];
-        hn::Store(q, di, qi);
+        const uint8_t* qb = &src[x].q;  // the levels from the texels' bytes, as on AVX2
         const float* lv = &ft.level[0][0];
-        const VF r0 = hn::Load(df, lv + 4 * qi[0]), r1 = hn::Load(df, lv + 4 * qi[1]);
-        const VF r2 = hn::Load(df, lv + 4 * qi[2]), r3 = hn::Load(df, lv + 4 * qi[3]);
+        const VF r0 = hn::Load(df, lv + 4 * size_t(qb[0])), r1 = hn::Load(df, lv + 4 * size_t(qb[4]));
+        const VF r2 = hn::Load(df, lv + 4 * size_t(qb[8])), r3 = hn::Load(df, lv + 4 * size_t(qb[12]));
         const VF t01 = hn::InterleaveLower(df, r0, r1), t23 = hn::InterleaveLower(df, r2, r3);  // K1 K1 K2 K2
         const VF u01 = hn::InterleaveUpper(df, r0, r1), u23 = hn::InterleaveUpper(df, r2, r3);  // R R - -
         const VF k1 = hn::ConcatLowerLower(df, t23, t01), k2 = hn::ConcatUpperUpper(df, t23, t01);
@@ -1184,12 +1191,26 @@ HWY_INLINE void ColumnStep(const Columns& col, const ColumnTarget& o, const uint
         const auto fin = hn::And(mi, hn::And(hn::Ne(hn::And(c, alpha), izero), hn::RebindMask(di, hn::IsFinite(v))));
         const VI okv = hn::MaskedLoad(mi, di, col.ok + x);
         auto pok = hn::And(fin, hn::Ne(okv, izero));
-        hn::BlendedStore(hn::VecFromMask(di, fin), mi, di, col.ok + x);
+        // The columns' new state: where the vector is all the caller's (`full`), whole-vector stores of the new values
+        // blended with the old ones just loaded (no masked store, which costs more on AVX2: StoreOwned), else masked
+        // stores of the caller's lanes.
+        const bool full = x + N <= x1;
+        if (full)
+            hn::StoreU(hn::VecFromMask(di, fin), di, col.ok + x);
+        else
+            hn::BlendedStore(hn::VecFromMask(di, fin), mi, di, col.ok + x);
         if (hn::AllFalse(di, fin)) continue;
+        auto keep = [&](auto d, auto vnew, auto vold, auto* p) HWY_ATTR __attribute__((always_inline)) {
+            const auto f = hn::RebindMask(d, fin);
+            if (full)
+                hn::StoreU(hn::IfThenElse(f, vnew, vold), d, p);
+            else
+                hn::BlendedStore(vnew, f, d, p);
+        };
         if constexpr (kThreshold) {
             const VF d = hn::MaskedLoad(m, df, rd + x), pd = hn::MaskedLoad(m, df, col.d + x);
             pok = hn::And(pok, hn::RebindMask(di, WithinThreshold(df, pd, d, threshold)));
-            hn::BlendedStore(d, hn::RebindMask(df, fin), df, col.d + x);
+            keep(df, d, pd, col.d + x);
         }
         const VF pv = hn::MaskedLoad(m, df, col.v + x);
         const VI pc = hn::MaskedLoad(mi, di, reinterpret_cast<const int32_t*>(col.c + x));
@@ -1203,18 +1224,16 @@ HWY_INLINE void ColumnStep(const Columns& col, const ColumnTarget& o, const uint
 #else
         const VI f = ConvertInRange(di, hn::Floor(cl)), e = ConvertInRange(di, hn::Ceil(cl));
 #endif
-        const auto finf = hn::RebindMask(df, fin);
-        hn::BlendedStore(v, finf, df, col.v + x);
-        hn::BlendedStore(c, fin, di, reinterpret_cast<int32_t*>(col.c + x));
-        hn::BlendedStore(f, fin, di, col.fl + x);
-        hn::BlendedStore(e, fin, di, col.ce + x);
+        keep(df, v, pv, col.v + x);
+        keep(di, c, pc, reinterpret_cast<int32_t*>(col.c + x));
+        keep(di, f, pf, col.fl + x);
+        keep(di, e, pe, col.ce + x);
         const auto pokf = hn::RebindMask(df, pok);
         const auto inc = hn::RebindMask(di, hn::And(pokf, hn::Gt(v, pv)));
         const auto dec = hn::RebindMask(di, hn::And(pokf, hn::Lt(v, pv)));
         VI ylo = hn::Max(hn::IfThenElse(inc, hn::Add(pf, ione), e), izero);
         VI yhi = hn::Min(hn::IfThenElse(inc, f, hn::Sub(pe, ione)), last);
         const auto span = hn::AndNot(hn::Gt(ylo, yhi), hn::Or(inc, dec));
-        const bool full = x + N <= x1;
         const VF inv = hn::Div(hn::Set(df, 1.0f), hn::Sub(v, pv));
         const auto point = hn::AndNot(pok, fin);
         if (!hn::AllFalse(di, point)) [[unlikely]] {

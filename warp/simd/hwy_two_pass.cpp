@@ -46,6 +46,7 @@ uint32_t HorizontalSteps(const fast::TwoPassJob& job, int s0, int s1, uint32_t* 
         uint32_t* rc = band_c + size_t(st - s0) * stride;
         float* rv = band_v + size_t(st - s0) * stride;
         RowOut out{rc, rv, job.copy_still && prep.still};
+        out.blend = job.blend_stores;
         still_rows |= uint32_t(out.copy) << (st - s0);
         if (with_d) out.attr2 = rv + job.d_offset;
         std::memset(rc, 0, size_t(ow) * 4);
@@ -72,7 +73,7 @@ void VerticalSteps(const fast::TwoPassJob& job, int s0, int s1, const uint32_t* 
     int32_t* col_ok = reinterpret_cast<int32_t*>(job.col_ok);  // one int32 a column here
     const bool with_d = job.threshold > 0.0f;
     const Columns cols{job.col_v, col_ok, job.col_c, job.col_fl, job.col_ce, job.col_d};
-    const ColumnTarget target{out, ow, oh, 0, oh};
+    const ColumnTarget target{out, ow, oh, 0, oh, job.blend_stores};
     if (s0 == 0) {
         for (int y = 0; y < oh; ++y) std::memset(out + size_t(y) * size_t(ow) + size_t(x0), 0, size_t(x1 - x0) * 4);
         std::fill(col_ok + x0, col_ok + x1, 0);

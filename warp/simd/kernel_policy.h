@@ -21,6 +21,10 @@ struct FastKernelPolicy {
     // With two_pass_reverse: clear each backward row and warp it forwards again (the fallback for a backward warp
     // that fails, otherwise unreachable).
     bool two_pass_redo_forwards = false;
+    // How the avx2 kernels store some lanes of a vector they own (warp/simd/hwy_columns-inl.h, StoreOwned): always a
+    // load, blend and store, never AVX2's masked store; automatic the first where that instruction is slow
+    // (avx2_masked_store_slow, warp/isa.h). No other target reads it.
+    KernelChoice avx2_blend_stores = KernelChoice::automatic;
 };
 
 namespace simd::testing {

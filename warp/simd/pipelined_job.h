@@ -37,6 +37,7 @@ struct PipelinedJob {
     uint32_t* seam_c[2] = {nullptr, nullptr};
     bool copy_still = true;                          // PrewarpOptions::copy_still_runs
     KernelChoice reverse = KernelChoice::automatic;  // FastKernelPolicy::pipelined_reverse
+    bool blend_stores = false;                       // FastKernelPolicy::avx2_blend_stores, resolved (avx2 only)
     std::atomic<long long>* dropped = nullptr;
     // Surface discontinuities (paper section 4.1.1; the Highway kernel only, fast_prewarp_covers): the relief's
     // per-texel marks (kBreakRight: no span to the texel on the right; null when it has none) and the threshold on

@@ -17,6 +17,7 @@
 #include "warp/simd/hwy_pipelined.h"
 #include "warp/simd/hwy_two_pass.h"
 #include "warp/simd/kernel_policy.h"
+#include "warp/isa.h"
 #include "warp/line_warp.h"
 #include "warp/tables.h"
 #include "warp/task_arenas.h"
@@ -121,6 +122,18 @@ long long vertical_still_copies() { return g_vertical_still_copies.load(std::mem
 ScopedKernelPolicy::ScopedKernelPolicy(const FastKernelPolicy& policy) : saved_(g_policy) { g_policy = policy; }
 ScopedKernelPolicy::~ScopedKernelPolicy() { g_policy = saved_; }
 }  // namespace simd::testing
+
+namespace {
+// FastKernelPolicy::avx2_blend_stores resolved for this CPU.
+bool blend_stores() {
+    switch (simd::testing::kernel_policy().avx2_blend_stores) {
+        case KernelChoice::always: return true;
+        case KernelChoice::never: return false;
+        case KernelChoice::automatic: break;
+    }
+    return avx2_masked_store_slow();
+}
+}  // namespace
 
 void balance_row_chunks(std::vector<int>& bounds, const double* ms) {
     const int n = int(bounds.size()) - 1;
@@ -327,6 +340,7 @@ PrewarpStats fast_two_pass(const simd::TwoPassKernels& kernels, const ReliefText
     job.copy_still = options.copy_still_runs;
     job.reverse = simd::testing::kernel_policy().two_pass_reverse;
     job.redo_forwards = simd::testing::kernel_policy().two_pass_redo_forwards;
+    job.blend_stores = blend_stores();
     job.col_fl = reinterpret_cast<int32_t*>(mv + 2 * size_t(stride));
     job.col_ce = reinterpret_cast<int32_t*>(mv + 3 * size_t(stride));
     job.dropped = &dropped;
@@ -518,6 +532,7 @@ PrewarpStats fast_pipelined(const simd::PipelinedKernels& kernels, const ReliefT
     job.relief = &relief;
     job.copy_still = options.copy_still_runs;
     job.reverse = simd::testing::kernel_policy().pipelined_reverse;
+    job.blend_stores = blend_stores();
     job.tables = &tables;
     job.extent = e;
     job.split_u = split_index(k.epipole_u, w);

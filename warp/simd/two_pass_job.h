@@ -56,6 +56,7 @@ struct TwoPassJob {
     bool copy_still = true;                          // PrewarpOptions::copy_still_runs
     KernelChoice reverse = KernelChoice::automatic;  // FastKernelPolicy::two_pass_reverse
     bool redo_forwards = false;                      // FastKernelPolicy::two_pass_redo_forwards
+    bool blend_stores = false;                       // FastKernelPolicy::avx2_blend_stores, resolved (avx2 only)
     std::atomic<long long>* dropped = nullptr;
 };
 
