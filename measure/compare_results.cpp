@@ -139,12 +139,13 @@ CompareResults parse_compare_results(const json& j) {
     for (size_t i = 0; i < summary.size(); ++i) {
         const std::string w = "summary[" + std::to_string(i) + "]";
         const json& o = summary[i];
-        SummaryRow s{text(o, "source", w),  text(o, "method_id", w), text(o, "method", w),
-                     text(o, "setting", w), text(o, "family", w),    number(o, "ms", w),
-                     number(o, "psnr", w),  number(o, "rmse", w),    number(o, "iou", w)};
+        SummaryRow s{text(o, "source", w), text(o, "method_id", w),
+                     text(o, "method", w), text(o, "setting", w),
+                     text(o, "family", w), number(o, "ms", w),
+                     number(o, "psnr", w), number(o, "rmse", w),
+                     number(o, "iou", w),  false,
+                     text(o, "base", w),   text(o, "truth", w)};
         if (const auto p = o.find("pareto"); p != o.end() && p->is_boolean()) s.pareto = p->get<bool>();
-        s.base = text(o, "base", w);
-        s.truth = text(o, "truth", w);
         r.summary.push_back(std::move(s));
     }
     return r;

@@ -48,7 +48,10 @@
 
 namespace rtm {
 
-namespace {
+// A named namespace, not an anonymous one: ReliefRaycaster::Impl (declared in the header) holds a Caster, and a field
+// of a type from an anonymous namespace is what -Wsubobject-linkage warns of (in the unity build, where this file is
+// not the main one).
+namespace raycast_detail {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kRelTol = 1e-9;
@@ -341,7 +344,9 @@ private:
     double scale_ = 1.0, cell_len_ = 1.0;
 };
 
-}  // namespace
+}  // namespace raycast_detail
+
+using raycast_detail::Caster;
 
 struct ReliefRaycaster::Impl {
     explicit Impl(const ReliefTexture& t) : caster(t) {}

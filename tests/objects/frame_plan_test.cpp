@@ -164,12 +164,12 @@ TEST(FramePlan, ReuseWithinTheToleranceOfTheSameSetup) {
     Camera cam = r.orbit(30, 20, 2.0);
     const FramePlan first = r.plan(cam);
     ASSERT_EQ(first.action, FrameAction::prewarp);
-    const LastPrewarp last{true, first.setup, first.k};
+    const LastPrewarp last{true, first.setup, first.k, {}};
     const FramePlan same = r.plan(cam, {}, RenderMethod::two_pass, last);
     EXPECT_EQ(same.action, FrameAction::reuse);
     EXPECT_EQ(same.skips, std::vector<std::string>{kSkipReuse});
     // Not without a last pre-warp, with skips off, or with another setup.
-    EXPECT_EQ(r.plan(cam, {}, RenderMethod::two_pass, {false, first.setup, first.k}).action, FrameAction::prewarp);
+    EXPECT_EQ(r.plan(cam, {}, RenderMethod::two_pass, {false, first.setup, first.k, {}}).action, FrameAction::prewarp);
     EXPECT_EQ(r.plan(cam, no_skips(), RenderMethod::two_pass, last).action, FrameAction::prewarp);
     EXPECT_EQ(r.plan(cam, {}, RenderMethod::pipelined, last).action, FrameAction::prewarp);
     PrewarpOptions exact;

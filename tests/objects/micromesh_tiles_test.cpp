@@ -71,7 +71,9 @@ TEST(MicromeshTiles, SameTrianglesAsTheMeshEachTilesInItsOrder) {
             std::sort(a.begin(), a.end());
             std::sort(b.begin(), b.end());
             ASSERT_EQ(a, b);
-            if (tile == 1000) ASSERT_EQ(m.mesh.indices, whole.indices);  // one tile: build_micromesh's order
+            if (tile == 1000) {  // one tile: build_micromesh's order
+                ASSERT_EQ(m.mesh.indices, whole.indices);
+            }
         }
     }
 }
@@ -112,7 +114,9 @@ TEST(MicromeshTiles, CullingKeepsEveryTriangleInView) {
         std::vector<char> in_range(m.mesh.indices.size() / 3, 0);
         size_t counted = 0;
         for (size_t i = 0; i < ranges.size(); ++i) {
-            if (i) ASSERT_GT(ranges[i].first, ranges[i - 1].first + ranges[i - 1].count - 1);
+            if (i) {
+                ASSERT_GT(ranges[i].first, ranges[i - 1].first + ranges[i - 1].count - 1);
+            }
             for (uint32_t k = ranges[i].first; k < ranges[i].first + ranges[i].count; k += 3) in_range[k / 3] = 1;
             counted += ranges[i].count / 3;
         }
