@@ -5,7 +5,9 @@
 #include <hwy/targets.h>
 
 #include <cstdlib>
+#include <fstream>
 #include <stdexcept>
+#include <string>
 
 #include "test_util.h"
 #include "warp/isa.h"
@@ -160,8 +162,28 @@ TEST(Avx2MaskedStore, SlowOnAmdAndHygonUpToZen4) {
     EXPECT_FALSE(avx2_masked_store_slow("GenuineIntel", 6));
     EXPECT_FALSE(avx2_masked_store_slow("CentaurHauls", 6));
     EXPECT_FALSE(avx2_masked_store_slow("", 0));
-    // This CPU's answer is the rule's for its vendor and family (and stays the same).
-    EXPECT_EQ(avx2_masked_store_slow(), avx2_masked_store_slow());
+}
+
+// This CPU's answer (CPUID read by avx2_masked_store_slow()) is the rule's for the vendor and display family Linux
+// reports in /proc/cpuinfo, which it computes from the same CPUID words independently: checks the decoding of the
+// vendor string and of the extended family.
+TEST(Avx2MaskedStore, ThisCpuMatchesProcCpuinfo) {
+#if defined(__x86_64__) || defined(__i386__)
+    std::ifstream in("/proc/cpuinfo");
+    if (!in) GTEST_SKIP() << "no /proc/cpuinfo";
+    std::string line, vendor;
+    long family = -1;
+    while (std::getline(in, line) && (vendor.empty() || family < 0)) {
+        const size_t colon = line.find(": ");
+        if (colon == std::string::npos) continue;
+        if (line.rfind("vendor_id", 0) == 0) vendor = line.substr(colon + 2);
+        if (line.rfind("cpu family", 0) == 0) family = std::stol(line.substr(colon + 2));
+    }
+    if (vendor.empty() || family < 0) GTEST_SKIP() << "/proc/cpuinfo names no vendor_id or cpu family";
+    EXPECT_EQ(avx2_masked_store_slow(), avx2_masked_store_slow(vendor, unsigned(family))) << vendor << " " << family;
+#else
+    EXPECT_FALSE(avx2_masked_store_slow());  // AVX2 is x86's
+#endif
 }
 
 }  // namespace
