@@ -11,7 +11,9 @@
 # natively; the 8 large reliefs to 1; the kernel-policy sweeps and their large reliefs to a fortieth of it), and the
 # steady-state allocation tests are left out (they check the workspace, not the target's arithmetic, and the x86-64
 # runs have them for every target). The tests go in GoogleTest shards, as many side by side as the machine has
-# cores. Under qemu every instruction is emulated: the times it prints are not measurements of ARM speed.
+# cores. Under qemu every instruction is emulated: the times it prints are not measurements of ARM speed (for an
+# estimate, scripts/count_instructions.sh counts the instructions of a pre-warp on each target). Also builds
+# rtm-warp-run (apps/warp_run.cpp); RTM_ARM_BUILD_ONLY=1 installs and builds, and runs nothing.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -44,7 +46,9 @@ launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 cmake -S . -B build-arm -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_TOOLCHAIN_FILE=cmake/aarch64-linux-gnu.cmake \
   -DRTM_WARP_ONLY=ON "${launcher[@]}" >/dev/null
-cmake --build build-arm -j"$(nproc)" --target warp_tests
+cmake --build build-arm -j"$(nproc)" --target warp_tests rtm-warp-run
+# RTM_ARM_BUILD_ONLY=1: stop here (scripts/count_instructions.sh runs build-arm/bin/rtm-warp-run itself).
+[ "${RTM_ARM_BUILD_ONLY:-0}" = 1 ] && exit 0
 
 # The arm64 loader and C library of multiarch (libc6:arm64), not QEMU_LD_PREFIX=/usr/aarch64-linux-gnu: see
 # cmake/aarch64-linux-gnu.cmake.

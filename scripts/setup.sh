@@ -5,15 +5,16 @@ set -euo pipefail
 # (OpenImageIO, libpng for the usual PNG files without it, GLM, OSMesa, GLFW, glad, oneTBB, nlohmann-json, CLI11); the
 # tests (GoogleTest; openimageio-tools' oiiotool and idiff; xvfb-run, which needs xauth, for the window tests); the
 # fuzzers (clang, libclang-rt-14-dev); scripts/format.sh (clang-format); the mesh import, SIMD and viewer work in
-# progress (assimp and its test models, Highway, Dear ImGui); and the comparison page's tests (headless chromium, and
-# xmllint from libxml2-utils). Google Benchmark and Google Mock are not used: rtm bench is its own program.
+# progress (assimp and its test models, Highway, Dear ImGui); the comparison page's tests (headless chromium, and
+# xmllint from libxml2-utils); and the instruction counter's test (qemu-user, which scripts/arm.sh also uses). Google
+# Benchmark and Google Mock are not used: rtm bench is its own program.
 packages=(
   build-essential cmake ninja-build pkg-config git
   libopenimageio-dev openimageio-tools libpng-dev libglm-dev libosmesa6-dev libglfw3-dev python3-glad
   libtbb-dev nlohmann-json3-dev libcli11-dev libgtest-dev
   libassimp-dev assimp-testmodels libhwy-dev libimgui-dev
   xvfb xauth clang libclang-rt-14-dev clang-format
-  chromium libxml2-utils
+  chromium libxml2-utils qemu-user
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -18,6 +18,11 @@ namespace rtm {
 
 namespace {
 
+// In the order `automatic` prefers them. On ARM neon comes before sve: counted under qemu (docs/BENCHMARKS.md, "ARM:
+// instructions counted under qemu"), a pre-warp with 128-bit SVE (Neoverse V2 and N2, whose vector pipes are 128 bits
+// wide for either) runs 1.09x to 1.24x NEON's instructions; with 256-bit SVE (Neoverse V1) 0.64x to 0.73x, but V1's
+// two 256-bit pipes run four 128-bit NEON operations a cycle or two SVE ones, the same bits, so the count does not
+// favour it there either.
 constexpr Isa kAll[] = {Isa::avx512, Isa::avx3, Isa::avx2, Isa::sse4, Isa::neon, Isa::sve, Isa::generic};
 
 // The Highway targets that stand for `isa` (0 for generic).

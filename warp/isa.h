@@ -29,8 +29,8 @@ bool parse_isa(std::string_view name, Isa& isa);
 // "avx512, avx3, avx2, sse4, neon, sve, generic": the names, for messages.
 std::string isa_names();
 
-// The targets this CPU and this build can run, fastest first, generic last. Honours set_hwy_targets_for_test (the
-// tests force each Highway target in turn).
+// The targets this CPU and this build can run, fastest first (on ARM neon before sve: warp/isa.cpp), generic last.
+// Honours set_hwy_targets_for_test (the tests force each Highway target in turn).
 std::vector<Isa> supported_isas();
 bool isa_supported(Isa isa);
 

@@ -105,6 +105,10 @@ TEST_F(IsaTest, ForcedHighwayTargetsRestrictTheChoice) {
     EXPECT_EQ(default_isa(), Isa::neon);
     set_hwy_targets_for_test(0);
     EXPECT_TRUE(isa_supported(Isa::sve));
+    // With both, automatic keeps neon (warp/isa.cpp: SVE's instruction counts do not favour it); sve when asked.
+    EXPECT_EQ(default_isa(), Isa::neon);
+    EXPECT_EQ(supported_isas(), (std::vector<Isa>{Isa::neon, Isa::sve, Isa::generic}));
+    EXPECT_EQ(resolve_isa(Isa::sve), Isa::sve);
 #else
     GTEST_SKIP() << "x86-64 and ARM targets";
 #endif

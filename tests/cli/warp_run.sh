@@ -1,0 +1,90 @@
+#!/usr/bin/env bash
+# rtm-warp-run (apps/warp_run.cpp) and the instruction counter of scripts/count_instructions.sh: the program runs a
+# procedural relief on each target this CPU has and refuses bad arguments with one line naming the value; under
+# qemu-x86_64 the counter finds the work between the program's two markers, the same count on every run, twice the
+# work for twice the pre-warps, and refuses a log whose markers never ran.
+. "$(dirname "$0")/lib.bash"
+RUN=$(dirname "$RTM")/rtm-warp-run
+
+# A run that must succeed and print PATTERN.
+expect_run() {
+  local pattern=$1
+  shift
+  if "$RUN" "$@" >"$T/stdout" 2>"$T/stderr" && grep -Eq -- "$pattern" "$T/stdout"; then
+    passes=$((passes + 1))
+  else
+    echo "FAIL: rtm-warp-run $*: want /$pattern/; got $(cat "$T/stdout" "$T/stderr")"
+    fails=$((fails + 1))
+  fi
+}
+# A run that must exit 1 with one line on stderr matching PATTERN and print nothing.
+expect_refused() {
+  local pattern=$1
+  shift
+  local got=0
+  "$RUN" "$@" >"$T/stdout" 2>"$T/stderr" || got=$?
+  if [ "$got" = 1 ] && [ "$(grep -c '' "$T/stderr")" = 1 ] && grep -Eq -- "$pattern" "$T/stderr" &&
+    [ ! -s "$T/stdout" ]; then
+    passes=$((passes + 1))
+  else
+    echo "FAIL: rtm-warp-run $*: want exit 1 and one line /$pattern/; got exit $got: $(cat "$T/stdout" "$T/stderr")"
+    fails=$((fails + 1))
+  fi
+}
+
+expect_run '^bumps 32 two-pass isa generic: 3 pre-warps after a warm-up, min [0-9.]+ ms, median [0-9.]+ ms$' \
+  bumps 32 two-pass generic 3
+expect_run '^ridges 48 pipelined isa [a-z0-9]+: 0 pre-warps after a warm-up$' ridges 48 pipelined auto 0
+for isa in avx512 avx3 avx2 sse4 neon sve; do
+  if "$RUN" bricks 32 two-pass "$isa" 1 >/dev/null 2>&1; then
+    expect_run "^bricks 32 pipelined isa $isa: 1 pre-warps" bricks 32 pipelined "$isa" 1 2
+  else
+    expect_refused "target \"$isa\"" bricks 32 pipelined "$isa" 1
+  fi
+done
+expect_refused 'unknown procedural relief "wall"' wall 32 two-pass generic 1
+expect_refused "SIZE '8' is not an integer from 16 to 4096" bumps 8 two-pass generic 1
+expect_refused "SIZE '32x' is not" bumps 32x two-pass generic 1
+expect_refused "METHOD 'flat' is neither" bumps 32 flat generic 1
+expect_refused "ISA 'avx1024' is none of" bumps 32 two-pass avx1024 1
+expect_refused "REPEAT '-1' is not" bumps 32 two-pass generic -1
+expect_refused "THREADS 'x' is not" bumps 32 two-pass generic 1 x
+expect_refused '^usage: rtm-warp-run' bumps 32
+
+# The counter, on the generic kernels (the same instructions whatever the CPU qemu emulates). Not in the sanitizer
+# build, whose shadow memory qemu-user does not map (the Release suite tests the counter; the arguments above are
+# checked in both).
+if ldd "$RUN" | grep -q libasan; then
+  finish
+  exit
+fi
+count() {  # count REPEAT: the instructions of REPEAT pre-warps of bumps 32^2, or "failed"
+  rm -f "$T/log"
+  qemu-x86_64 -cpu max,vendor=GenuineIntel -d nochain,exec,in_asm -D "$T/log" "$RUN" bumps 32 two-pass generic "$1" \
+    >/dev/null && python3 "$SRC/scripts/count_instructions.py" "$T/log" rtm_warp_run_begin rtm_warp_run_end ||
+    echo failed
+}
+c1=$(count 1)
+c1b=$(count 1)
+c2=$(count 2)
+# Twice the pre-warps, twice the instructions, up to the work around them that does not double (two clock reads a
+# pre-warp, the vector of times growing): well under 2% of a pre-warp of 32^2 (about 100,000 instructions).
+if [[ $c1 =~ ^[0-9]+$ && $c2 =~ ^[0-9]+$ ]] && ((c1 > 10000 && c1 == c1b)) &&
+  ((100 * (c2 - 2 * c1) < 2 * c1 && 100 * (2 * c1 - c2) < 2 * c1)); then
+  passes=$((passes + 1))
+else
+  echo "FAIL: instructions of 1 pre-warp $c1 and again $c1b (must be equal and above 10000), of 2: $c2 (must be twice)"
+  fails=$((fails + 1))
+fi
+# A log whose markers never ran (the program refused its arguments): exit 1, one line naming the marker.
+qemu-x86_64 -d nochain,exec,in_asm -D "$T/bad" "$RUN" bumps 8 two-pass generic 1 >/dev/null 2>&1 || true
+got=0
+python3 "$SRC/scripts/count_instructions.py" "$T/bad" rtm_warp_run_begin rtm_warp_run_end >"$T/stdout" 2>"$T/stderr" ||
+  got=$?
+if [ "$got" = 1 ] && grep -q 'rtm_warp_run_begin ran 0 times' "$T/stderr" && [ ! -s "$T/stdout" ]; then
+  passes=$((passes + 1))
+else
+  echo "FAIL: count_instructions.py on a log without the markers: exit $got, $(cat "$T/stdout" "$T/stderr")"
+  fails=$((fails + 1))
+fi
+finish
