@@ -40,7 +40,8 @@ count() {
   [ "$arch" = x86-64 ] && bin=build/bin/rtm-warp-run qemu=qemu-x86_64
   python3 scripts/count_instructions.py "$fifo" rtm_warp_run_begin rtm_warp_run_end >"$out" &
   local py=$!
-  # GenuineIntel: the avx2 kernels store as on Intel's cores and Zen 5 (qemu's default vendor is AMD's, family 15).
+  # GenuineIntel: the avx2 kernels store as on Intel's cores and Zen 5 (qemu's max CPU says AMD, of a family before
+  # Zen 5: avx2_masked_store_slow, warp/isa.h).
   "$qemu" -cpu "$cpu" -d nochain,exec,in_asm -D "$fifo" "$bin" "$relief" "$size" "$method" "$isa" 1 >/dev/null
   wait "$py"
   rm -f "$fifo"
