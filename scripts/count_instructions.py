@@ -1,27 +1,34 @@
 #!/usr/bin/env python3
-"""Counts the guest instructions a program ran between two marker functions, from qemu-user's log.
+"""Counts the guest instructions a program runs between two marker functions, under qemu-user.
 
-    python3 scripts/count_instructions.py LOG BEGIN END [TOP]
+    python3 scripts/count_instructions.py [--top N] BEGIN END -- QEMU [QEMU OPTIONS] PROGRAM [ARGUMENTS]
 
-LOG is what `qemu-<arch> -d nochain,exec,in_asm -D LOG` wrote (a file or a FIFO): each translated block's
-instructions once ("IN: function" and one line per instruction, when qemu translates it), and a "Trace" line each
-time a block runs (every time, with `nochain`). BEGIN and END name the two functions around the work counted
-(apps/warp_run.cpp: rtm_warp_run_begin, rtm_warp_run_end). Prints the instructions of every block run from BEGIN's
-first block to END's, inclusive of BEGIN's and exclusive of END's; with TOP, then the TOP functions that ran the most
-of them (qemu's name of each block's function: inlined code counts in its caller's), one a line. Exits 1 with one line when a marker never runs,
-runs more than once, or a block ran whose instructions the log does not list.
+Runs the command with qemu's log of translated blocks added (`-d nochain,exec,in_asm`, through a FIFO: a run logs
+hundreds of megabytes): each block's instructions once, when qemu translates it ("IN: function", then one line per
+instruction), and a "Trace" line each time a block runs (every time, with `nochain`). BEGIN and END name the two
+functions around the work counted (apps/warp_run.cpp: rtm_warp_run_begin, rtm_warp_run_end). Prints the instructions
+of every block run from BEGIN's first block to END's (BEGIN's counted, END's not); with --top N, then the N functions
+that ran the most of them (qemu's name of each block's function: inlined code counts in its caller), one a line. The
+program's standard output is dropped, its errors pass through. Exits 1 with one line when the command fails, a
+marker never runs or runs more than once, or a block ran whose instructions the log does not list.
+
+    python3 scripts/count_instructions.py rtm_warp_run_begin rtm_warp_run_end -- \\
+        qemu-aarch64 -cpu cortex-a72 build-arm/bin/rtm-warp-run bumps 256 two-pass neon 1
 """
+import os
+import subprocess
 import sys
+import tempfile
+import threading
 
 
-def main():
-    if len(sys.argv) not in (4, 5):
-        sys.exit("usage: count_instructions.py LOG BEGIN END [TOP]")
-    log, begin, end = sys.argv[1], sys.argv[2].encode(), sys.argv[3].encode()
-    top = sys.argv[4] if len(sys.argv) == 5 else "0"
-    if not top.isdigit():
-        sys.exit(f"count_instructions: TOP '{top}' is not a whole number")
-    top = int(top)
+def fail(message):
+    sys.exit(f"count_instructions: {message}")
+
+
+def count(log, begin, end, top):
+    """(total, [(function, instructions)] of the top functions, None) from the log's lines, read to their end; or
+    (0, [], what is wrong)."""
     length = {}  # block address -> instructions
     function = {}  # block address -> qemu's name of its function
     by_function = {}  # name -> instructions counted
@@ -39,43 +46,82 @@ def main():
             elif name == end:
                 marker[block] = b"end"
 
-    with open(log, "rb") as f:
-        for line in f:
-            if line.startswith(b"Trace "):
-                close_block()
-                block = None
-                # Trace 0: 0xHOST [FLAGS/PC/.../...]
-                pc = int(line.split(b"/")[1], 16)
-                m = marker.get(pc)
-                if m == b"begin":
-                    seen_begin += 1
-                    counting = True
-                elif m == b"end":
-                    seen_end += 1
-                    counting = False
-                if counting:
-                    c = length.get(pc)
-                    if c is None:
-                        unknown += 1
-                    else:
-                        total += c
-                        if top:
-                            fn = function[pc]
-                            by_function[fn] = by_function.get(fn, 0) + c
-            elif line.startswith(b"IN:"):
-                close_block()
-                block, name, n = None, line[3:].strip(), 0
-            elif line.startswith(b"0x"):
-                if block is None:
-                    block = int(line.split(b":")[0], 16)
-                n += 1
+    for line in log:
+        if line.startswith(b"Trace "):
+            close_block()
+            block = None
+            # Trace 0: 0xHOST [FLAGS/PC/.../...]
+            pc = int(line.split(b"/")[1], 16)
+            m = marker.get(pc)
+            if m == b"begin":
+                seen_begin += 1
+                counting = True
+            elif m == b"end":
+                seen_end += 1
+                counting = False
+            if counting:
+                c = length.get(pc)
+                if c is None:
+                    unknown += 1
+                else:
+                    total += c
+                    if top:
+                        fn = function[pc]
+                        by_function[fn] = by_function.get(fn, 0) + c
+        elif line.startswith(b"IN:"):
+            close_block()
+            block, name, n = None, line[3:].strip(), 0
+        elif line.startswith(b"0x"):
+            if block is None:
+                block = int(line.split(b":")[0], 16)
+            n += 1
     if seen_begin != 1 or seen_end != 1:
-        sys.exit(f"count_instructions: {log}: {begin.decode()} ran {seen_begin} times and {end.decode()} "
-                 f"{seen_end} (each must run once; is the program built with its symbols?)")
+        return 0, [], (f"{begin.decode()} ran {seen_begin} times and {end.decode()} {seen_end} (each must run once; "
+                       f"is the program built with its symbols?)")
     if unknown:
-        sys.exit(f"count_instructions: {log}: {unknown} blocks ran whose instructions the log does not list")
+        return 0, [], f"{unknown} blocks ran whose instructions the log does not list"
+    return total, sorted(by_function.items(), key=lambda fc: -fc[1])[:top], None
+
+
+def main():
+    args = sys.argv[1:]
+    top = 0
+    if args[:1] == ["--top"]:
+        if len(args) < 2 or not args[1].isdigit():
+            fail(f"--top: '{args[1] if len(args) > 1 else ''}' is not a whole number")
+        top, args = int(args[1]), args[2:]
+    if len(args) < 5 or args[2] != "--":
+        fail("usage: count_instructions.py [--top N] BEGIN END -- QEMU [QEMU OPTIONS] PROGRAM [ARGUMENTS]")
+    begin, end, command = args[0].encode(), args[1].encode(), args[3:]
+    with tempfile.TemporaryDirectory() as tmp:
+        fifo = os.path.join(tmp, "log")
+        os.mkfifo(fifo)
+        # Our own writer keeps the FIFO open until qemu has exited, so that a qemu that never opens its log (a bad
+        # option, a missing program) ends the read instead of blocking it.
+        rfd = os.open(fifo, os.O_RDONLY | os.O_NONBLOCK)
+        wfd = os.open(fifo, os.O_WRONLY)
+        os.set_blocking(rfd, True)
+        try:
+            proc = subprocess.Popen([command[0], "-d", "nochain,exec,in_asm", "-D", fifo] + command[1:],
+                                    stdout=subprocess.DEVNULL)
+        except OSError as e:
+            fail(f"{command[0]}: {e.strerror}")
+
+        def close_writer():
+            proc.wait()
+            os.close(wfd)
+
+        waiter = threading.Thread(target=close_writer)
+        waiter.start()
+        with os.fdopen(rfd, "rb") as log:
+            total, functions, error = count(log, begin, end, top)  # reads to the end: qemu never blocks
+        waiter.join()
+    if proc.returncode != 0:
+        fail(f"{' '.join(command)} exited with status {proc.returncode}")
+    if error:
+        fail(error)
     print(total)
-    for fn, c in sorted(by_function.items(), key=lambda fc: -fc[1])[:top]:
+    for fn, c in functions:
         print(f"{c:12d} {100.0 * c / total:5.1f}% {fn.decode(errors='replace') or '?'}")
 
 

@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
-# Instructions per pre-warp on each SIMD target, counted under qemu-user: an estimate of the ARM targets' speed,
-# where there is no ARM machine to time them on. Each count is one pre-warp of a procedural relief (rtm-warp-run,
+# Instructions per pre-warp on each SIMD target, counted under qemu-user: an estimate of the ARM targets' speed, where
+# there is no ARM machine to time them on. Each count is one pre-warp of a procedural relief (rtm-warp-run,
 # apps/warp_run.cpp, after a warm-up, one thread), every instruction of every translated block run between its two
-# markers (scripts/count_instructions.py). The x86-64 targets qemu emulates (avx2, sse4 and the generic kernels; not
-# AVX-512) are counted too and timed natively, so that the table shows how well a ratio of instructions predicts a
-# ratio of times on a CPU where both are known. Counts are exact and the same on every run; the native times are the
-# minimum of RTM_COUNT_ROUNDS (default 5) interleaved rounds of 100 pre-warps each.
+# markers (scripts/count_instructions.py runs it under qemu and counts). The x86-64 targets qemu emulates (avx2, sse4
+# and the generic kernels; not AVX-512) are counted too and timed natively, so that the table shows how well a ratio of
+# instructions predicts a ratio of times on a CPU where both are known. Counts are exact and the same on every run; the
+# native times are the minimum of RTM_COUNT_ROUNDS (default 5) interleaved rounds of 100 pre-warps each.
 #
 #   bash scripts/count_instructions.sh > counts.md     # progress on stderr; about 22 minutes on 2 cores
 #
@@ -32,19 +32,12 @@ trap 'rm -rf "$dir"' EXIT
 
 # One count: arch, QEMU_CPU, relief, method, target; writes $dir/arch.cpu.relief.method.target.
 count() {
-  local arch=$1 cpu=$2 relief=$3 method=$4 isa=$5 out fifo bin qemu
-  out="$dir/$arch.$cpu.$relief.$method.$isa"
-  fifo="$out.fifo"
-  mkfifo "$fifo"
-  bin=build-arm/bin/rtm-warp-run qemu=qemu-aarch64
+  local arch=$1 cpu=$2 relief=$3 method=$4 isa=$5 bin=build-arm/bin/rtm-warp-run qemu=qemu-aarch64
   [ "$arch" = x86-64 ] && bin=build/bin/rtm-warp-run qemu=qemu-x86_64
-  python3 scripts/count_instructions.py "$fifo" rtm_warp_run_begin rtm_warp_run_end >"$out" &
-  local py=$!
   # GenuineIntel: the avx2 kernels store as on Intel's cores and Zen 5 (qemu's max CPU says AMD, of a family before
   # Zen 5: avx2_masked_store_slow, warp/isa.h).
-  "$qemu" -cpu "$cpu" -d nochain,exec,in_asm -D "$fifo" "$bin" "$relief" "$size" "$method" "$isa" 1 >/dev/null
-  wait "$py"
-  rm -f "$fifo"
+  python3 scripts/count_instructions.py rtm_warp_run_begin rtm_warp_run_end -- "$qemu" -cpu "$cpu" "$bin" "$relief" \
+    "$size" "$method" "$isa" 1 >"$dir/$arch.$cpu.$relief.$method.$isa"
 }
 
 jobs_list=()

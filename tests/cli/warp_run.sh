@@ -2,7 +2,7 @@
 # rtm-warp-run (apps/warp_run.cpp) and the instruction counter of scripts/count_instructions.sh: the program runs a
 # procedural relief on each target this CPU has and refuses bad arguments with one line naming the value; under
 # qemu-x86_64 the counter finds the work between the program's two markers, the same count on every run, twice the
-# work for twice the pre-warps, and refuses a log whose markers never ran.
+# work for twice the pre-warps, and refuses a program that never runs them, one that fails, and a missing qemu.
 . "$(dirname "$0")/lib.bash"
 RUN=$(dirname "$RTM")/rtm-warp-run
 
@@ -58,17 +58,10 @@ if ldd "$RUN" | grep -q libasan; then
   finish
   exit
 fi
-# count REPEAT [TOP]: the instructions of REPEAT pre-warps of bumps 32^2 (and the TOP functions), or "failed". The
-# log goes through a FIFO, as in scripts/count_instructions.sh (about 160 MB a run, most of it the start-up).
+# count REPEAT [--top N]: the instructions of REPEAT pre-warps of bumps 32^2 (and the N functions), or "failed".
 count() {
-  rm -f "$T/log"
-  mkfifo "$T/log"
-  python3 "$SRC/scripts/count_instructions.py" "$T/log" rtm_warp_run_begin rtm_warp_run_end ${2:-} >"$T/count" &
-  local py=$! rc=0
-  qemu-x86_64 -cpu max,vendor=GenuineIntel -d nochain,exec,in_asm -D "$T/log" "$RUN" bumps 32 two-pass generic "$1" \
-    >/dev/null || rc=1
-  wait "$py" || rc=1
-  if [ "$rc" = 0 ]; then cat "$T/count"; else echo failed; fi
+  python3 "$SRC/scripts/count_instructions.py" ${2:+--top "$2"} rtm_warp_run_begin rtm_warp_run_end -- \
+    qemu-x86_64 -cpu max,vendor=GenuineIntel "$RUN" bumps 32 two-pass generic "$1" || echo failed
 }
 # With TOP 2: the count, then the two functions that ran the most of it, the first a function of rtm's (most of a
 # pre-warp of the generic kernels is in their row and column warps).
@@ -91,18 +84,26 @@ else
   echo "FAIL: instructions of 1 pre-warp $c1 and again $c1b (must be equal and above 10000), of 2: $c2 (must be twice)"
   fails=$((fails + 1))
 fi
-# A log whose markers never ran (the program refused its arguments): exit 1, one line naming the marker.
-rm -f "$T/log"
-mkfifo "$T/log"
-got=0
-python3 "$SRC/scripts/count_instructions.py" "$T/log" rtm_warp_run_begin rtm_warp_run_end >"$T/stdout" 2>"$T/stderr" &
-py=$!
-qemu-x86_64 -d nochain,exec,in_asm -D "$T/log" "$RUN" bumps 8 two-pass generic 1 >/dev/null 2>&1 || true
-wait "$py" || got=$?
-if [ "$got" = 1 ] && grep -q 'rtm_warp_run_begin ran 0 times' "$T/stderr" && [ ! -s "$T/stdout" ]; then
-  passes=$((passes + 1))
-else
-  echo "FAIL: count_instructions.py on a log without the markers: exit $got, $(cat "$T/stdout" "$T/stderr")"
-  fails=$((fails + 1))
-fi
+# A program that never runs the markers (true): exit 1, one line naming the marker. A program that fails (refused
+# arguments): exit 1, the line naming the command and its status after the program's own.
+counter_refuses() {  # counter_refuses PATTERN LINES -- COMMAND...
+  local pattern=$1 lines=$2 got=0
+  shift 3
+  python3 "$SRC/scripts/count_instructions.py" rtm_warp_run_begin rtm_warp_run_end -- "$@" >"$T/stdout" \
+    2>"$T/stderr" || got=$?
+  if [ "$got" = 1 ] && [ "$(grep -c '' "$T/stderr")" = "$lines" ] && tail -n 1 "$T/stderr" | grep -Eq -- "$pattern" &&
+    [ ! -s "$T/stdout" ]; then
+    passes=$((passes + 1))
+  else
+    echo "FAIL: count_instructions.py -- $*: want exit 1, $lines line(s) ending /$pattern/; got exit $got:" \
+      "$(cat "$T/stdout" "$T/stderr")"
+    fails=$((fails + 1))
+  fi
+}
+counter_refuses '^count_instructions: rtm_warp_run_begin ran 0 times and rtm_warp_run_end 0' 1 -- qemu-x86_64 \
+  "$(type -P true)"
+counter_refuses "^count_instructions: qemu-x86_64 $RUN bumps 8 two-pass generic 1 exited with status 1\$" 2 -- \
+  qemu-x86_64 "$RUN" bumps 8 two-pass generic 1
+counter_refuses "^count_instructions: no-such-qemu: No such file or directory" 1 -- no-such-qemu "$RUN"
+counter_refuses '^count_instructions: usage:' 1 --
 finish
