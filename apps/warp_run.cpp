@@ -40,7 +40,7 @@ volatile int mark = 0;  // what the markers below write, so that their code diff
 
 }  // namespace
 
-// The timed pre-warps run between these two calls: scripts/count_instructions.sh counts the instructions executed
+// Each timed pre-warp runs between these two calls: scripts/count_instructions.py counts the instructions executed
 // from the first to the second (qemu names each translated block's function). Not inlined; not merged either.
 extern "C" [[gnu::noinline]] void rtm_warp_run_begin() { mark = 1; }
 extern "C" [[gnu::noinline]] void rtm_warp_run_end() { mark = 2; }
@@ -72,13 +72,13 @@ int main(int argc, char** argv) {
         ImageRGBA8 out;
         const PrewarpStats first = prewarp(relief, k, o, ws, out);  // warm-up; names the target (throws if absent)
         std::vector<double> ms;
-        rtm_warp_run_begin();
         for (int i = 0; i < repeat; ++i) {
             const auto t0 = std::chrono::steady_clock::now();
+            rtm_warp_run_begin();
             prewarp(relief, k, o, ws, out);
+            rtm_warp_run_end();
             ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
         }
-        rtm_warp_run_end();
         std::sort(ms.begin(), ms.end());
         std::printf("%s %d %s isa %s: %d pre-warps after a warm-up", argv[1], size, method.c_str(), isa_name(first.isa),
                     repeat);

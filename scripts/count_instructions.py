@@ -6,11 +6,12 @@
 Runs the command with qemu's log of translated blocks added (`-d nochain,exec,in_asm`, through a FIFO: a run logs
 hundreds of megabytes): each block's instructions once, when qemu translates it ("IN: function", then one line per
 instruction), and a "Trace" line each time a block runs (every time, with `nochain`). BEGIN and END name the two
-functions around the work counted (apps/warp_run.cpp: rtm_warp_run_begin, rtm_warp_run_end). Prints the instructions
-of every block run from BEGIN's first block to END's (BEGIN's counted, END's not); with --top N, then the N functions
-that ran the most of them (qemu's name of each block's function: inlined code counts in its caller), one a line. The
-program's standard output is dropped, its errors pass through. Exits 1 with one line when the command fails, a
-marker never runs or runs more than once, or a block ran whose instructions the log does not list.
+functions around the work counted (apps/warp_run.cpp: rtm_warp_run_begin, rtm_warp_run_end, around each pre-warp).
+Prints, one a line, the instructions of every block run from each run of BEGIN to the next run of END (BEGIN's block
+counted, END's not); with --top N, then the N functions that ran the most of all of them (qemu's name of each block's
+function: inlined code counts in its caller), one a line. The program's standard output is dropped, its errors pass
+through. Exits 1 with one line when the command fails, BEGIN and END do not alternate (BEGIN first, at least once),
+or a block ran whose instructions the log does not list.
 
     python3 scripts/count_instructions.py rtm_warp_run_begin rtm_warp_run_end -- \\
         qemu-aarch64 -cpu cortex-a72 build-arm/bin/rtm-warp-run bumps 256 two-pass neon 1
@@ -27,15 +28,15 @@ def fail(message):
 
 
 def count(log, begin, end, top):
-    """(total, [(function, instructions)] of the top functions, None) from the log's lines, read to their end; or
-    (0, [], what is wrong)."""
+    """([instructions of each BEGIN .. END], [(function, instructions)] of the top functions, None) from the log's
+    lines, read to their end; or ([], [], what is wrong)."""
     length = {}  # block address -> instructions
     function = {}  # block address -> qemu's name of its function
     by_function = {}  # name -> instructions counted
     marker = {}  # block address -> b"begin" / b"end"
     block, name, n = None, None, 0
-    counting, seen_begin, seen_end = False, 0, 0
-    total, unknown = 0, 0
+    counting, seen_begin, seen_end, out_of_turn = False, 0, 0, False
+    counts, unknown = [], 0
 
     def close_block():
         if block is not None:
@@ -55,16 +56,19 @@ def count(log, begin, end, top):
             m = marker.get(pc)
             if m == b"begin":
                 seen_begin += 1
+                out_of_turn |= counting
                 counting = True
+                counts.append(0)
             elif m == b"end":
                 seen_end += 1
+                out_of_turn |= not counting
                 counting = False
             if counting:
                 c = length.get(pc)
                 if c is None:
                     unknown += 1
                 else:
-                    total += c
+                    counts[-1] += c
                     if top:
                         fn = function[pc]
                         by_function[fn] = by_function.get(fn, 0) + c
@@ -75,12 +79,13 @@ def count(log, begin, end, top):
             if block is None:
                 block = int(line.split(b":")[0], 16)
             n += 1
-    if seen_begin != 1 or seen_end != 1:
-        return 0, [], (f"{begin.decode()} ran {seen_begin} times and {end.decode()} {seen_end} (each must run once; "
-                       f"is the program built with its symbols?)")
+    if seen_begin == 0 or seen_begin != seen_end or out_of_turn:
+        return [], [], (f"{begin.decode()} ran {seen_begin} times and {end.decode()} {seen_end}, "
+                        f"{'not in turn' if out_of_turn else 'in turn'} (they must alternate, {begin.decode()} first, "
+                        f"at least once; is the program built with its symbols?)")
     if unknown:
-        return 0, [], f"{unknown} blocks ran whose instructions the log does not list"
-    return total, sorted(by_function.items(), key=lambda fc: -fc[1])[:top], None
+        return [], [], f"{unknown} blocks ran whose instructions the log does not list"
+    return counts, sorted(by_function.items(), key=lambda fc: -fc[1])[:top], None
 
 
 def main():
@@ -114,15 +119,16 @@ def main():
         waiter = threading.Thread(target=close_writer)
         waiter.start()
         with os.fdopen(rfd, "rb") as log:
-            total, functions, error = count(log, begin, end, top)  # reads to the end: qemu never blocks
+            counts, functions, error = count(log, begin, end, top)  # reads to the end: qemu never blocks
         waiter.join()
     if proc.returncode != 0:
         fail(f"{' '.join(command)} exited with status {proc.returncode}")
     if error:
         fail(error)
-    print(total)
+    for c in counts:
+        print(c)
     for fn, c in functions:
-        print(f"{c:12d} {100.0 * c / total:5.1f}% {fn.decode(errors='replace') or '?'}")
+        print(f"{c:12d} {100.0 * c / sum(counts):5.1f}% {fn.decode(errors='replace') or '?'}")
 
 
 if __name__ == "__main__":

@@ -4,8 +4,8 @@
 # apps/warp_run.cpp, after a warm-up, one thread), every instruction of every translated block run between its two
 # markers (scripts/count_instructions.py runs it under qemu and counts). The x86-64 targets qemu emulates (avx2, sse4
 # and the generic kernels; not AVX-512) are counted too and timed natively, so that the table shows how well a ratio of
-# instructions predicts a ratio of times on a CPU where both are known. Counts are exact and the same on every run; the
-# native times are the minimum of RTM_COUNT_ROUNDS (default 5) interleaved rounds of 100 pre-warps each.
+# instructions predicts a ratio of times on a CPU where both are known. Counts are exact (every pre-warp of a run counts
+# the same); the native times are the minimum of RTM_COUNT_ROUNDS (default 5) interleaved rounds of 100 pre-warps each.
 #
 #   bash scripts/count_instructions.sh > counts.md     # progress on stderr; about 22 minutes on 2 cores
 #
@@ -88,7 +88,6 @@ def native(r, m, i):
     p = os.path.join(d, f"native.{r}.{m}.{i}")
     return min(float(x) for x in open(p)) if os.path.exists(p) else None
 x86 = "max,vendor=GenuineIntel"
-rows = []
 print(f"Instructions per pre-warp, {size}^2, one thread (rtm-warp-run under qemu-user 7.2); native times on {cpu}.\n")
 print("| relief | method | target | CPU (qemu) | instructions | per texel | generic / target, instructions | "
       "generic / target, native time | time ratio / instruction ratio |")
