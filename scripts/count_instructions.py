@@ -33,7 +33,6 @@ def count(log, begin, end, top):
     length = {}  # block address -> instructions
     function = {}  # block address -> qemu's name of its function
     by_function = {}  # name -> instructions counted
-    marker = {}  # block address -> b"begin" / b"end"
     block, name, n = None, None, 0
     counting, seen_begin, seen_end, out_of_turn = False, 0, 0, False
     counts, unknown = [], 0
@@ -42,10 +41,6 @@ def count(log, begin, end, top):
         if block is not None:
             length[block] = n
             function[block] = name
-            if name == begin:
-                marker[block] = b"begin"
-            elif name == end:
-                marker[block] = b"end"
 
     for line in log:
         if line.startswith(b"Trace "):
@@ -53,13 +48,13 @@ def count(log, begin, end, top):
             block = None
             # Trace 0: 0xHOST [FLAGS/PC/.../...]
             pc = int(line.split(b"/")[1], 16)
-            m = marker.get(pc)
-            if m == b"begin":
+            fn = function.get(pc)
+            if fn == begin:
                 seen_begin += 1
                 out_of_turn |= counting
                 counting = True
                 counts.append(0)
-            elif m == b"end":
+            elif fn == end:
                 seen_end += 1
                 out_of_turn |= not counting
                 counting = False
@@ -70,7 +65,6 @@ def count(log, begin, end, top):
                 else:
                     counts[-1] += c
                     if top:
-                        fn = function[pc]
                         by_function[fn] = by_function.get(fn, 0) + c
         elif line.startswith(b"IN:"):
             close_block()
