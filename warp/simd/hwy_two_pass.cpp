@@ -70,9 +70,9 @@ uint32_t HorizontalSteps(const fast::TwoPassJob& job, int s0, int s1, uint32_t* 
 // threads the horizontal pass writes a band on one core and the vertical pass reads it on the other (the pipeline of
 // warp/simd/schedule.cpp), and the hardware prefetchers did not bring the rows in time: bumps 256^2 two-pass on two
 // threads, `avx512`, median of 5 interleaved runs of 2,000 pre-warps, 0.251 -> 0.152 ms (ridges 0.352 -> 0.211;
-// `avx2` bumps 0.170 -> 0.143), 40% of the vertical pass's time in the two loads of each vector before; 1, 3 and 4
-// steps ahead within 3% of 2, 6 slower. One thread, bricks (whose still-step test reads the rows first) and 1024^2
-// (rows of 4 KiB): within the noise.
+// `avx2` bumps 0.170 -> 0.143), 55% of the vertical pass's samples on the two loads of each vector before; 1, 3 and
+// 4 steps ahead within 3% of 2, 6 slower. One thread, bricks (whose still-step test reads the rows first) and 1024^2
+// (rows of 4 KiB): within the noise (docs/perf-history.md, "The band rows prefetched").
 constexpr int kBandAhead = 2;
 
 // Columns [x0, x1) of one band row (colour and row coordinate) into the cache, a line (16 pixels) at a time.
