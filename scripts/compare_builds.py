@@ -72,9 +72,8 @@ def bench(rtm, isa, size, args, json_path):
     # The generic kernels' rows are the bench's reference rows (one thread); any other target's, its fast rows.
     command = [rtm, "bench", "--sizes", str(size), "--isa", isa, "--reliefs", ",".join(args.reliefs), "--methods",
                ",".join(args.methods), "--threads", ",".join(map(str, args.threads)), "--min-time",
-               str(args.min_time), "--no-exact", "--no-table1", "--no-scene", "--json", json_path]
-    if isa != "generic":
-        command.insert(-2, "--no-reference")
+               str(args.min_time), "--no-exact", "--no-table1", "--no-scene"]
+    command += ([] if isa == "generic" else ["--no-reference"]) + ["--json", json_path]
     if os.path.exists(json_path):
         os.remove(json_path)  # (the previous run's)
     run = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
