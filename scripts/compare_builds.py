@@ -16,8 +16,8 @@ how many rows they reach R, default 0.95: issue #18's bar for the Highway kernel
 progress on standard error.
 
 Both builds must have `rtm bench` with these options and its JSON rows (any commit since the Highway kernels,
-2026-12-02). Exits 1 with one line when an argument is wrong, a run fails, or the two builds' runs do not give the
-same rows.
+2026-12-02). Exits 1 with one line (after the progress of the runs before it) when an argument is wrong, a run fails,
+or the two builds' runs do not give the same rows.
 
     python3 scripts/compare_builds.py --rounds 5 old/build/bin/rtm avx512 build/bin/rtm avx512
 """

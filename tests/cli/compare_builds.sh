@@ -3,7 +3,8 @@
 # generic kernels and the SSE4 target, which every x86-64 machine that runs the suite has; on others the script's
 # refusal of a missing target is what is checked). The report's shape (a row per relief, size, reconstruction and
 # thread count, in order; the summary line; the progress on stderr), not its figures: no test asserts a time. Bad
-# arguments and failing runs: exit 1, one line naming the value or the command.
+# arguments and failing runs: exit 1, one line naming the value or the command (after the progress of the runs
+# before it).
 . "$(dirname "$0")/lib.bash"
 CMP="$SRC/scripts/compare_builds.py"
 small=(--rounds 2 --sizes 32,48 --reliefs bumps --methods two-pass,pipelined --threads 1 --min-time 0.01)
