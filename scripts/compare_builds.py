@@ -74,24 +74,25 @@ def bench(rtm, isa, size, args, json_path):
                ",".join(args.methods), "--threads", ",".join(map(str, args.threads)), "--min-time",
                str(args.min_time), "--no-exact", "--no-table1", "--no-scene"]
     command += ([] if isa == "generic" else ["--no-reference"]) + ["--json", json_path]
+    shown = " ".join(command)
     if os.path.exists(json_path):
         os.remove(json_path)  # (the previous run's)
     run = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     if run.returncode != 0:
         last = run.stderr.strip().splitlines()[-1:] or ["no message"]
-        fail(f"'{' '.join(command)}' exited {run.returncode}: {last[0]}")
+        fail(f"'{shown}' exited {run.returncode}: {last[0]}")
     try:
         with open(json_path) as f:
             rows = json.load(f)["rows"]
     except (OSError, ValueError, KeyError, TypeError) as e:
-        fail(f"'{' '.join(command)}' wrote no report of rows to {json_path} ({type(e).__name__}: {e})")
+        fail(f"'{shown}' wrote no report of rows to {json_path} ({type(e).__name__}: {e})")
     out = {}
     for r in rows:
         if r.get("path") != "lut" or (r.get("isa") != isa if isa != "auto" else r.get("kernel") != "fast"):
             continue
         out[(r["relief"], r["size"], r["method"], r["threads"])] = r["prewarp_ms"]["median"]
     if not out:
-        fail(f"'{' '.join(command)}' gave no row of target {isa} (a target this CPU or build lacks?)")
+        fail(f"'{shown}' gave no row of target {isa} (a target this CPU or build lacks?)")
     return out
 
 
