@@ -1145,18 +1145,34 @@ inline void RowDisplacements(const ReliefTexture& t, const PrewarpTables& tab, i
     for (int x = 0; x < t.width; ++x) s.d[x] = tab.displ[src[x].q];
 }
 
-// The state of the output columns: each column's last sample (final row coordinate, packed colour, and floor and
-// ceil of its v - 0.5 clamped to [-1, out height]) and, in ok, -1 where it has one and 0 elsewhere; with a
-// discontinuity threshold (ColumnStep<true>) also its carried displacement d. Arrays of the output width, readable
-// a whole vector past it.
+// The state of the output columns: each column's last sample (final row coordinate v, NaN where the column has none,
+// and packed colour c); with a discontinuity threshold (ColumnStep<true>) also its carried displacement d. Arrays of
+// the output width, readable a whole vector past it. Eight bytes a column (twelve with d): at 4096^2 the state of a
+// step's 4,100 columns fits in a 48 KiB L1 cache, where an int32 "has a sample" flag and the kept floor and ceiling
+// of v - 0.5 (20 bytes a column, until session 33) did not: bumps 4096^2 two-pass, `avx512`, one thread, medians of
+// 4 interleaved runs 95.6 -> 91.2 ms, ridges 92 -> 85 ms (docs/perf-history.md, "Long runs of spans and the column
+// state").
 struct Columns {
     float* v;
-    int32_t* ok;
     uint32_t* c;
-    int32_t* fl;
-    int32_t* ce;
     float* d = nullptr;
 };
+
+// Floor and ceiling of min(max(a - 0.5, -1), oh) (oh: the image's height, a float), converted to int32, in the lanes
+// where a is finite (the others get anything).
+template <class DF, class DI>
+HWY_INLINE void FloorCeil(DF df, DI di, hn::Vec<DF> a, hn::Vec<DF> oh, hn::Vec<DI>& f, hn::Vec<DI>& e) {
+    const hn::Vec<DF> cl = hn::Min(hn::Max(hn::Sub(a, hn::Set(df, 0.5f)), hn::Set(df, -1.0f)), oh);
+#if HWY_TARGET <= HWY_AVX3
+    // Rounded and converted by one instruction each.
+    (void)di;
+    f = hn::Vec<DI>{_mm512_cvt_roundps_epi32(cl.raw, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC)};
+    e = hn::Vec<DI>{_mm512_cvt_roundps_epi32(cl.raw, _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC)};
+#else
+    f = ConvertInRange(di, hn::Floor(cl));
+    e = ConvertInRange(di, hn::Ceil(cl));
+#endif
+}
 
 // The column step of one row of pixels rc (packed colour, alpha 0 where not written) and rv (final row
 // coordinate) for columns [x0, x1): in every column whose pixel was written with a finite row coordinate, the span
@@ -1165,8 +1181,9 @@ struct Columns {
 // rc and rv are read a whole vector past x1.
 //
 // raster_span's rows floor(pv - 0.5) + 1 .. floor(v - 0.5) (v > pv) or ceil(v - 0.5) .. ceil(pv - 0.5) - 1 (v < pv),
-// clamped to [0, oh - 1], in integers from floor and ceil of v - 0.5 kept with each sample (clamping to [-1, oh]
-// first commutes with floor and ceil and changes no row in [0, oh - 1]): each step rounds its new samples only.
+// clamped to [0, oh - 1], in integers from floor and ceil of pv - 0.5 and v - 0.5 clamped to [-1, oh] (which
+// commutes with floor and ceil and changes no row in [0, oh - 1]), both computed at each step (FloorCeil: four
+// operations on AVX-512, where keeping the previous sample's with it cost two loads and two stores).
 //
 // With kThreshold (the relief's discontinuity threshold, paper section 4.1.1) the row also brings each pixel's
 // carried displacement rd, and a column joins its last sample to the new one only where |d_last - d| <= threshold
@@ -1182,24 +1199,24 @@ HWY_INLINE void ColumnStep(const Columns& col, const ColumnTarget& o, const uint
     const int N = int(hn::Lanes(df));
     const VI alpha = hn::Set(di, int32_t(0xFF000000u)), izero = hn::Zero(di), ione = hn::Set(di, 1);
     const VI last = hn::Set(di, o.oh - 1);
-    const VF half = hn::Set(df, 0.5f), lo_clamp = hn::Set(df, -1.0f), hi_clamp = hn::Set(df, float(o.oh));
+    const VF hi_clamp = hn::Set(df, float(o.oh));
     for (int x = x0; x < x1; x += N) {
         const auto mi = hn::RebindMask(di, hn::FirstN(df, size_t(x1 - x)));
         const auto m = hn::RebindMask(df, mi);
         const VF v = hn::MaskedLoad(m, df, rv + x);
         const VI c = hn::MaskedLoad(mi, di, reinterpret_cast<const int32_t*>(rc + x));
         const auto fin = hn::And(mi, hn::And(hn::Ne(hn::And(c, alpha), izero), hn::RebindMask(di, hn::IsFinite(v))));
-        const VI okv = hn::MaskedLoad(mi, di, col.ok + x);
-        auto pok = hn::And(fin, hn::Ne(okv, izero));
-        // The columns' new state: where the vector is all the caller's (`full`), whole-vector stores of the new values
-        // blended with the old ones just loaded (no masked store, which costs more on AVX2: StoreOwned), else masked
-        // stores of the caller's lanes.
+        // The column's last sample (NaN where it has none), replaced by the new one (NaN where there is none).
+        const VF pv = hn::MaskedLoad(m, df, col.v + x);
+        const auto finf = hn::RebindMask(df, fin);
+        const VF vnext = hn::IfThenElse(finf, v, hn::Set(df, std::numeric_limits<float>::quiet_NaN()));
         const bool full = x + N <= x1;
         if (full)
-            hn::StoreU(hn::VecFromMask(di, fin), di, col.ok + x);
+            hn::StoreU(vnext, df, col.v + x);
         else
-            hn::BlendedStore(hn::VecFromMask(di, fin), mi, di, col.ok + x);
+            hn::BlendedStore(vnext, m, df, col.v + x);
         if (hn::AllFalse(di, fin)) continue;
+        auto pok = hn::And(fin, hn::RebindMask(di, hn::Not(hn::IsNaN(pv))));
         auto keep = [&](auto d, auto vnew, auto vold, auto* p) HWY_ATTR __attribute__((always_inline)) {
             const auto f = hn::RebindMask(d, fin);
             if (full)
@@ -1212,22 +1229,12 @@ HWY_INLINE void ColumnStep(const Columns& col, const ColumnTarget& o, const uint
             pok = hn::And(pok, hn::RebindMask(di, WithinThreshold(df, pd, d, threshold)));
             keep(df, d, pd, col.d + x);
         }
-        const VF pv = hn::MaskedLoad(m, df, col.v + x);
         const VI pc = hn::MaskedLoad(mi, di, reinterpret_cast<const int32_t*>(col.c + x));
-        const VI pf = hn::MaskedLoad(mi, di, col.fl + x), pe = hn::MaskedLoad(mi, di, col.ce + x);
-        const VF cl = hn::Min(hn::Max(hn::Sub(v, half), lo_clamp), hi_clamp);  // v finite where it counts
-        // (cl lies in [-1, oh] in the lanes of fin, the only ones stored.)
-#if HWY_TARGET <= HWY_AVX3
-        // Rounded and converted by one instruction each.
-        const VI f{_mm512_cvt_roundps_epi32(cl.raw, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC)};
-        const VI e{_mm512_cvt_roundps_epi32(cl.raw, _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC)};
-#else
-        const VI f = ConvertInRange(di, hn::Floor(cl)), e = ConvertInRange(di, hn::Ceil(cl));
-#endif
-        keep(df, v, pv, col.v + x);
+        // (v and pv are finite in the lanes where f, e, pf and pe are used: fin and pok.)
+        VI f, e, pf, pe;
+        FloorCeil(df, di, v, hi_clamp, f, e);
+        FloorCeil(df, di, pv, hi_clamp, pf, pe);
         keep(di, c, pc, reinterpret_cast<int32_t*>(col.c + x));
-        keep(di, f, pf, col.fl + x);
-        keep(di, e, pe, col.ce + x);
         const auto pokf = hn::RebindMask(df, pok);
         const auto inc = hn::RebindMask(di, hn::And(pokf, hn::Gt(v, pv)));
         const auto dec = hn::RebindMask(di, hn::And(pokf, hn::Lt(v, pv)));

@@ -12,6 +12,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "warp/line_warp.h"
 #include "warp/simd/hwy_row-inl.h"
@@ -88,13 +89,12 @@ void VerticalSteps(const fast::TwoPassJob& job, int s0, int s1, const uint32_t* 
                    size_t stride, int x0, int x1) {
     const int h = job.relief->height, ow = job.out->width, oh = job.out->height;
     uint32_t* out = reinterpret_cast<uint32_t*>(job.out->pixels.data());
-    int32_t* col_ok = reinterpret_cast<int32_t*>(job.col_ok);  // one int32 a column here
     const bool with_d = job.threshold > 0.0f;
-    const Columns cols{job.col_v, col_ok, job.col_c, job.col_fl, job.col_ce, job.col_d};
+    const Columns cols{job.col_v, job.col_c, job.col_d};
     const ColumnTarget target{out, ow, oh, 0, oh, job.blend_stores};
     if (s0 == 0) {
         for (int y = 0; y < oh; ++y) std::memset(out + size_t(y) * size_t(ow) + size_t(x0), 0, size_t(x1 - x0) * 4);
-        std::fill(col_ok + x0, col_ok + x1, 0);
+        std::fill(job.col_v + x0, job.col_v + x1, std::numeric_limits<float>::quiet_NaN());
     }
     for (int st = s0; st < s1; ++st) {
         if (st == job.split_v && st > 0) {
@@ -102,8 +102,8 @@ void VerticalSteps(const fast::TwoPassJob& job, int s0, int s1, const uint32_t* 
             // afresh.
             for (int x = x0; x < x1; ++x) {
                 job.seam_v[x] = job.col_v[x];
-                job.seam_c[x] = col_ok[x] ? (job.col_c[x] | 0xFF000000u) : 0u;
-                col_ok[x] = 0;
+                job.seam_c[x] = std::isnan(job.col_v[x]) ? 0u : (job.col_c[x] | 0xFF000000u);
+                job.col_v[x] = std::numeric_limits<float>::quiet_NaN();
             }
             if (with_d) std::copy(job.col_d + x0, job.col_d + x1, job.seam_d + x0);
         }
@@ -119,7 +119,7 @@ void VerticalSteps(const fast::TwoPassJob& job, int s0, int s1, const uint32_t* 
         // The span across the epipole (warp_line_to's seam): the samples at split_v - 1 and split_v, where both
         // are there.
         for (int x = x0; x < x1; ++x) {
-            if (!(job.seam_c[x] >> 24) || !col_ok[x]) continue;
+            if (!(job.seam_c[x] >> 24) || std::isnan(job.col_v[x])) continue;
             if (with_d && !displacements_joined(job.seam_d[x], job.col_d[x], job.threshold)) continue;
             raster_span(job.seam_v[x], unpack(job.seam_c[x]), 0.0f, job.col_v[x], unpack(job.col_c[x]), 0.0f, oh,
                         [&](int y, Rgba8 c, float) { job.out->at(x, oh - 1 - y) = c; });

@@ -268,7 +268,7 @@ void vertical_with_still(const StillColumns& sc, int s0, int s1, uint32_t still_
                         for (int x = gx0; x < gx1; ++x) o[x] = c[x] | 0xFF000000u;
                     }
                     copied += (long long)(e - st) * (gx1 - gx0);
-                    // The columns' last sample: step e - 1's pixel ("has a sample" is set already: step st - 1's
+                    // The columns' last sample: step e - 1's pixel (each column had one already: step st - 1's
                     // pixels were still too).
                     const int y = step_line(job, e - 1);
                     const uint32_t* c = band_c + size_t(e - 1 - s0) * stride;
@@ -276,7 +276,6 @@ void vertical_with_still(const StillColumns& sc, int s0, int s1, uint32_t still_
                         job.col_v[x] = float(y) + 0.5f;
                         job.col_c[x] = c[x];
                     }
-                    for (int x = gx0; x < gx1; ++x) job.col_fl[x] = job.col_ce[x] = y;
                     // And its carried displacement (a copied pixel is the same whether or not it was connected to
                     // the one before: a one-pixel span at t = 1 or a point on the same pixel).
                     if (job.threshold > 0.0f) {
@@ -305,12 +304,12 @@ PrewarpStats fast_two_pass(const simd::TwoPassKernels& kernels, const ReliefText
     ensure_size(out, ow, oh);
     static_assert(kBandRows <= 32, "vertical_with_still keeps a band's steps in 32 bits");
     // Rows of the workspace's intermediate images (width rounded up to 16, 64-byte aligned thanks to the spare
-    // row): 0 the column state (v, colour), 1 the seam, 2 the columns' "has a sample" bits and floor, 3 ceil, then
-    // the bands.
+    // row): 0 the column state (v, colour), 1 the seam, then (from kStateRows) the bands.
+    constexpr int kStateRows = 2;
     const int stride = (ow + 15) / 16 * 16;
     const int band = kBandRows, slots = kBandSlots;
     // One more row: the groups' still flags (vertical_with_still).
-    ensure_size(ws.mid_color, stride, 4 + band * slots + 2);
+    ensure_size(ws.mid_color, stride, kStateRows + band * slots + 2);
     // With a discontinuity threshold the columns carry each sample's displacement (TwoPassJob::threshold).
     const float threshold = float(relief.discontinuity_threshold);
     const bool carry_d = threshold > 0.0f;
@@ -320,7 +319,7 @@ PrewarpStats fast_two_pass(const simd::TwoPassKernels& kernels, const ReliefText
     // With a threshold, then: the columns' carried displacement, the seam's, and the bands' (each band's d rows
     // d_offset floats after its v rows).
     const int d_rows = carry_d ? 2 + band * slots : 0;
-    const size_t d_base = 4 + size_t(band * slots) + scratch_rows * size_t(slots);
+    const size_t d_base = kStateRows + size_t(band * slots) + scratch_rows * size_t(slots);
     ensure_size(ws.mid_v, stride, int(d_base) + d_rows + 1);
     uint32_t* mc = aligned64(reinterpret_cast<uint32_t*>(ws.mid_color.pixels.data()));
     float* mv = aligned64(ws.mid_v.pixels.data());
@@ -336,37 +335,33 @@ PrewarpStats fast_two_pass(const simd::TwoPassKernels& kernels, const ReliefText
     job.col_c = mc;
     job.seam_v = mv + stride;
     job.seam_c = mc + stride;
-    job.col_ok = reinterpret_cast<int32_t*>(mc + 2 * size_t(stride));
     job.copy_still = options.copy_still_runs;
     job.reverse = simd::testing::kernel_policy().two_pass_reverse;
     job.redo_forwards = simd::testing::kernel_policy().two_pass_redo_forwards;
     job.blend_stores = blend_stores();
-    job.col_fl = reinterpret_cast<int32_t*>(mv + 2 * size_t(stride));
-    job.col_ce = reinterpret_cast<int32_t*>(mv + 3 * size_t(stride));
     job.dropped = &dropped;
     job.breaks = relief.breaks.empty() ? nullptr : relief.breaks.data();
     if (carry_d) {
         job.threshold = threshold;
         job.col_d = mv + d_base * size_t(stride);
         job.seam_d = job.col_d + stride;
-        job.d_offset = std::ptrdiff_t(d_base + 2 - 4) * stride;  // band_v(slot) + d_offset: band_d(slot)
+        job.d_offset = std::ptrdiff_t(d_base + 2 - kStateRows) * stride;  // band_v(slot) + d_offset: band_d(slot)
     }
-    auto band_c = [&](int slot) { return mc + size_t(4 + slot * band) * stride; };
-    auto band_v = [&](int slot) { return mv + size_t(4 + slot * band) * stride; };
+    auto band_c = [&](int slot) { return mc + size_t(kStateRows + slot * band) * stride; };
+    auto band_v = [&](int slot) { return mv + size_t(kStateRows + slot * band) * stride; };
     const int bands = (h + band - 1) / band;
     // Per band slot: the rows of its band that may hold still pixels (HorizontalStepsFn), written by its horizontal
     // pass, read by its vertical pass (after it, in the pipeline too).
     uint32_t still_rows[kBandSlots] = {};
     auto horizontal = [&](int b) {
-        still_rows[b % slots] = kernels.horizontal(job, b * band, std::min(h, (b + 1) * band), band_c(b % slots),
-                                                   band_v(b % slots), size_t(stride),
-                                                   mv + (size_t(4 + band * slots) + (b % slots) * scratch_rows) *
-                                                            stride);
+        still_rows[b % slots] = kernels.horizontal(
+            job, b * band, std::min(h, (b + 1) * band), band_c(b % slots), band_v(b % slots), size_t(stride),
+            mv + (size_t(kStateRows + band * slots) + (b % slots) * scratch_rows) * stride);
     };
     StillColumns still;
     still.kernels = &kernels;
     still.job = &job;
-    still.group_still = reinterpret_cast<uint8_t*>(mc + size_t(4 + band * slots) * stride);
+    still.group_still = reinterpret_cast<uint8_t*>(mc + size_t(kStateRows + band * slots) * stride);
     auto vertical = [&](int b, int x0, int x1) {
         vertical_with_still(still, b * band, std::min(h, (b + 1) * band), still_rows[b % slots], band_c(b % slots),
                             band_v(b % slots), size_t(stride), x0, x1);

@@ -32,14 +32,10 @@ struct TwoPassJob {
     int split_u = 0, split_v = 0;  // split_index of the epipole along rows and columns (source)
     ImageRGBA8* out = nullptr;     // out width x out height
     // Per output column (out width entries, rounded up to 16; 64-byte aligned): the last sample the column
-    // received (final row coordinate, colour, floor and ceil of its v - 0.5 clamped to [-1, out height]) and whether
-    // it has one (col_ok, read as one int32_t a column: -1 where it has one and 0 elsewhere); and the last sample of
-    // the bottom part (colour alpha 0 where none), for the span across the epipole.
+    // received (final row coordinate, NaN where the column has none, and colour); and the last sample of the bottom
+    // part (colour alpha 0 where none), for the span across the epipole.
     float* col_v = nullptr;
     uint32_t* col_c = nullptr;
-    int32_t* col_fl = nullptr;
-    int32_t* col_ce = nullptr;
-    int32_t* col_ok = nullptr;
     float* seam_v = nullptr;
     uint32_t* seam_c = nullptr;
     // Surface discontinuities (paper section 4.1.1; the two-pass kernels, fast_prewarp_covers): the relief's
