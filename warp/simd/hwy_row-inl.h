@@ -383,22 +383,33 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
     }
 #endif
     // Measured (thread CPU time, bumps 1024^2 two-pass, samples in the row warp): AVX2 about even with the lane by
-    // lane loop below, SSE4 8% slower; so only from 8 lanes on.
-    if (N >= 8 && len <= 4 * N) {
+    // lane loop below, SSE4 8% slower; so only from 8 lanes on. SSE4 by lookup (session 33, 4096^2 two-pass, one
+    // thread, medians of two interleaved runs of 10): runs longer than 4 vectors, bricks 83 -> 83 ms, ridges 141 ->
+    // 149 to 152 ms; every run, bricks 83 -> 79 to 81 ms, ridges 141 -> 155 to 157 ms: neither.
+    if (N >= 8) {
         // Each pixel of the run a vector at a time, from its lane: lane i's pixel centres lie in (pa_i, pb_i] (the
         // left part, fwd) or [pb_i, pa_i), and the lanes' ends follow the lane order, so a centre's lane is the
-        // number of lanes whose span ends before it: pb_i < centre, or pa_i <= centre.
+        // number of lanes whose span ends before it: pb_i < centre, or pa_i <= centre. The ends being in order,
+        // only the lanes whose end lies among a vector's centres are compared (the ones before count whole, the
+        // ones after not at all): a run of long spans costs about a comparison a lane, not a vector's lanes a vector.
+        // Until session 33 runs longer than 4 vectors went lane by lane (the loop below), which the joints of the
+        // brick wall take at 4096^2 (4 times the pixels of parallax of 1024^2): bricks 4096^2 two-pass, one thread,
+        // medians of interleaved runs, `avx512` 49.5 -> 41.0 ms, `avx2` 57 -> 51 ms; ridges `avx512` 86 -> 81 ms,
+        // `avx2` unchanged (docs/perf-history.md, "Long runs of spans and the column state").
         HWY_ALIGN float edge[HWY_MAX_BYTES / 4];
         hn::Store(fwd ? pb : pa, df, edge);
+        auto ends_before = [fwd](float e, float centre) { return fwd ? e < centre : e <= centre; };
         const VI iota = hn::Iota(di, 0);  // hoisted: GCC 12 builds Iota(di, x) in memory (a store-forwarding stall)
+        int i0 = first;                   // the lanes before i0 end before the vector's first centre
         for (int j = 0; j < len; j += N) {
             const VF xc = hn::Add(hn::ConvertTo(df, hn::Add(hn::Set(di, xa + j), iota)), half);
-            VI own = hn::Zero(di);
-            for (int i = first; i < lastl; ++i) {
+            const float c0 = float(xa + j) + 0.5f, c1 = c0 + float(N - 1);
+            while (i0 < lastl && ends_before(edge[i0], c0)) ++i0;
+            VI own = hn::Set(di, i0);
+            for (int i = i0; i < lastl && ends_before(edge[i], c1); ++i) {
                 const auto before = fwd ? hn::Lt(hn::Set(df, edge[i]), xc) : hn::Le(hn::Set(df, edge[i]), xc);
                 own = hn::Sub(own, hn::VecFromMask(di, hn::RebindMask(di, before)));
             }
-            own = hn::Add(own, hn::Set(di, first));
             own = hn::Min(own, hn::Set(di, lastl));  // the pixels past the run (not stored)
             const auto ix = hn::IndicesFromVec(df, own);
             const auto ixi = hn::IndicesFromVec(di, own);
