@@ -21,6 +21,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,10 @@
 #include "tables.h"
 
 namespace rtm {
+
+namespace fast {
+struct ReverseBuffers;  // warp/simd/pipelined_job.h
+}
 
 enum class Reconstruction { two_pass, pipelined };
 
@@ -81,9 +86,11 @@ struct PrewarpWorkspace {
     // part's row count last, balanced by the times the chunks took in the last pre-warp (balance_row_chunks). Any
     // increasing bounds from 0 to the row count give the same output; others are replaced by equal chunks.
     std::array<std::vector<int>, 2> chunk_bounds;
-    // The Highway pipelined kernel's buffers (warp/simd/hwy_pipelined.cpp), one per task of a pre-warp (a part, a
-    // column range or a row chunk), whichever thread runs it: grown in the first pre-warps, then reused.
+    // The Highway pipelined kernel's buffers (warp/simd/hwy_pipelined.cpp), one per task of a pre-warp (a part's
+    // column range or row chunk, by its index), whichever thread runs it: grown in the first pre-warps, then reused.
+    // Reverse mode's (warp/simd/pipelined_job.h) are made at a task's first use of them.
     std::vector<std::vector<float>> task_buffers;
+    std::vector<std::shared_ptr<fast::ReverseBuffers>> reverse_buffers;
 };
 
 struct PrewarpStats {

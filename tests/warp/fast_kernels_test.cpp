@@ -851,8 +851,8 @@ TEST_P(PipelinedReverseFastKernels, FoldoversStillTexelsAndGapsMatchTheReference
     }
 }
 
-// The Highway pipelined kernel's reverse-mode buffers belong to the thread and are shared by the targets, whose
-// vectors differ in length: a target with longer vectors after one with shorter ones must not write past the log
+// The Highway pipelined kernel's reverse-mode buffers belong to the workspace's task and are shared by the targets,
+// whose vectors differ in length: a target with longer vectors after one with shorter ones must not write past the log
 // the shorter ones grew (it did: heap corruption in `rtm bench --isa avx2,sse4`, caught by valgrind; under the
 // sanitizer build this test catches it). The targets by vector length, short first, each in reverse mode on one
 // thread, against the reference.
@@ -1064,7 +1064,9 @@ TEST_P(PipelinedReverseFastKernels, AllocatesNothingInSteadyState) {
     PrewarpWorkspace ws;
     ImageRGBA8 out;
     // Two threads, the epipole inside the rows (two parts: column ranges) and below them (one part: row chunks and
-    // their scratch images).
+    // their scratch images). The buffers belong to the task, whichever thread runs it: while reverse mode's were the
+    // thread's, this failed now and then on a loaded machine (2 to 64 allocations), where the warm-up had run both
+    // parts on one thread and the other grew its buffers in a later pre-warp.
     for (int threads : {1, 2})
         for (double ey : {0.3, -0.3})
             for (KernelChoice reverse : {KernelChoice::always, KernelChoice::automatic}) {

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -38,8 +39,9 @@ PartRows part_rows(const fast::PipelinedJob& job, int part) {
     return {h - 1, -1, h - s, job.ysplit, job.out->height};
 }
 
-// One task's buffers, carved out of its float vector in the workspace (PrewarpWorkspace::task_buffers), which grows
-// to the largest relief and output seen and never shrinks (steady state allocates nothing).
+// One task's buffers, carved out of its float vector in the workspace (PrewarpWorkspace::task_buffers; the task's
+// index in the pre-warp, the same task in every pre-warp of the same views and threads, whichever thread runs it),
+// which grows to the largest relief and output seen and never shrinks (steady state allocates nothing).
 struct PipeBuffers {
     float* row;    // one row's samples: positions, row coordinates, colours, displacements (RowScratch)
     uint32_t* rc;  // one row of pixels: packed colour, final row coordinate and (with a threshold) displacement
@@ -52,9 +54,9 @@ struct PipeBuffers {
     float *prev_d, *cur_d;
 };
 
-PipeBuffers task_buffers(const fast::PipelinedJob& job) {
+PipeBuffers task_buffers(const fast::PipelinedJob& job, int task) {
     const int w = job.relief->width, ow = job.out->width;
-    std::vector<float>& v = (*job.task_buffers)[size_t(job.next_task->fetch_add(1))];
+    std::vector<float>& v = (*job.task_buffers)[size_t(task)];
     // Arrays are read and written (StoreOwned: on SSE4 and NEON, and AVX2 where it blends, a whole vector) up to a
     // whole vector past the output width: 64 lanes is SVE's most. Sizes are rounded up to 64, so that outputs a few
     // pixels wider (the next view's margins) fit.
@@ -73,42 +75,11 @@ PipeBuffers task_buffers(const fast::PipelinedJob& job) {
     return b;
 }
 
-// Reverse mode's buffers (see RunRows), per thread: they grow to the largest output seen and never shrink (steady
-// state allocates nothing). The emissions of a row are logged in the order of the row warp, a vector of adjacent
-// columns an entry (x, then N row coordinates, NaN where the lane received nothing, N packed colours and, with a
-// discontinuity threshold, N displacements).
-struct EmitLog {
-    std::vector<int32_t> x;
-    std::vector<float> v, d;
-    std::vector<uint32_t> c;
-    size_t n = 0;  // entries
-};
-
-struct ReverseBuffers {
-    // The final samples of the row warped last (fin_ok: -1 where the column has one), and the rows written per column
-    // (ColumnsWritten).
-    std::vector<float> fin_v, fin_d;
-    std::vector<uint32_t> fin_c;
-    std::vector<int32_t> fin_ok, lo, hi, bits_on;
-    std::vector<uint64_t> bits;
-    int nw = 0;
-    EmitLog log[2];
-
-    void reserve(int ow, int oh) {
-        // Padded as the task buffers are (a whole vector of up to 64 lanes past the width), rounded up to 64 columns.
-        const size_t n = (size_t(ow) + 63) / 64 * 64 + 64;
-        auto grow = [&](auto& vec, size_t want) {
-            if (vec.size() < want) vec.resize(want);
-        };
-        grow(fin_v, n), grow(fin_d, n), grow(fin_c, n), grow(fin_ok, n), grow(lo, n), grow(hi, n), grow(bits_on, n);
-        nw = (oh + 63) / 64;
-        grow(bits, n * size_t(nw));
-    }
-};
-
-ReverseBuffers& reverse_buffers() {
-    static thread_local ReverseBuffers b;
-    return b;
+// Reverse mode's buffers of task `task` (the workspace's: PrewarpWorkspace::reverse_buffers), made at its first use.
+fast::ReverseBuffers& reverse_buffers(const fast::PipelinedJob& job, int task) {
+    std::shared_ptr<fast::ReverseBuffers>& b = (*job.reverse_buffers)[size_t(task)];
+    if (!b) b = std::make_shared<fast::ReverseBuffers>();
+    return *b;
 }
 
 void clear_part(const fast::PipelinedJob& job, int part, int x0, int x1) {
@@ -218,8 +189,8 @@ struct Emitter {
 // column's last one into the reverse buffers' fin_* (with `with_d`, their displacements too).
 struct Logger {
     PipeBuffers& b;
-    ReverseBuffers& r;
-    EmitLog& log;
+    fast::ReverseBuffers& r;
+    fast::EmitLog& log;
     int x0, x1;
     bool with_d = false;
     bool blend = false;  // the job's blend_stores (StoreOwned)
@@ -348,12 +319,12 @@ constexpr float kReverseDrawn = 3.0f;
 //
 // Discontinuity marks (PipelinedJob::breaks) break the row warp's spans (WarpRow's marks); a threshold carries each
 // texel's displacement through the row warp (RowOut::attr2) into the Emitter, or the log and the replay.
-RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0, int x1, uint32_t* pixels,
+RowRange RunRows(const fast::PipelinedJob& job, int task, int part, int r0, int r1, int x0, int x1, uint32_t* pixels,
                  bool track) {
     const ReliefTexture& t = *job.relief;
     const int w = t.width, h = t.height, ow = job.out->width, oh = job.out->height;
     const PartRows p = part_rows(job, part);
-    PipeBuffers b = task_buffers(job);
+    PipeBuffers b = task_buffers(job, task);
     const bool with_d = job.threshold > 0.0f;
     const RowScratch s{b.row, b.row + w, reinterpret_cast<uint32_t*>(b.row + 2 * size_t(w)),
                        with_d ? b.row + 3 * size_t(w) : nullptr};
@@ -405,14 +376,14 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
     }
     const bool seam = r1 == p.count;
     if (from != jb) {
-        ReverseBuffers& r = reverse_buffers();
+        fast::ReverseBuffers& r = reverse_buffers(job, task);
         r.reserve(ow, oh);
         std::fill(r.lo.data() + x0, r.lo.data() + x1, 1 << 30);
         std::fill(r.hi.data() + x0, r.hi.data() + x1, -(1 << 30));
         std::fill(r.bits_on.data() + x0, r.bits_on.data() + x1, 0);
         const ColumnsWritten cw{r.lo.data(), r.hi.data(), r.bits_on.data(), r.bits.data(), r.nw};
         const ColumnTarget o{pixels, ow, oh, p.y0, p.y1, job.blend_stores};
-        auto warp = [&](int j, EmitLog& log) {
+        auto warp = [&](int j, fast::EmitLog& log) {
             const PreparedRow prep = prepare(j, j - p.step);
             out.copy = job.copy_still && prep.still;
             if (x0 == 0) dropped += prep.dropped;
@@ -445,7 +416,7 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
             // The log's arrays as locals: read through `r` (the thread-local buffers), GCC computed the thread-local's
             // address again for every entry, as a call (vector registers spilled, vzeroupper): bricks 1024^2
             // pipelined 5% slower.
-            const EmitLog& log = r.log[cur];
+            const fast::EmitLog& log = r.log[cur];
             const int32_t* lx = log.x.data();
             const float *lv = log.v.data(), *ld = log.d.data();
             const int32_t* lc = reinterpret_cast<const int32_t*>(log.c.data());
@@ -475,9 +446,9 @@ RowRange RunRows(const fast::PipelinedJob& job, int part, int r0, int r1, int x0
     return range;
 }
 
-void PipelinedPart(const fast::PipelinedJob& job, int part, int x0, int x1) {
+void PipelinedPart(const fast::PipelinedJob& job, int task, int part, int x0, int x1) {
     clear_part(job, part, x0, x1);
-    RunRows(job, part, 0, part_rows(job, part).count, x0, x1, reinterpret_cast<uint32_t*>(job.out->pixels.data()),
+    RunRows(job, task, part, 0, part_rows(job, part).count, x0, x1, reinterpret_cast<uint32_t*>(job.out->pixels.data()),
             false);
 }
 
@@ -485,12 +456,12 @@ void PipelinedChunk(const fast::PipelinedJob& job, fast::PipelinedChunk& c) {
     const int ow = job.out->width;
     if (c.r0 == 0) {
         clear_part(job, c.part, 0, ow);
-        RunRows(job, c.part, c.r0, c.r1, 0, ow, reinterpret_cast<uint32_t*>(job.out->pixels.data()), false);
+        RunRows(job, c.task, c.part, c.r0, c.r1, 0, ow, reinterpret_cast<uint32_t*>(job.out->pixels.data()), false);
         c.ylo = c.yhi = 0;
         return;
     }
-    const RowRange r = RunRows(job, c.part, c.r0, c.r1, 0, ow, reinterpret_cast<uint32_t*>(c.scratch->pixels.data()),
-                               true);
+    const RowRange r = RunRows(job, c.task, c.part, c.r0, c.r1, 0, ow,
+                               reinterpret_cast<uint32_t*>(c.scratch->pixels.data()), true);
     // Every pixel drawn lies in v-rows floor(lo) .. floor(hi) (a span's rows lie between its ends, which are
     // interpolated between samples, a point's is int(v)); one row more on each side for the rounding.
     const PartRows p = part_rows(job, c.part);

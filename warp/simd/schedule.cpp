@@ -439,7 +439,7 @@ void pipelined_in_column_ranges(const simd::PipelinedKernels& kernels, const fas
         }
     }
     run_ranges(threads_option, nt, 1, [&](int t0, int t1) {
-        for (int t = t0; t < t1; ++t) kernels.part(job, tasks[t].part, tasks[t].x0, tasks[t].x1);
+        for (int t = t0; t < t1; ++t) kernels.part(job, t, tasks[t].part, tasks[t].x0, tasks[t].x1);
     });
 }
 
@@ -486,7 +486,8 @@ void pipelined_in_row_chunks(const simd::PipelinedKernels& kernels, const fast::
         }
         first_chunk[p] = nc;
         for (int i = 0; i < n; ++i) {
-            fast::PipelinedChunk& c = chunks[nc++];
+            fast::PipelinedChunk& c = chunks[nc];
+            c.task = nc++;
             c.part = p;
             c.r0 = b[size_t(i)];
             c.r1 = b[size_t(i) + 1];
@@ -544,10 +545,10 @@ PrewarpStats fast_pipelined(const simd::PipelinedKernels& kernels, const ReliefT
     job.ref_tables = &ref_tables;
     job.seam_d[0] = ws.mid_v.row(2);
     job.seam_d[1] = ws.mid_v.row(3);
-    std::atomic<int> next_task{0};
     if (ws.task_buffers.size() < 2 * 64) ws.task_buffers.resize(2 * 64);  // the most tasks (two parts of 64)
+    if (ws.reverse_buffers.size() < 2 * 64) ws.reverse_buffers.resize(2 * 64);
     job.task_buffers = &ws.task_buffers;
-    job.next_task = &next_task;
+    job.reverse_buffers = &ws.reverse_buffers;
     const bool parts[2] = {job.split_v > 0, job.split_v < h};
     for (int p = 0; p < 2; ++p)
         if (!parts[p]) std::fill(job.seam_c[p], job.seam_c[p] + ow, 0u);  // no rows: nothing received
