@@ -1228,6 +1228,9 @@ HWY_INLINE void ColumnStep(const Columns& col, const ColumnTarget& o, const uint
             hn::BlendedStore(vnext, m, df, col.v + x);
         if (hn::AllFalse(di, fin)) continue;
         auto pok = hn::And(fin, hn::RebindMask(di, hn::Not(hn::IsNaN(pv))));
+        // The columns' other state: where the vector is all the caller's (`full`), whole-vector stores of the new
+        // values blended with the old ones just loaded (no masked store, which costs more on AVX2: StoreOwned), else
+        // masked stores of the caller's lanes.
         auto keep = [&](auto d, auto vnew, auto vold, auto* p) HWY_ATTR __attribute__((always_inline)) {
             const auto f = hn::RebindMask(d, fin);
             if (full)
