@@ -105,13 +105,14 @@ struct PipelinedChunk {
 namespace rtm::simd {
 
 // The entry points of one target's pipelined kernel (warp/simd/hwy_pipelined.h):
-// part(job, task, part, x0, x1): task `task` (its index among the pre-warp's: PipelinedJob::task_buffers), part 0 (rows
-// from the bottom up to the split, output v-rows [0, ysplit)) or 1 (rows from the top down to the split, output v-rows
-// [ysplit, out height)), output columns [x0, x1): clears that region, then fills it. chunk(job, chunk): a
-// PipelinedChunk. composite(job, chunks, n, y0, y1): output v-rows [y0, y1): the pixels the scratch chunks wrote (alpha
-// not 0) replace the output's, chunk after chunk in the order given (the parts' row order), and the scratch rows are
-// cleared to 0 again. seam(job): the span between the last rows of the two parts, in every column where both have a
-// sample.
+// - part(job, task, part, x0, x1): task `task` (its index among the pre-warp's: PipelinedJob::task_buffers), part 0
+//   (rows from the bottom up to the split, output v-rows [0, ysplit)) or 1 (rows from the top down to the split,
+//   output v-rows [ysplit, out height)), output columns [x0, x1): clears that region, then fills it.
+// - chunk(job, chunk): a PipelinedChunk.
+// - composite(job, chunks, n, y0, y1): output v-rows [y0, y1): the pixels the scratch chunks wrote (alpha not 0)
+//   replace the output's, chunk after chunk in the order given (the parts' row order), and the scratch rows are
+//   cleared to 0 again.
+// - seam(job): the span between the last rows of the two parts, in every column where both have a sample.
 struct PipelinedKernels {
     void (*part)(const fast::PipelinedJob&, int, int, int, int) = nullptr;
     void (*chunk)(const fast::PipelinedJob&, fast::PipelinedChunk&) = nullptr;
