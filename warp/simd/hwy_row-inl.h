@@ -1179,6 +1179,12 @@ HWY_INLINE void FloorCeil(DF df, DI di, hn::Vec<DF> a, hn::Vec<DF> oh, hn::Vec<D
     (void)di;
     f = hn::Vec<DI>{_mm512_cvt_roundps_epi32(cl.raw, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC)};
     e = hn::Vec<DI>{_mm512_cvt_roundps_epi32(cl.raw, _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC)};
+#elif HWY_TARGET == HWY_NEON
+    // The same on NEON: FCVTMS and FCVTPS (where Floor and Ceil take FRINTM/FRINTP, then FCVTZS; SVE converts by
+    // truncation only).
+    (void)di;
+    f = hn::Vec<DI>{vcvtmq_s32_f32(cl.raw)};
+    e = hn::Vec<DI>{vcvtpq_s32_f32(cl.raw)};
 #else
     f = ConvertInRange(di, hn::Floor(cl));
     e = ConvertInRange(di, hn::Ceil(cl));
