@@ -21,6 +21,7 @@
 #define RTM_WARP_SIMD_HWY_COLUMNS_INL_H_
 #endif
 
+#include <hwy/cache_control.h>
 #include <hwy/highway.h>
 
 #include <algorithm>
@@ -40,8 +41,22 @@ struct ColumnTarget {
     uint32_t* pixels;
     int ow, oh, y0, y1;
     bool blend = false;  // StoreOwned's load, blend and store on AVX2 (the job's blend_stores)
+    int ahead = 0;       // StoreRows prefetches v-row y + ahead where it writes row y (0: none; OutputAhead)
     uint32_t* vline(int y) const { return pixels + size_t(oh - 1 - y) * size_t(ow); }
 };
+
+// ColumnTarget::ahead for a pass whose v-rows move in direction `dir` (+1 upwards, -1 downwards): kOutputAhead rows
+// ahead where the stores read what they overwrite (`blend`: AVX2's load, blend and store, StoreOwned), else none. A
+// load of a row the pass reaches for the first time waits for memory: on a Zen 4 guest, 43% of the `avx2` two-pass
+// vertical pass's samples fell on the blends after StoreRows' two row loads (bumps 1024^2, one thread). With the rows 8
+// ahead prefetched (medians of 11 interleaved runs of 60 pre-warps, one thread): bumps 1024^2 two-pass 7.39 -> 6.61 ms,
+// pipelined 7.85 -> 7.13, ridges two-pass 8.38 -> 7.29, bumps 2048^2 two-pass 43.5 -> 32.8; ridges pipelined (mostly
+// reverse mode), bricks, 256^2 and two threads within the noise; 2 to 16 rows ahead alike. Where the stores do not
+// read (masked stores: AVX-512, and AVX2 on Intel's cores and Zen 5; the hand-written AVX-512 kernels prefetched 8
+// rows ahead) the same prefetch measured within the noise on Zen 5 (docs/perf-history.md, "The band rows prefetched"
+// and "A Zen 4 guest").
+constexpr int kOutputAhead = 8;
+inline int OutputAhead(bool blend, int dir) { return blend ? dir * kOutputAhead : 0; }
 
 // Spans longer than this many pixels (yhi - ylo >= kLongSpan) go row by row over the lanes (ColumnLongSpans).
 constexpr int kLongSpan = 4;
@@ -298,7 +313,8 @@ HWY_INLINE void StoreLanes(DI di, const ColumnTarget& o, int x, MI on, hn::Vec<D
 }
 
 // Writes the lanes `act` of col to pixels (x + lane, v-row y[lane]): two masked row stores when every lane is on the
-// first active lane's row or the next (and the vector is `full`), else lane by lane.
+// first active lane's row or the next (and the vector is `full`), else lane by lane. With o.ahead, the first active
+// lane's row plus o.ahead is prefetched (OutputAhead).
 // Targets where storing some lanes of a whole vector pays: a masked store instruction (AVX2, AVX-512, SVE; on AVX2 8
 // lanes loaded, blended and stored where that instruction is slow, StoreOwned); with 4 lanes (SSE4, NEON), whose
 // masked store is a load, blend and store, that costs more than the lanes one by one.
@@ -332,6 +348,7 @@ HWY_INLINE void StoreRows(DI di, const ColumnTarget& o, int x, bool full, MI act
         HWY_ALIGN int32_t lane_y[HWY_MAX_BYTES / 4];
         hn::Store(y, di, lane_y);
         const int yf = lane_y[hn::FindFirstTrue(di, act)];
+        if (o.ahead) hwy::Prefetch(o.vline(std::clamp(yf + o.ahead, 0, o.oh - 1)) + x);
         const auto d = hn::Sub(y, hn::Set(di, yf));
         const auto same = hn::And(act, hn::Eq(d, hn::Zero(di)));
         const auto next = hn::And(act, hn::Eq(d, hn::Set(di, 1)));

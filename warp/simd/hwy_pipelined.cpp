@@ -353,8 +353,8 @@ RowRange RunRows(const fast::PipelinedJob& job, int task, int part, int r0, int 
         std::fill(b.cur_ok + x0, b.cur_ok + x1, 0);
         const bool copy = job.copy_still && prep.still;
         out.copy = copy;
-        const Emitter emit{
-            b, ColumnTarget{pixels, ow, oh, ya, yb, job.blend_stores}, x0, x1, drawn, copy, job.threshold};
+        const ColumnTarget o{pixels, ow, oh, ya, yb, job.blend_stores, OutputAhead(job.blend_stores, p.step)};
+        const Emitter emit{b, o, x0, x1, drawn, copy, job.threshold};
         WarpRow(s.pos, s.color, s.v, s.d, w, job.split_u, ow, out, Coalescer<Emitter>{emit}, marks);
         std::swap(b.prev_c, b.cur_c);
         std::swap(b.prev_v, b.cur_v);

@@ -91,7 +91,7 @@ void VerticalSteps(const fast::TwoPassJob& job, int s0, int s1, const uint32_t* 
     uint32_t* out = reinterpret_cast<uint32_t*>(job.out->pixels.data());
     const bool with_d = job.threshold > 0.0f;
     const Columns cols{job.col_v, job.col_c, job.col_d};
-    const ColumnTarget target{out, ow, oh, 0, oh, job.blend_stores};
+    ColumnTarget target{out, ow, oh, 0, oh, job.blend_stores};
     if (s0 == 0) {
         for (int y = 0; y < oh; ++y) std::memset(out + size_t(y) * size_t(ow) + size_t(x0), 0, size_t(x1 - x0) * 4);
         std::fill(job.col_v + x0, job.col_v + x1, std::numeric_limits<float>::quiet_NaN());
@@ -107,6 +107,7 @@ void VerticalSteps(const fast::TwoPassJob& job, int s0, int s1, const uint32_t* 
             }
             if (with_d) std::copy(job.col_d + x0, job.col_d + x1, job.seam_d + x0);
         }
+        target.ahead = OutputAhead(job.blend_stores, st < job.split_v ? 1 : -1);  // step_line's direction
         const uint32_t* rc = band_c + size_t(st - s0) * stride;
         const float* rv = band_v + size_t(st - s0) * stride;
         if (st + kBandAhead < s1) PrefetchBandRow(rc + kBandAhead * stride, rv + kBandAhead * stride, x0, x1);
