@@ -46,7 +46,8 @@ Isa resolve_isa(Isa isa);
 // Zen 4 (CPUID family 0x19 and below) run it as 42 micro-ops that hold the store pipe for 12 cycles (uops.info's
 // measurements; LLVM's znver3 and znver4 scheduling models), where Intel's cores and Zen 5 store in about a cycle.
 // The avx2 kernels then load, blend and store whole vectors they own instead (warp/simd/hwy_columns-inl.h,
-// StoreOwned). From CPUID's vendor and family, detected once; false on other architectures.
+// StoreOwned); measured on a Zen 4 guest, the masked stores took 1.06x to 1.53x that time (docs/BENCHMARKS.md, "The
+// SIMD targets on a Zen 4 guest"). From CPUID's vendor and family, detected once; false on other architectures.
 bool avx2_masked_store_slow();
 // The rule itself: `vendor` CPUID's 12-character vendor string, `family` the display family (base plus extended).
 bool avx2_masked_store_slow(std::string_view vendor, unsigned family);
