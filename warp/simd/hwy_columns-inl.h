@@ -50,11 +50,11 @@ struct ColumnTarget {
 // load of a row the pass reaches for the first time waits for memory: on a Zen 4 guest, 43% of the `avx2` two-pass
 // vertical pass's samples fell on the blends after StoreRows' two row loads (bumps 1024^2, one thread). With the rows 8
 // ahead prefetched (medians of 11 interleaved runs of 60 pre-warps, one thread): bumps 1024^2 two-pass 7.39 -> 6.61 ms,
-// pipelined 7.85 -> 7.13, ridges two-pass 8.38 -> 7.29, bumps 2048^2 two-pass 43.5 -> 32.8; ridges pipelined (mostly
-// reverse mode), bricks, 256^2 and two threads within the noise; 2 to 16 rows ahead alike. Where the stores do not
-// read (masked stores: AVX-512, and AVX2 on Intel's cores and Zen 5; the hand-written AVX-512 kernels prefetched 8
-// rows ahead) the same prefetch measured within the noise on Zen 5 (docs/perf-history.md, "The band rows prefetched"
-// and "A Zen 4 guest").
+// pipelined 7.85 -> 7.13, ridges two-pass 8.38 -> 7.29, bumps 2048^2 two-pass 43.5 -> 32.8, ridges pipelined (mostly
+// reverse mode, whose rows go the other way) 14.3 -> 13.8; bricks, 256^2 and two threads within the noise; 2 to 16
+// rows ahead alike. Where the stores do not read (masked stores: AVX-512, and AVX2 on Intel's cores and Zen 5; the
+// hand-written AVX-512 kernels prefetched 8 rows ahead) the same prefetch measured within the noise on Zen 5
+// (docs/perf-history.md, "The band rows prefetched" and "A Zen 4 guest").
 constexpr int kOutputAhead = 8;
 inline int OutputAhead(bool blend, int dir) { return blend ? dir * kOutputAhead : 0; }
 

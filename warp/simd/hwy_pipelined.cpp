@@ -382,7 +382,8 @@ RowRange RunRows(const fast::PipelinedJob& job, int task, int part, int r0, int 
         std::fill(r.hi.data() + x0, r.hi.data() + x1, -(1 << 30));
         std::fill(r.bits_on.data() + x0, r.bits_on.data() + x1, 0);
         const ColumnsWritten cw{r.lo.data(), r.hi.data(), r.bits_on.data(), r.bits.data(), r.nw};
-        const ColumnTarget o{pixels, ow, oh, p.y0, p.y1, job.blend_stores};
+        // The rows replayed from the last back: the prefetch goes the other way.
+        const ColumnTarget o{pixels, ow, oh, p.y0, p.y1, job.blend_stores, OutputAhead(job.blend_stores, -p.step)};
         auto warp = [&](int j, fast::EmitLog& log) {
             const PreparedRow prep = prepare(j, j - p.step);
             out.copy = job.copy_still && prep.still;
