@@ -171,40 +171,26 @@ HWY_INLINE void StorePixels(DF df, DI di, const RowOut& out, int x, int count, h
     }
 }
 
-// The spans of lanes `span` (pa != pb, from sample a to sample b) into row `out`: each lane's pixels lo .. hi as
-// raster_span computes them (centres in (pa, pb] or [pb, pa), clamped to [0, n_out)), only those in [cl, ch] (the
-// caller's clip range, within [0, n_out); the backward rows draw only the pixels no later span covers), colour by
-// lerp8's integer formula and the carried row coordinate (and out.attr2's attribute, from da and db, where the row
-// carries one) by attr_lerp at each centre. The lanes are consecutive spans of one orientation, pb > pa in every lane
-// of `span` where fwd and pb < pa elsewhere, whose pixels follow the lane order (DrawGroup reverses the lanes where
-// they run the other way):
-// their pixels are disjoint, in lane order, and together one run xa .. xb, handed to before(xa, xb) before any of them
-// is written. Where the run is at most 4 vectors long (spans of a pixel or two, the usual case), each pixel of it looks
-// up its lane (the lane whose pixels contain it) and the run is computed and stored a vector of pixels at a time;
-// otherwise the first pixel of every lane, then the second of those that have one, ..., stored lane by lane. On AVX2,
-// lanes of at most two pixels each (bumps) go span by span, compressed into place (below).
-template <class DF, class DI, class MF, class Before>
-HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb, hn::Vec<DI> ca, hn::Vec<DI> cb,
-                          hn::Vec<DF> va, hn::Vec<DF> vb, hn::Vec<DF> da, hn::Vec<DF> db, bool fwd, RowOut out,
-                          const Before& before, int cl, int ch) {
+// The pixels of lanes `todo` of a vector of spans (from sample a to sample b: positions pa, pb, colours ca, cb,
+// attributes va, vb and da, db) into row `out`: lane i's pixels xlo_i .. xhi_i (lo: xlo as floats), some or all of
+// the pixels raster_span gives it, each with raster_span's colour (lerp8's integer formula) and carried row
+// coordinate (and out.attr2's attribute, where the row carries one: attr_lerp) at the pixel's centre. The lanes'
+// pixels are disjoint, in lane order, and together one run xa .. xb, handed to before(xa, xb) before any of them is
+// written; `edge` says where each lane's pixels end for the lookup below: the centres past lane i's pixels are those
+// above edge_i (`strict`) or at or above it. Where the run is at most 4 vectors long (spans of a pixel or two, the
+// usual case), each pixel of it looks up its lane (the lane whose pixels contain it) and the run is computed and
+// stored a vector of pixels at a time; otherwise the first pixel of every lane, then the second of those that have
+// one, ..., stored lane by lane. On AVX2, lanes of at most two pixels each (bumps) go span by span, compressed into
+// place (below).
+template <class DF, class DI, class MI, class Before>
+HWY_INLINE void DrawLanes(DF df, DI di, MI todo, hn::Vec<DF> lo, hn::Vec<DI> xlo, hn::Vec<DI> xhi, hn::Vec<DF> edge,
+                          bool strict, hn::Vec<DF> pa, hn::Vec<DF> pb, hn::Vec<DI> ca, hn::Vec<DI> cb, hn::Vec<DF> va,
+                          hn::Vec<DF> vb, hn::Vec<DF> da, hn::Vec<DF> db, RowOut out, const Before& before) {
     using VF = hn::Vec<DF>;
     using VI = hn::Vec<DI>;
     const int N = int(hn::Lanes(df));
     const bool with2 = out.attr2 != nullptr;
     const VF half = hn::Set(df, 0.5f), one = hn::Set(df, 1.0f), zero = hn::Zero(df);
-    const VF first_px = hn::Set(df, float(cl)), last = hn::Set(df, float(ch));
-    // Every lane of `span` goes one way, pb > pa where fwd (its pixels from floor(pa - 0.5) + 1 to floor(pb - 0.5)),
-    // pb < pa elsewhere (ceil(pb - 0.5) to ceil(pa - 0.5) - 1), as raster_span computes them.
-    const VF pah = hn::Sub(pa, half), pbh = hn::Sub(pb, half);
-    VF lo = fwd ? hn::Add(hn::Floor(pah), one) : hn::Ceil(pbh);
-    VF hi = fwd ? hn::Floor(pbh) : hn::Sub(hn::Ceil(pah), one);
-    // (pa and pb are finite in the lanes of `span`: Max and Min clamp there as the comparisons would.)
-    lo = hn::Max(lo, first_px);
-    hi = hn::Min(hi, last);
-    const auto todo = hn::RebindMask(di, hn::And(span, hn::Le(lo, hi)));
-    if (hn::AllFalse(di, todo)) return;
-    // Pixels in [cl, ch] in the lanes of todo, the only ones used.
-    const VI xlo = ConvertInRange(di, lo), xhi = ConvertInRange(di, hi);
     const VF inv = hn::Div(one, hn::Sub(pb, pa));
     HWY_ALIGN int32_t lane_x[HWY_MAX_BYTES / 4], lane_h[HWY_MAX_BYTES / 4], lane_on[HWY_MAX_BYTES / 4];
     hn::Store(xlo, di, lane_x);
@@ -396,18 +382,19 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
         // brick wall take at 4096^2 (4 times the pixels of parallax of 1024^2): bricks 4096^2 two-pass, one thread,
         // medians of interleaved runs, `avx512` 49.5 -> 41.0 ms, `avx2` 57 -> 51 ms; ridges `avx512` 86 -> 81 ms,
         // `avx2` unchanged (docs/perf-history.md, "Long runs of spans and the column state").
-        HWY_ALIGN float edge[HWY_MAX_BYTES / 4];
-        hn::Store(fwd ? pb : pa, df, edge);
-        auto ends_before = [fwd](float e, float centre) { return fwd ? e < centre : e <= centre; };
+        HWY_ALIGN float lane_end[HWY_MAX_BYTES / 4];
+        hn::Store(edge, df, lane_end);
+        auto ends_before = [strict](float e, float centre) { return strict ? e < centre : e <= centre; };
         const VI iota = hn::Iota(di, 0);  // hoisted: GCC 12 builds Iota(di, x) in memory (a store-forwarding stall)
         int i0 = first;                   // the lanes before i0 end before the vector's first centre
         for (int j = 0; j < len; j += N) {
             const VF xc = hn::Add(hn::ConvertTo(df, hn::Add(hn::Set(di, xa + j), iota)), half);
             const float c0 = float(xa + j) + 0.5f, c1 = c0 + float(N - 1);
-            while (i0 < lastl && ends_before(edge[i0], c0)) ++i0;
+            while (i0 < lastl && ends_before(lane_end[i0], c0)) ++i0;
             VI own = hn::Set(di, i0);
-            for (int i = i0; i < lastl && ends_before(edge[i], c1); ++i) {
-                const auto before = fwd ? hn::Lt(hn::Set(df, edge[i]), xc) : hn::Le(hn::Set(df, edge[i]), xc);
+            for (int i = i0; i < lastl && ends_before(lane_end[i], c1); ++i) {
+                const auto e = hn::Set(df, lane_end[i]);
+                const auto before = strict ? hn::Lt(e, xc) : hn::Le(e, xc);
                 own = hn::Sub(own, hn::VecFromMask(di, hn::RebindMask(di, before)));
             }
             own = hn::Min(own, hn::Set(di, lastl));  // the pixels past the run (not stored)
@@ -445,6 +432,33 @@ HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb,
         xc = hn::Add(xc, one);
         on = hn::AndNot(hn::Lt(xhi, x), on);
     }
+}
+
+// The spans of lanes `span` (pa != pb) into row `out` (DrawLanes): each lane's pixels lo .. hi as raster_span computes
+// them (centres in (pa, pb] or [pb, pa), clamped to [0, n_out)), only those in [cl, ch] (the caller's clip range,
+// within [0, n_out); the backward rows draw only the pixels no later span covers). The lanes are consecutive spans of
+// one orientation, pb > pa in every lane of `span` where fwd and pb < pa elsewhere, whose pixels follow the lane order
+// (DrawGroup reverses the lanes where they run the other way).
+template <class DF, class DI, class MF, class Before>
+HWY_INLINE void SpanLanes(DF df, DI di, MF span, hn::Vec<DF> pa, hn::Vec<DF> pb, hn::Vec<DI> ca, hn::Vec<DI> cb,
+                          hn::Vec<DF> va, hn::Vec<DF> vb, hn::Vec<DF> da, hn::Vec<DF> db, bool fwd, RowOut out,
+                          const Before& before, int cl, int ch) {
+    using VF = hn::Vec<DF>;
+    const VF half = hn::Set(df, 0.5f), one = hn::Set(df, 1.0f);
+    // Every lane of `span` goes one way, pb > pa where fwd (its pixels from floor(pa - 0.5) + 1 to floor(pb - 0.5)),
+    // pb < pa elsewhere (ceil(pb - 0.5) to ceil(pa - 0.5) - 1), as raster_span computes them.
+    const VF pah = hn::Sub(pa, half), pbh = hn::Sub(pb, half);
+    VF lo = fwd ? hn::Add(hn::Floor(pah), one) : hn::Ceil(pbh);
+    VF hi = fwd ? hn::Floor(pbh) : hn::Sub(hn::Ceil(pah), one);
+    // (pa and pb are finite in the lanes of `span`: Max and Min clamp there as the comparisons would.)
+    lo = hn::Max(lo, hn::Set(df, float(cl)));
+    hi = hn::Min(hi, hn::Set(df, float(ch)));
+    const auto todo = hn::RebindMask(di, hn::And(span, hn::Le(lo, hi)));
+    if (hn::AllFalse(di, todo)) return;
+    // Pixels in [cl, ch] in the lanes of todo, the only ones used. A centre lies past lane i's pixels where it lies
+    // past the span's later end: above pb (fwd), at or above pa (the other way).
+    DrawLanes(df, di, todo, lo, ConvertInRange(di, lo), ConvertInRange(di, hi), fwd ? pb : pa, fwd, pa, pb, ca, cb, va,
+              vb, da, db, out, before);
 }
 
 // warp_line_to (warp/line_warp.h) of one row into `out`, each pixel written in the reference's order, for samples whose
@@ -858,14 +872,119 @@ inline bool RowFoldsOver(const float* pos, int n, int split, bool any_row) {
     return folds > 0 && folds * kFoldShare >= n;
 }
 
+// WarpRowBackward's items for a vector of consecutive spans, in its order from lane 0 up (dir = +1) or from lane N - 1
+// down (dir = -1), whichever way each span goes: each draws the pixels of its span (raster_span's, from pa_i to pb_i)
+// outside the interval [w_lo, w_hi] written before it, which then grows by them. Each span's new pixels lie above the
+// interval or below it; those above are one run whose pixels follow the order of the items, those below one run that
+// goes the other way, and DrawLanes draws each (with the lanes reversed where the run goes down the lanes). The
+// interval before and after each lane comes from prefix maxima and minima across the lanes. Returns false where a
+// span does not touch the interval before it (WarpRowBackward's items do the same).
+// WarpRowBackward takes a vector this way where no group of spans one way (GroupPrefix) starts it. A folding row's
+// spans change direction every few spans (bumps 2048^2: groups of 13 spans on average, then two single spans), and
+// until session 36 such vectors went span by span (raster_span_pixels), one span at a time between two GroupPrefix
+// calls: bumps 2048^2 two-pass `avx512` 3.5% faster, 4096^2 5.6% (one thread, on a Zen 4; docs/perf-history.md).
+// Taking every vector this way (no groups) made bumps 4096^2 11% faster but ridges 1024^2 13% slower: a group's
+// spans mostly lie inside the interval there, which GroupPrefix and one test of the group's pixels skip cheaply.
+template <class DF>
+HWY_INLINE bool BackwardLanes(DF df, int dir, hn::Vec<DF> pa, hn::Vec<DF> pb, hn::Vec<hn::RebindToSigned<DF>> ca,
+                              hn::Vec<hn::RebindToSigned<DF>> cb, hn::Vec<DF> va, hn::Vec<DF> vb, hn::Vec<DF> da,
+                              hn::Vec<DF> db, int n_out, const RowOut& out, int& w_lo, int& w_hi) {
+    using VF = hn::Vec<DF>;
+    const hn::RebindToSigned<DF> di;
+    using VI = hn::Vec<decltype(di)>;
+    const int N = int(hn::Lanes(df));
+    const VF half = hn::Set(df, 0.5f), one = hn::Set(df, 1.0f);
+    // SpanPixels a lane at a time (pa == pb: none), clamped to [-1, n_out] besides (empty stays empty) for the
+    // conversion.
+    const auto up = hn::Gt(pb, pa);
+    const VF pah = hn::Sub(pa, half), pbh = hn::Sub(pb, half);
+    VF lof = hn::IfThenElse(up, hn::Add(hn::Floor(pah), one), hn::Ceil(pbh));
+    VF hif = hn::IfThenElse(up, hn::Floor(pbh), hn::Sub(hn::Ceil(pah), one));
+    lof = hn::Min(hn::Max(lof, hn::Zero(df)), hn::Set(df, float(n_out)));
+    hif = hn::Max(hn::Min(hif, hn::Set(df, float(n_out - 1))), hn::Set(df, -1.0f));
+    const VI lo = ConvertInRange(di, lof), hi = ConvertInRange(di, hif);
+    const auto todo = hn::Not(hn::Gt(lo, hi));
+    if (hn::AllFalse(di, todo)) return true;
+    if (w_lo > w_hi) {
+        // Nothing written yet: the first span with pixels draws them all, as if after the empty interval at its
+        // first pixel.
+        HWY_ALIGN int32_t lane_lo[HWY_MAX_BYTES / 4], lane_hi[HWY_MAX_BYTES / 4];
+        hn::Store(lo, di, lane_lo);
+        hn::Store(hi, di, lane_hi);
+        for (int k = 0; k < N; ++k) {
+            const int i = dir > 0 ? k : N - 1 - k;
+            if (lane_lo[i] <= lane_hi[i]) {
+                w_lo = lane_lo[i];
+                w_hi = w_lo - 1;
+                break;
+            }
+        }
+    }
+    // Prefix maxima of the spans' last pixels and minima of their first ones in the items' order (lanes without
+    // pixels left out), inclusive and exclusive, then with the interval before the vector: the interval after each
+    // lane and before it. (The scans do not depend on w_lo and w_hi, which carry from vector to vector.)
+    const VI iota = hn::Iota(di, 0), izero = hn::Zero(di), ione = hn::Set(di, 1), top = hn::Set(di, N - 1);
+    const VI none_hi = hn::Set(di, -(1 << 30)), none_lo = hn::Set(di, 1 << 30);
+    auto from = [&](int s) {  // the lane s before each in the items' order (itself where there is none)
+        return hn::IndicesFromVec(di, dir > 0 ? hn::Max(hn::Sub(iota, hn::Set(di, s)), izero)
+                                              : hn::Min(hn::Add(iota, hn::Set(di, s)), top));
+    };
+    VI scan_hi = hn::IfThenElse(todo, hi, none_hi), scan_lo = hn::IfThenElse(todo, lo, none_lo);
+    for (int s = 1; s < N; s *= 2) {
+        const auto ix = from(s);
+        scan_hi = hn::Max(scan_hi, hn::TableLookupLanes(scan_hi, ix));
+        scan_lo = hn::Min(scan_lo, hn::TableLookupLanes(scan_lo, ix));
+    }
+    const auto first = dir > 0 ? hn::FirstN(di, 1) : hn::Not(hn::FirstN(di, size_t(N - 1)));
+    const auto ix1 = from(1);
+    const VI before_hi = hn::IfThenElse(first, none_hi, hn::TableLookupLanes(scan_hi, ix1));
+    const VI before_lo = hn::IfThenElse(first, none_lo, hn::TableLookupLanes(scan_lo, ix1));
+    const VI w_hi_v = hn::Set(di, w_hi), w_lo_v = hn::Set(di, w_lo);
+    const VI incl_hi = hn::Max(scan_hi, w_hi_v);
+    const VI excl_hi = hn::Max(before_hi, w_hi_v), excl_lo = hn::Min(before_lo, w_lo_v);
+    const auto apart = hn::Or(hn::Lt(hi, hn::Sub(excl_lo, ione)), hn::Gt(lo, hn::Add(excl_hi, ione)));
+    if (!hn::AllFalse(di, hn::And(todo, apart))) return false;
+    // The scans' last lanes in the items' order hold the whole vector's.
+    const auto last = [&](VI v) { return int(hn::GetLane(dir > 0 ? hn::Reverse(di, v) : v)); };
+    w_hi = std::max(w_hi, last(scan_hi));
+    w_lo = std::min(w_lo, last(scan_lo));
+    auto no_before = [](int, int) {};
+    const auto rf = [df](VF v) { return hn::Reverse(df, v); };
+    const auto ri = [di](VI v) { return hn::Reverse(di, v); };
+    // Above: pixels excl_hi + 1 .. hi, ending at incl_hi; below: lo .. excl_lo - 1, ending at excl_lo - 1 (the lanes'
+    // ends for DrawLanes' lookup, in the order of the run's pixels).
+    const auto ups = hn::And(todo, hn::Gt(hi, excl_hi));
+    if (!hn::AllFalse(di, ups)) {
+        const VI xl = hn::Add(excl_hi, ione);
+        const VF end = hn::Add(hn::ConvertTo(df, incl_hi), half);
+        if (dir > 0)
+            DrawLanes(df, di, ups, hn::ConvertTo(df, xl), xl, hi, end, true, pa, pb, ca, cb, va, vb, da, db, out,
+                      no_before);
+        else
+            DrawLanes(df, di, hn::MaskFromVec(ri(hn::VecFromMask(di, ups))), rf(hn::ConvertTo(df, xl)), ri(xl), ri(hi),
+                      rf(end), true, rf(pa), rf(pb), ri(ca), ri(cb), rf(va), rf(vb), rf(da), rf(db), out, no_before);
+    }
+    const auto dns = hn::And(todo, hn::Lt(lo, excl_lo));
+    if (!hn::AllFalse(di, dns)) {
+        const VI xh = hn::Sub(excl_lo, ione);
+        const VF end = hn::Sub(hn::ConvertTo(df, excl_lo), half);
+        if (dir < 0)
+            DrawLanes(df, di, dns, lof, lo, xh, end, true, pa, pb, ca, cb, va, vb, da, db, out, no_before);
+        else
+            DrawLanes(df, di, hn::MaskFromVec(ri(hn::VecFromMask(di, dns))), rf(lof), ri(lo), ri(xh), rf(end), true,
+                      rf(pa), rf(pb), ri(ca), ri(cb), rf(va), rf(vb), rf(da), rf(db), out, no_before);
+    }
+    return true;
+}
+
 // warp_line_to of one row whose samples all take part (RowFoldsOver), with the painter's algorithm run backwards
-// (the hand-written AVX-512 kernels' warp_line_reverse): the items (points, groups of spans, single
-// spans, the seam) in the reverse of WarpRow's order, each drawing only the pixels no later item (in WarpRow's order)
-// writes. A pixel's value does not depend on which other pixels are drawn, and WarpRow leaves every pixel with the
-// value of the last item that writes it, the first one here to reach it: the same row. The pixels written so far
-// are one interval [w_lo, w_hi]: every sample taking part, the spans form one connected path from the seam outwards
-// and an item's pixels touch that interval. If one ever did not, this returns false (some pixels written) and the
-// caller clears the row and warps it forwards.
+// (the hand-written AVX-512 kernels' warp_line_reverse): the items (points, groups of spans one way, vectors of spans
+// both ways, single spans, the seam) in the reverse of WarpRow's order, each drawing only the pixels no later item (in
+// WarpRow's order) writes. A pixel's value does not depend on which other pixels are drawn, and WarpRow leaves every
+// pixel with the value of the last item that writes it, the first one here to reach it: the same row. The pixels
+// written so far are one interval [w_lo, w_hi]: every sample taking part, the spans form one connected path from the
+// seam outwards and an item's pixels touch that interval. If one ever did not, this returns false (some pixels
+// written) and the caller clears the row and warps it forwards.
 // Why: on foldover-heavy reliefs most pixels of a row are written again later in the same row (ridges 1024^2: 2.43
 // row pixels a texel); measured in docs/perf-history.md.
 inline bool WarpRowBackward(const float* pos, const uint32_t* col, const float* attr, const float* attr2, int n,
@@ -903,6 +1022,10 @@ inline bool WarpRowBackward(const float* pos, const uint32_t* col, const float* 
         return item(lo, hi, [&](int, int) { scalar.point(k, n_out); });
     };
     auto no_before = [](int, int) {};
+    const hn::RebindToSigned<decltype(df)> di;
+    auto lf = [&](const float* p) { return hn::LoadU(df, p); };
+    auto li = [&](const uint32_t* p) { return hn::LoadU(di, reinterpret_cast<const int32_t*>(p)); };
+    auto lf2 = [&](int k) { return attr2 ? hn::LoadU(df, attr2 + k) : hn::Zero(df); };
     if (split >= 1 && split < n && !span(split - 1, split)) return false;
     // The part after the split, from its last span (keyed split: samples split + 1 -> split) outwards, then its
     // first sample.
@@ -921,6 +1044,12 @@ inline bool WarpRowBackward(const float* pos, const uint32_t* col, const float* 
                     j += m;
                     continue;
                 }
+                // Spans j .. j + N - 1 (lane i: samples j + i + 1 -> j + i).
+                if (!BackwardLanes(df, +1, lf(pos + j + 1), lf(pos + j), li(col + j + 1), li(col + j), lf(attr + j + 1),
+                                   lf(attr + j), lf2(j + 1), lf2(j), n_out, out, w_lo, w_hi))
+                    return false;
+                j += N;
+                continue;
             }
             if (!span(j + 1, j)) return false;
             ++j;
@@ -944,6 +1073,13 @@ inline bool WarpRowBackward(const float* pos, const uint32_t* col, const float* 
                     j -= m;
                     continue;
                 }
+                // Spans j down to j - N + 1 (lane i: samples b + i - 1 -> b + i), in the order of the lanes down.
+                const int b = j - N + 1;
+                if (!BackwardLanes(df, -1, lf(pos + b - 1), lf(pos + b), li(col + b - 1), li(col + b), lf(attr + b - 1),
+                                   lf(attr + b), lf2(b - 1), lf2(b), n_out, out, w_lo, w_hi))
+                    return false;
+                j -= N;
+                continue;
             }
             if (!span(j - 1, j)) return false;
             --j;
