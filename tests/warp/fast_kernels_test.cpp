@@ -379,15 +379,15 @@ TEST_P(FastKernels, ExtremeConfigurationsMatch) {
 }
 
 TEST_P(FastKernels, BandsAndThreadsMatch) {
-    // The two-pass kernels take the rows in bands of 32 through a pipeline when there are threads: heights around
-    // multiples of the band, the epipole's row (where the vertical pass turns from the bottom part to the top one)
-    // on band boundaries and inside bands, one to four threads.
+    // The two-pass kernels take the rows in bands of 32 through a pipeline when there are threads, in bands of 16 on
+    // one thread: heights around multiples of the bands, the epipole's row (where the vertical pass turns from the
+    // bottom part to the top one) on band boundaries and inside bands, one to four threads.
     const uint64_t seed = test::test_seed(80005);
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> U(0.0, 1.0);
     PrewarpWorkspace ws_ref, ws_fast;
     ImageRGBA8 ref, fast;
-    for (int h : {31, 32, 33, 64, 65, 96, 97, 130}) {
+    for (int h : {15, 16, 17, 31, 32, 33, 48, 49, 64, 65, 96, 97, 130}) {
         const int w = 20 + int(rng() % 120);
         const ReliefGeometry g = unit_width_geometry(w);
         const uint32_t salt = uint32_t(rng());
@@ -541,7 +541,8 @@ TEST_P(FastKernels, StillBlocksMatchTheReference) {
                 where = "inside";
                 break;
             case 4:
-                // The top part's first step on a band's first (bands of 32 steps; split_index gives row 32k).
+                // The top part's first step on a band's first (bands of 32 steps, 16 on one thread; split_index
+                // gives row 32k).
                 eu = U(rng) * w, ev = h > 32 ? 32.0 * (1 + pick((h - 1) / 32)) : 0.0;
                 where = "inside, epipole row on a band boundary";
                 prime = true;

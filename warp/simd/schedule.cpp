@@ -52,9 +52,16 @@ void run_ranges(int threads, int n, int grain, const Body& body) {
 
 // Two-pass: rows per band (steps warped horizontally before the vertical pass takes them) and bands in flight.
 // Two threads, bumps 1024^2: bands of 4 rows 3.08 ms, 8 rows 2.97, 16 rows 2.79, 32 rows 2.66, 64 rows 2.74 (the
-// pipeline's cost per band); one thread: no difference between 1 and 64 rows.
+// pipeline's cost per band). One thread warps a band and steps the columns through it on one core, one band at a
+// time: bands of 16 rows in one buffer, which the next band writes again while it is still in the core's caches.
+// Against the pipeline's 32 rows in four buffers (a Zen 4 guest, one thread, medians of 9 interleaved rounds, `avx512`
+// but where named): bumps 2048^2 two-pass 23.12 -> 22.86 ms, bricks 2048^2 13.50 -> 12.37, ridges 2048^2 25.50 ->
+// 24.72, bumps 1024^2 5.06 -> 4.86, bricks 4096^2 48.2 -> 46.5, `avx2` bumps 2048^2 31.14 -> 28.42; 256^2 and below
+// the same (docs/perf-history.md, session 36). Until then one thread took the pipeline's bands (measured before the
+// Highway kernels: no difference between 1 and 64 rows).
 constexpr int kBandRows = 32;
 constexpr int kBandSlots = 4;
+constexpr int kBandRowsOneThread = 16;
 
 // Pixels the vertical pass copied as still pixels so far (simd::testing::vertical_still_copies).
 std::atomic<long long> g_vertical_still_copies{0};
@@ -302,12 +309,13 @@ PrewarpStats fast_two_pass(const simd::TwoPassKernels& kernels, const ReliefText
     const int ow = w + e.left + e.right, oh = h + e.bottom + e.top;
     std::atomic<long long> dropped{0};
     ensure_size(out, ow, oh);
-    static_assert(kBandRows <= 32, "vertical_with_still keeps a band's steps in 32 bits");
+    static_assert(kBandRows <= 32 && kBandRowsOneThread <= 32, "vertical_with_still keeps a band's steps in 32 bits");
     // Rows of the workspace's intermediate images (width rounded up to 16, 64-byte aligned thanks to the spare
     // row): 0 the column state (v, colour), 1 the seam, then (from kStateRows) the bands.
     constexpr int kStateRows = 2;
     const int stride = (ow + 15) / 16 * 16;
-    const int band = kBandRows, slots = kBandSlots;
+    const bool one_thread = options.threads == 1;
+    const int band = one_thread ? kBandRowsOneThread : kBandRows, slots = one_thread ? 1 : kBandSlots;
     // One more row: the groups' still flags (vertical_with_still).
     ensure_size(ws.mid_color, stride, kStateRows + band * slots + 2);
     // With a discontinuity threshold the columns carry each sample's displacement (TwoPassJob::threshold).
