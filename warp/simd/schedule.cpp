@@ -374,7 +374,7 @@ PrewarpStats fast_two_pass(const simd::TwoPassKernels& kernels, const ReliefText
         vertical_with_still(still, b * band, std::min(h, (b + 1) * band), still_rows[b % slots], band_c(b % slots),
                             band_v(b % slots), size_t(stride), x0, x1);
     };
-    if (options.threads == 1 || bands < 2) {
+    if (one_thread || bands < 2) {
         for (int b = 0; b < bands; ++b) {
             horizontal(b);
             vertical(b, 0, ow);
