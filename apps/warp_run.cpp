@@ -6,10 +6,11 @@
 //
 //   rtm-warp-run RELIEF SIZE METHOD ISA REPEAT [THREADS]
 //
-// RELIEF bricks, facade, bumps or ridges; SIZE 16 to 4096; METHOD two-pass or pipelined; ISA a --isa name (auto,
-// avx512, ..., generic); REPEAT 0 to 100000 pre-warps after the warm-up; THREADS 1 by default (0 = all). The eye is
-// `rtm bench`'s for bumps (orbit azimuth 30, elevation 20, 2.2 bounding radii: docs/BENCHMARKS.md), for every relief.
-// Bad arguments: one line on stderr naming the value, exit 1.
+// RELIEF bricks, facade, bumps or ridges, or lifted-bricks (the brick wall with every displacement + 0.05, nothing
+// still: the relief of `rtm bench-skips`' lifted wall); SIZE 16 to 4096; METHOD two-pass or pipelined; ISA a --isa name
+// (auto, avx512, ..., generic); REPEAT 0 to 100000 pre-warps after the warm-up; THREADS 1 by default (0 = all). The eye
+// is `rtm bench`'s for bumps (orbit azimuth 30, elevation 20, 2.2 bounding radii: docs/BENCHMARKS.md), for every
+// relief. Bad arguments: one line on stderr naming the value, exit 1.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -48,7 +49,8 @@ extern "C" [[gnu::noinline]] void rtm_warp_run_end() { mark = 2; }
 int main(int argc, char** argv) {
     using namespace rtm;
     if (argc < 6 || argc > 7) {
-        std::fprintf(stderr, "usage: rtm-warp-run RELIEF SIZE METHOD ISA REPEAT [THREADS] (RELIEF one of %s)\n",
+        std::fprintf(stderr,
+                     "usage: rtm-warp-run RELIEF SIZE METHOD ISA REPEAT [THREADS] (RELIEF one of %s, lifted-bricks)\n",
                      procedural_names_list().c_str());
         return 1;
     }
@@ -66,7 +68,9 @@ int main(int argc, char** argv) {
             throw std::invalid_argument(std::string("ISA '") + argv[4] + "' is none of auto, " + isa_names());
         const int repeat = parse_int("REPEAT", argv[5], 0, 100000);
         o.threads = argc > 6 ? parse_int("THREADS", argv[6], 0, 1024) : 1;
-        const ReliefTexture relief = to_relief(make_procedural(argv[1], size));
+        const std::string name = argv[1];
+        const ReliefTexture relief = to_relief(name == "lifted-bricks" ? make_shifted_brick_wall(size, 0.05)
+                                                                       : make_procedural(name, size));
         const PrewarpCoefficients k = compute_coefficients(relief.geometry, glm::dvec3(0.735, 0.535, 1.348));
         PrewarpWorkspace ws;
         ImageRGBA8 out;

@@ -164,24 +164,11 @@ std::string skip_table_markdown(const std::vector<SkipMeasurement>& rows) {
     return s;
 }
 
-namespace {
-
-// The brick wall with every displacement moved by `shift` (world units): the same quantized levels over a shifted
-// range, so the same texels are equal and neighbours differ alike, but no level decodes to 0.
-ReliefTexture shifted_wall(int size, double shift) {
-    ProceduralRelief p = make_brick_wall(size);
-    p.range_min += shift;
-    p.range_max += shift;
-    return to_relief(p);
-}
-
-}  // namespace
-
 std::vector<StillWallMeasurement> measure_still_wall(int size, int rounds,
                                                      const std::function<void(const std::string&)>& progress) {
     ReliefTexture walls[4] = {to_relief(make_brick_wall(size)),
-                              shifted_wall(size, 0.05),
-                              shifted_wall(size, -0.05),
+                              to_relief(make_shifted_brick_wall(size, 0.05)),
+                              to_relief(make_shifted_brick_wall(size, -0.05)),
                               {}};
     // The moving texels alone: the still ones emptied.
     walls[3] = walls[0];

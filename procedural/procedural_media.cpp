@@ -453,6 +453,13 @@ FacadeSample facade_sample(double x, double y) {
 
 }  // namespace
 
+ProceduralRelief make_shifted_brick_wall(int size, double shift) {
+    ProceduralRelief p = make_brick_wall(size);
+    p.range_min += shift;
+    p.range_max += shift;
+    return p;
+}
+
 ProceduralRelief make_facade(int size) {
     check_size("facade", size);
     Canvas c(size);

@@ -21,6 +21,10 @@ struct ProceduralRelief {
 };
 
 ProceduralRelief make_brick_wall(int size);
+// The brick wall with every displacement moved by `shift` (world units): the same quantized levels over a shifted
+// range, so the same texels are equal and neighbours differ alike, but no level decodes to 0 (nothing still): the
+// lifted (+0.05) and sunk (-0.05) walls `rtm bench-skips` times against the wall.
+ProceduralRelief make_shifted_brick_wall(int size, double shift);
 ProceduralRelief make_facade(int size);
 ProceduralRelief make_bumps(int size);
 ProceduralRelief make_ridges(int size);

@@ -122,6 +122,30 @@ TEST(ProceduralMedia, BrickTexelsHaveExactlyZeroDisplacement) {
     EXPECT_EQ(*hi, 0.0f);
 }
 
+// The lifted and sunk walls of `rtm bench-skips` (and `rtm-warp-run lifted-bricks`): the wall's texels, colours and
+// levels byte for byte over a range moved by the shift, so no texel is still and every one is shifted alike.
+TEST(ProceduralMedia, ShiftedBrickWallKeepsTheLevelsAndLeavesNothingStill) {
+    const ProceduralRelief wall = make_brick_wall(128);
+    const ReliefTexture t = to_relief(wall);
+    for (double shift : {0.05, -0.05}) {
+        SCOPED_TRACE("shift " + std::to_string(shift));
+        const ProceduralRelief p = make_shifted_brick_wall(128, shift);
+        EXPECT_EQ(p.range_min, wall.range_min + shift);
+        EXPECT_EQ(p.range_max, wall.range_max + shift);
+        EXPECT_EQ(p.color.pixels, wall.color.pixels);
+        EXPECT_EQ(p.displacement.pixels, wall.displacement.pixels);
+        const ReliefTexture s = to_relief(p);
+        ASSERT_EQ(s.texels.size(), t.texels.size());
+        for (size_t i = 0; i < s.texels.size(); ++i) {
+            ASSERT_EQ(s.texels[i].q, t.texels[i].q) << "texel " << i;
+            ASSERT_NE(s.quant.decode(s.texels[i].q), 0.0) << "texel " << i;
+            // min + q * (max - min) / 254 over the moved range: the wall's level plus the shift, but for the rounding
+            // of a few double operations on values below 0.1 (1e-12 is thousands of times that).
+            ASSERT_NEAR(s.quant.decode(s.texels[i].q), t.quant.decode(t.texels[i].q) + shift, 1e-12) << "texel " << i;
+        }
+    }
+}
+
 TEST(ProceduralMedia, BrickZeroSurvivesTheFileRoundTrip) {
     TempDir dir;
     const ProceduralRelief p = make_brick_wall(64);
