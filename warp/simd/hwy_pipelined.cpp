@@ -142,12 +142,61 @@ struct Emitter {
         b.cur_d[x] = d;
     }
 
-    void operator()(int xa, int xb) const {
+    // Columns x .. x + N - 1 of a run that ends at xb: with kFull all of them in it (x + N - 1 <= xb), loaded whole
+    // with no lane mask, and where every lane has a new sample the row's state stored whole, not blended with what it
+    // held (`avx2` bumps 256^2 pipelined, instructions counted under qemu: 6.9% fewer in the Emitter, 3.3% in the
+    // pre-warp); else the lanes up to xb, masked.
+    template <bool kFull>
+    HWY_INLINE void Vector(int x, int xb) const {
         const hn::ScalableTag<float> df;
         const hn::RebindToSigned<decltype(df)> di;
         using VF = hn::Vec<decltype(df)>;
         using VI = hn::Vec<decltype(di)>;
         const int N = int(hn::Lanes(df));
+        const auto m = hn::FirstN(df, size_t(xb - x + 1));  // all lanes where kFull (not used there)
+        const auto mi = hn::RebindMask(di, m);
+        // (The rows are readable a whole vector past the run: SSE4's MaskedLoad needs alignment.)
+        VF v = hn::LoadU(df, b.rv + x);
+        VI c = hn::LoadU(di, reinterpret_cast<const int32_t*>(b.rc + x));
+        if constexpr (!kFull) {
+            v = hn::IfThenElseZero(m, v);
+            c = hn::IfThenElseZero(mi, c);
+        }
+        auto fin = hn::IsFinite(v);  // the reference skips emissions with a non-finite row coordinate
+        if constexpr (!kFull) fin = hn::And(m, fin);
+        if (hn::AllFalse(df, fin)) return;
+        const auto fini = hn::RebindMask(di, fin);
+        const bool all = kFull && hn::AllTrue(df, fin);
+        auto pok = hn::And(fin, hn::RebindMask(df, hn::Ne(hn::LoadU(di, b.prev_ok + x), hn::Zero(di))));
+        if (threshold > 0.0f) {
+            VF d = hn::LoadU(df, b.rd + x);
+            if constexpr (!kFull) d = hn::IfThenElseZero(m, d);
+            pok = hn::And(pok, WithinThreshold(df, hn::LoadU(df, b.prev_d + x), d, threshold));
+            if (all)
+                hn::StoreU(d, df, b.cur_d + x);
+            else
+                StoreOwned(d, fin, df, b.cur_d + x, o.blend);
+        }
+        const VF pv = hn::LoadU(df, b.prev_v + x);
+        const VI pc = hn::LoadU(di, reinterpret_cast<const int32_t*>(b.prev_c + x));
+        if (all) {
+            hn::StoreU(v, df, b.cur_v + x);
+            hn::StoreU(c, di, reinterpret_cast<int32_t*>(b.cur_c + x));
+            hn::StoreU(hn::Set(di, -1), di, b.cur_ok + x);
+        } else {
+            StoreOwned(v, fin, df, b.cur_v + x, o.blend);
+            StoreOwned(c, fini, di, reinterpret_cast<int32_t*>(b.cur_c + x), o.blend);
+            StoreOwned(hn::Set(di, -1), fini, di, b.cur_ok + x, o.blend);
+        }
+        ColumnDraw(df, o, x, x + N <= x1, copy, fin, pok, pv, pc, v, c);
+        if (drawn) [[unlikely]] {
+            const VF d = hn::Min(hn::Abs(hn::Sub(v, pv)), hn::Set(df, float(o.oh)));
+            *drawn += hn::GetLane(hn::SumOfLanes(df, hn::IfThenElseZero(pok, d)));
+        }
+    }
+
+    void operator()(int xa, int xb) const {
+        const int N = int(hn::Lanes(hn::ScalableTag<float>()));
         xa = std::max(xa, x0);
         xb = std::min(xb, x1 - 1);
         // Runs of one or two pixels (rows that marks or foldovers cut into pieces), column by column: a vector step
@@ -158,29 +207,10 @@ struct Emitter {
             return;
         }
         for (int x = xa; x <= xb; x += N) {
-            const auto m = hn::FirstN(df, size_t(xb - x + 1));
-            const auto mi = hn::RebindMask(di, m);
-            const VF v = hn::IfThenElseZero(m, hn::LoadU(df, b.rv + x));  // (SSE4's MaskedLoad needs alignment)
-            const auto fin = hn::And(m, hn::IsFinite(v));  // the reference skips emissions with a non-finite row
-            if (hn::AllFalse(df, fin)) continue;           // coordinate
-            const auto fini = hn::RebindMask(di, fin);
-            const VI c = hn::IfThenElseZero(mi, hn::LoadU(di, reinterpret_cast<const int32_t*>(b.rc + x)));
-            auto pok = hn::And(fin, hn::RebindMask(df, hn::Ne(hn::LoadU(di, b.prev_ok + x), hn::Zero(di))));
-            if (threshold > 0.0f) {
-                const VF d = hn::IfThenElseZero(m, hn::LoadU(df, b.rd + x));
-                pok = hn::And(pok, WithinThreshold(df, hn::LoadU(df, b.prev_d + x), d, threshold));
-                StoreOwned(d, fin, df, b.cur_d + x, o.blend);
-            }
-            const VF pv = hn::LoadU(df, b.prev_v + x);
-            const VI pc = hn::LoadU(di, reinterpret_cast<const int32_t*>(b.prev_c + x));
-            StoreOwned(v, fin, df, b.cur_v + x, o.blend);
-            StoreOwned(c, fini, di, reinterpret_cast<int32_t*>(b.cur_c + x), o.blend);
-            StoreOwned(hn::Set(di, -1), fini, di, b.cur_ok + x, o.blend);
-            ColumnDraw(df, o, x, x + N <= x1, copy, fin, pok, pv, pc, v, c);
-            if (drawn) [[unlikely]] {
-                const VF d = hn::Min(hn::Abs(hn::Sub(v, pv)), hn::Set(df, float(o.oh)));
-                *drawn += hn::GetLane(hn::SumOfLanes(df, hn::IfThenElseZero(pok, d)));
-            }
+            if (x + N - 1 <= xb)
+                Vector<true>(x, xb);
+            else
+                Vector<false>(x, xb);
         }
     }
 };
