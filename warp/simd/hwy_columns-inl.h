@@ -141,7 +141,7 @@ HWY_INLINE hn::Vec<DI> Lerp8Channel(DI di, hn::Vec<DI> ca, hn::Vec<DI> cb, hn::V
 // y = 2w in [2, 32766] (both 16 bits), ((b - a) w + 2^13) >> 14 = (x y + 2^14) >> 15, which pmulhrsw computes
 // exactly ((x y >> 14) + 1) >> 1 = floor((x y + 2^14) / 2^15)). The colours' bytes widened to 16 bits (4 pixels a
 // 128-bit block in two halves), each pixel's weight in its 4 words, one subtraction, multiplication and addition a
-// half, and the bytes packed back (packus: the sums are in [0, 255]): 15 operations where the 32-bit multiply-adds
+// half, and the bytes packed back (packus: the sums are in [0, 255]): 14 operations where the 32-bit multiply-adds
 // of each channel took 23 (bumps 1024^2 two-pass: lerp8 is about 40% of the row warp and of the vertical pass).
 // The fourth byte is lerp8 of the fourth bytes, alpha 255 wherever the result is used: every colour the kernels carry
 // has alpha 255 (PrepareRow, CopyStill, the still copies and the scalar paths set it; a pixel not written, alpha 0, is
