@@ -505,7 +505,8 @@ HWY_INLINE void ColumnRows(DF df, const ColumnTarget& o, MF fin, MF pok, hn::Vec
     const hn::RebindToSigned<DF> di;
     using VF = hn::Vec<DF>;
     const VF half = hn::Set(df, 0.5f), one = hn::Set(df, 1.0f);
-    const VF first = hn::Set(df, float(o.y0)), last = hn::Set(df, float(o.y1 - 1)), end = hn::Set(df, float(o.y1));
+    // (y1 - 1 from y1 as floats, exact below 2^24: one conversion a vector fewer where GCC redoes them in the loop.)
+    const VF first = hn::Set(df, float(o.y0)), end = hn::Set(df, float(o.y1)), last = hn::Sub(end, one);
     // raster_span's rows in float: lo .. hi, clamped to [0, oh - 1] and to [y0, y1 - 1].
     const auto inc = hn::And(pok, hn::Gt(v, pv)), dec = hn::And(pok, hn::Lt(v, pv));
     const VF pvh = hn::Sub(pv, half), vh = hn::Sub(v, half);
