@@ -42,6 +42,8 @@ for isa in avx512 avx3 avx2 sse4 neon sve; do
     expect_refused "target \"$isa\"" bricks 32 pipelined "$isa" 1
   fi
 done
+expect_run '^lifted-bricks 32 two-pass isa generic: 1 pre-warps after a warm-up, min [0-9.]+ ms' \
+  lifted-bricks 32 two-pass generic 1
 expect_refused 'unknown procedural relief "wall"' wall 32 two-pass generic 1
 expect_refused "SIZE '8' is not an integer from 16 to 4096" bumps 8 two-pass generic 1
 expect_refused "SIZE '32x' is not" bumps 32x two-pass generic 1
