@@ -43,6 +43,7 @@ public:
         if (!f_ || !read_at(0, magic, 8)) return;  // the reader reports what is wrong
         if (std::memcmp(magic, "\x89PNG\r\n\x1a\n", 8) == 0) png();
         if (std::memcmp(magic, "\x76\x2f\x31\x01", 4) == 0) exr(magic[5] & 0x10);  // flags: bit 12 = multi-part
+        if (magic[0] == 0x01 && magic[1] == 0xda) sgi();
     }
 
 private:
@@ -75,6 +76,19 @@ private:
             if (type != "IDAT") check("PNG", "chunk", type, pos, length, pos + 8);
             pos += 12 + length;
         }
+    }
+
+    // SGI: a 512-byte big-endian header (magic 474, storage, bytes per channel, dimension, xsize, ysize, zsize, ...).
+    // A run-length encoded file (storage 1) follows it with two tables of ysize x zsize 32-bit entries (where each
+    // row of each channel starts, and its length), which OpenImageIO 2.4 allocates and clears at open, from the
+    // header's ysize and zsize whatever the dimension: a 577-byte file claiming 16384 rows of 16384 channels made rtm
+    // touch 2.4 GB (found by fuzz/fuzz_relief_loader). The tables must fit in the file.
+    void sgi() {
+        unsigned char h[12];
+        if (!read_at(0, h, 12) || h[2] != 1) return;
+        const std::uintmax_t ysize = std::uintmax_t(h[8]) << 8 | h[9], zsize = std::uintmax_t(h[10]) << 8 | h[11];
+        check("SGI", "run-length tables for", std::to_string(ysize) + " rows x " + std::to_string(zsize) + " channels",
+              512, 8 * ysize * zsize, 512);
     }
 
     // OpenEXR: little-endian 32-bit integers; strings end in \0 and hold at most 255 characters (Name::MAX_LENGTH).

@@ -1,5 +1,5 @@
 // The checks every image reader and writer makes before the library does anything (docs/DESIGN.md, "Input limits"):
-// the file exists and is a non-empty regular file, no length field of a PNG or OpenEXR container claims more bytes
+// the file exists and is a non-empty regular file, no length field of a PNG, OpenEXR or SGI container claims more bytes
 // than the file holds, the image's claimed size is within kMaxImagePixels, and a write has somewhere to go. Shared by
 // the PNG reader and writer (formats/png_io.cpp) and the image module over OpenImageIO (formats/image_io_oiio.cpp).
 #pragma once
@@ -17,7 +17,7 @@ std::uintmax_t check_readable_file(const std::string& path);
 // allocates pixel memory.
 void check_claimed_size(const std::string& path, long long width, long long height, std::uintmax_t file_size);
 
-// For PNG and OpenEXR files (recognized by their signature, whatever the file's extension): throws IoError where a
+// For PNG, OpenEXR and SGI files (recognized by their signature, whatever the file's extension): throws IoError where a
 // length field claims more bytes than the file has left (see image_checks.cpp). Other files pass.
 void check_container(const std::string& path);
 
