@@ -44,7 +44,8 @@ public:
         if (std::memcmp(magic, "\x89PNG\r\n\x1a\n", 8) == 0) png();
         if (std::memcmp(magic, "\x76\x2f\x31\x01", 4) == 0) exr(magic[5] & 0x10);  // flags: bit 12 = multi-part
         if (magic[0] == 0x01 && magic[1] == 0xda) sgi();
-        if (std::memcmp(magic, "GIF", 3) == 0) gif();  // giflib takes any version after "GIF"
+        if (std::memcmp(magic, "GIF", 3) == 0) gif();      // giflib takes any version after "GIF"
+        if (magic[0] == 0xff && magic[1] == 0xd8) jpeg();  // libjpeg's SOI
     }
 
 private:
@@ -99,6 +100,77 @@ private:
     void gif() {
         unsigned char h[10];
         if (read_at(0, h, 10)) check_claimed_size(path_, h[6] | h[7] << 8, h[8] | h[9] << 8, size_);
+    }
+
+    // JPEG: OpenImageIO 2.4 decodes the metadata segments libjpeg saves (APP1 Exif and XMP, APP2 ICC profile, APP13
+    // Photoshop IPTC) by fields it trusts: it compares each segment's start with a signature by strcmp (reading past a
+    // segment that ends inside the signature), takes "Exif" data as 6 bytes shorter and ICC data as 14 bytes shorter
+    // than the segment (a shorter one wraps around), and hands the IPTC block to its decoder with the size the block
+    // claims: a 1171-byte file whose IPTC block claims 113 of the 20 bytes left in its segment made the reader read
+    // past the segment's buffer (AddressSanitizer; found by fuzz/fuzz_relief_loader). The segments before the image
+    // data are walked as libjpeg finds them (it skips bytes that are not a marker): each such segment must lie in the
+    // file, hold the whole signature and header the reader reads, and the IPTC block must fit in its segment.
+    void jpeg() {
+        std::uintmax_t pos = 2;
+        unsigned char b[2];
+        for (;;) {
+            while (read_at(pos, b, 1) && b[0] != 0xff) ++pos;  // libjpeg's next_marker: skip to a 0xff,
+            while (read_at(pos, b, 1) && b[0] == 0xff) ++pos;  // past the fill bytes,
+            if (!read_at(pos, b, 1)) return;
+            const unsigned code = b[0];
+            const std::uintmax_t at = pos - 1;
+            ++pos;
+            if (code == 0) continue;                                       // and past a stuffed zero
+            if (code == 0xda || code == 0xd9) return;                      // the image data, or the end
+            if (code == 0x01 || (code >= 0xd0 && code <= 0xd8)) continue;  // markers without a length
+            if (!read_at(pos, b, 2)) return;
+            const std::uintmax_t length = std::uintmax_t(b[0]) << 8 | b[1];
+            if (length < 2) return;  // libjpeg refuses that itself
+            if (code == 0xe1 || code == 0xe2 || code == 0xed) jpeg_segment(code - 0xe0, at, pos + 2, length - 2);
+            pos += length;
+        }
+    }
+    void jpeg_segment(unsigned app, std::uintmax_t at, std::uintmax_t from, std::uintmax_t n) {
+        const std::string name = "APP" + std::to_string(app);
+        check("JPEG", "segment", name, at, n, from);
+        unsigned char d[32] = {};
+        if (!read_at(from, d, std::min<std::uintmax_t>(n, sizeof d))) return;
+        // The signatures the reader compares with strcmp: a segment that ends inside one (every byte it has
+        // matching) makes strcmp read past it.
+        static const std::pair<unsigned, const char*> kSignatures[] = {{1, "Exif"},
+                                                                       {1, "http://ns.adobe.com/xap/1.0/"},
+                                                                       {2, "ICC_PROFILE"},
+                                                                       {13, "Photoshop 3.0"}};
+        auto fail = [&](const std::string& what) {
+            throw_io_error(path_, "cannot read as an image: JPEG " + name + " segment at byte " + std::to_string(at) +
+                                      " " + what + " (corrupt)");
+        };
+        for (const auto& [a, sig] : kSignatures) {
+            const size_t len = std::strlen(sig) + 1;  // with its \0
+            if (a == app && n < len && std::memcmp(d, sig, std::min<size_t>(n, sizeof d)) == 0)
+                fail("ends inside its \"" + std::string(sig) + "\" signature (" + std::to_string(n) + " bytes)");
+        }
+        auto is = [&](const char* sig) {
+            return n >= std::strlen(sig) + 1 && std::memcmp(d, sig, std::strlen(sig) + 1) == 0;
+        };
+        if (app == 1 && is("Exif") && n < 6)
+            fail("holds " + std::to_string(n) + " bytes, fewer than the 6 of its Exif header");
+        if (app == 2 && is("ICC_PROFILE") && n < 14)
+            fail("holds " + std::to_string(n) + " bytes, fewer than the 14 of its ICC profile header");
+        if (app == 13 && is("Photoshop 3.0")) {
+            // "8BIM", the resource type (0x0404: IPTC), 4 bytes the reader skips, the block's 16-bit size, the block.
+            const size_t sig = n < 18 ? size_t(n) - 14 : 4;  // what strncmp reads of "8BIM" (to a mismatch)
+            if (n < 18 && std::memcmp(d + 14, "8BIM", sig) == 0)
+                fail("ends inside its \"8BIM\" resource signature (" + std::to_string(n) + " bytes)");
+            if (std::memcmp(d + 14, "8BIM", 4) != 0) return;
+            if (n < 20) fail("ends inside its Photoshop resource type (" + std::to_string(n) + " bytes)");
+            if ((d[18] << 8 | d[19]) != 0x0404) return;
+            if (n < 26) fail("ends inside its IPTC block's header (" + std::to_string(n) + " bytes)");
+            const std::uintmax_t block = std::uintmax_t(d[24]) << 8 | d[25];
+            if (26 + block > n)
+                fail("has an IPTC block claiming " + std::to_string(block) + " bytes, more than the " +
+                     std::to_string(n - 26) + " left in the segment");
+        }
     }
 
     // OpenEXR: little-endian 32-bit integers; strings end in \0 and hold at most 255 characters (Name::MAX_LENGTH).

@@ -104,7 +104,8 @@ for t in $targets; do
     # The seed and the input (Base64) are printed, so that a finding of a CI run can be replayed elsewhere:
     #   echo '<Base64>' | base64 -d > input && build-fuzz/bin/<target> input
     echo "$t: FINDING (log: $B/logs/$t.log): $(ls "$B/findings/$t" | tr '\n' ' ')"
-    grep -E 'INFO: Seed|FINDING|ERROR|SUMMARY|runtime error|Test unit written|^Base64' "$B/logs/$t.log" | head -20 || true
+    grep -E 'INFO: Seed|FINDING|ERROR|SUMMARY|runtime error|Test unit written|^Base64' "$B/logs/$t.log" |
+      head -20 || true
   fi
   i=$((i + 1))
 done

@@ -246,6 +246,13 @@ write("tables_2gb.sgi", struct.pack(">hBBHHHH", 474, 1, 1, 3, 1, 16384, 16384) +
 # A GIF whose logical screen is 19789x19789: OpenImageIO would allocate and clear a canvas that size (a fuzzing find).
 write("screen_huge.gif", b"GIF89a" + struct.pack("<HHBBB", 19789, 19789, 0xf0, 0, 0) + bytes(6) + b";")
 write("screen_huge_any_version.gif", b"GIFa89" + struct.pack("<HHBBB", 30244, 12591, 0xf0, 0, 0) + bytes(6) + b";")
+# JPEG metadata OpenImageIO reads by fields it trusts: an IPTC block claiming 113 of the 20 bytes left in its APP13
+# segment (the reader read past the segment: a fuzzing find), and an APP1 segment cut inside its "Exif" signature.
+def jpeg_segment(code, payload):
+    return b"\xff" + bytes([code]) + struct.pack(">H", len(payload) + 2) + payload
+iptc = b"Photoshop 3.0\0" + b"8BIM" + struct.pack(">H4xH", 0x0404, 113) + b"\x1c\x02\x05\x00\x04name" + bytes(11)
+write("iptc_overflow.jpg", b"\xff\xd8" + jpeg_segment(0xed, iptc) + b"\xff\xd9")
+write("exif_cut.jpg", b"\xff\xd8" + jpeg_segment(0xe1, b"Exi") + b"\xff\xd9")
 write("huge.ppm", b"P6\n100000 100000\n255\n")
 write("wide.ppm", b"P6\n4294967297 1\n255\n")                 # wider than an int
 write("dense.ppm", b"P6\n10000 10000\n255\n")                  # within the limit, but not from 19 bytes
@@ -271,7 +278,7 @@ expect_ok prewarp --relief "$(with_disp disp_pfm ok.pfm)" --eye 0.5,0.5,3 --out 
 for img in empty.png text.png text.pgm truncated.png header_only.png corrupt.png bad_zlib.png huge.png huge.ppm \
   wide.ppm dense.ppm zero.ppm truncated.ppm huge.pfm text_2gb.png attr_2gb.exr chlist_short.exr window_huge.exr \
   tiles_huge.exr throws.sgi tables_2gb.sgi screen_huge.gif \
-  screen_huge_any_version.gif; do
+  screen_huge_any_version.gif iptc_overflow.jpg exif_cut.jpg; do
   case $img in
     empty.png) msg="file is empty" ;;
     text.png) msg="cannot read as an image: Not a PNG file" ;;
@@ -288,6 +295,10 @@ for img in empty.png text.png text.pgm truncated.png header_only.png corrupt.png
     chlist_short.exr) msg="cannot read as an image: OpenEXR attribute \"channels\" (chlist) at byte 8 has a size field"\
 " of 1 but its value takes 19 bytes (corrupt)" ;;
     screen_huge_any_version.gif) msg="image claims 30244x12591 pixels, more than the limit of 16384x16384" ;;
+    iptc_overflow.jpg) msg="cannot read as an image: JPEG APP13 segment at byte 2 has an IPTC block claiming 113"\
+" bytes, more than the 20 left in the segment (corrupt)" ;;
+    exif_cut.jpg) msg="cannot read as an image: JPEG APP1 segment at byte 2 ends inside its \"Exif\" signature"\
+" (3 bytes) (corrupt)" ;;
     screen_huge.gif) msg="image claims 19789x19789 pixels, more than the limit of 16384x16384" ;;
     window_huge.exr) msg="image claims 100000x100000 pixels, more than the limit of 16384x16384" ;;
     tables_2gb.sgi) msg="cannot read as an image: SGI run-length tables for \"16384 rows x 16384 channels\" at byte"\
