@@ -1,8 +1,8 @@
 // The checks every image reader and writer makes before the library does anything (docs/DESIGN.md, "Input limits"):
-// the file exists and is a non-empty regular file, no length field of a PNG, OpenEXR or SGI container claims more bytes
-// than the file holds, a GIF's screen is within the image limits, the image's claimed size is within kMaxImagePixels,
-// and a write has somewhere to go. Shared by the PNG reader and writer (formats/png_io.cpp) and the image module over
-// OpenImageIO (formats/image_io_oiio.cpp).
+// the file exists and is a non-empty regular file, no length field of a PNG, OpenEXR, SGI or JPEG container claims more
+// bytes than the file holds, a GIF's screen is within the image limits, the image's claimed size is within
+// kMaxImagePixels, and a write has somewhere to go. Shared by the PNG reader and writer (formats/png_io.cpp) and the
+// image module over OpenImageIO (formats/image_io_oiio.cpp).
 #pragma once
 
 #include <cstddef>
@@ -18,9 +18,9 @@ std::uintmax_t check_readable_file(const std::string& path);
 // allocates pixel memory.
 void check_claimed_size(const std::string& path, long long width, long long height, std::uintmax_t file_size);
 
-// For PNG, OpenEXR, SGI and GIF files (recognized by their signature, whatever the file's extension): throws IoError
-// where a length field claims more bytes than the file has left, or a size the image limits refuse (see
-// image_checks.cpp). Other files pass.
+// For PNG, OpenEXR, SGI, GIF and JPEG files (recognized by their signature, whatever the file's extension): throws
+// IoError where a length field claims more bytes than the file (or a JPEG segment) has left, or a size the image limits
+// refuse (see image_checks.cpp). Other files pass.
 void check_container(const std::string& path);
 
 // Before a write: an image of at least one pixel whose pixel count matches its size, and a destination that is not a
