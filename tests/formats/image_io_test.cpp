@@ -186,8 +186,11 @@ TEST(ImageIo, ZeroSizedImage) {
 
 // A header that claims a huge image must be rejected from the header alone. Checked in a child process whose
 // address space is capped at its current size + 1 GiB: reading 100000 x 100000 RGBA (40 GB) would have to allocate
-// and fail with std::bad_alloc (exit code 3) instead of the expected IoError (exit code 0).
-void expect_rejected_without_allocating(const std::string& path) {
+// and fail with std::bad_alloc (exit code 3, or the reader's own catch of it: exit code 2, another message) instead of
+// the expected IoError naming the file and what is wrong (exit code 0).
+void expect_rejected_without_allocating(
+    const std::string& path,
+    const std::string& want = "image claims 100000x100000 pixels, more than the limit of 16384x16384") {
     EXPECT_EXIT(
         {
             long pages = 0;
@@ -203,9 +206,7 @@ void expect_rejected_without_allocating(const std::string& path) {
                 std::_Exit(1);
             } catch (const IoError& e) {
                 std::string msg = e.what();
-                bool ok = msg.rfind(path + ": ", 0) == 0 &&
-                          msg.find("image claims 100000x100000 pixels, more than the limit of 16384x16384") !=
-                              std::string::npos;
+                bool ok = msg.rfind(path + ": ", 0) == 0 && msg.find(want) != std::string::npos;
                 if (!ok) std::fprintf(stderr, "unexpected message: %s\n", msg.c_str());
                 std::_Exit(ok ? 0 : 2);
             } catch (const std::bad_alloc&) {
@@ -231,6 +232,69 @@ TEST(ImageIoDeathTest, HugePngHeaderIsRejectedBeforeAllocating) {
     const std::string path = dir.file("huge.png");
     test::write_bytes(path, test::png_claiming_size(100000, 100000));
     expect_rejected_without_allocating(path);
+}
+
+// Headers whose fields OpenImageIO 2.4's readers allocate and clear by at open, before rtm sees the image's size
+// (formats/image_checks.cpp; each found by fuzz/fuzz_relief_loader): refused before the reader opens the file.
+TEST(ImageIoDeathTest, SgiRowTablesAreCheckedBeforeAllocating) {
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    TempDir dir;
+    const std::string path = dir.file("tables.sgi");
+    // Run-length encoded (storage 1), 1 x 16384 pixels of 16384 channels: two row tables of 1 GiB each.
+    std::string sgi = {'\x01', '\xda', '\x01', '\x01', '\x00', '\x03', '\x00', '\x01', '\x40', '\x00', '\x40', '\x00'};
+    sgi.resize(576, '\0');
+    test::write_bytes(path, sgi);
+    expect_rejected_without_allocating(path,
+                                       "SGI run-length tables for \"16384 rows x 16384 channels\" at byte 512"
+                                       " claims 2147483648 bytes, more than the 64 left in the file");
+}
+
+TEST(ImageIoDeathTest, GifScreenIsCheckedBeforeAllocating) {
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    TempDir dir;
+    // A 19789 x 19789 logical screen (a 1.5 GB canvas), behind "GIF89a" and behind a version giflib does not check.
+    for (const char* version : {"89a", "a89"}) {
+        const std::string path = dir.file(std::string("screen_") + version + ".gif");
+        test::write_bytes(path, std::string("GIF") + version + std::string("\x4d\x4d\x4d\x4d\xf0\0\0", 7) +
+                                    std::string(6, '\0') + ";");
+        expect_rejected_without_allocating(path, "image claims 19789x19789 pixels, more than the limit of 16384x16384");
+    }
+}
+
+// An IPTC block claiming more bytes than its JPEG APP13 segment holds: OpenImageIO's decoder would read past the
+// segment (AddressSanitizer's heap-buffer-overflow in the sanitizer suite); a legitimate block still reads.
+TEST(ImageIo, JpegIptcBlockMustFitItsSegment) {
+    TempDir dir;
+    auto jpeg_with_app13 = [](const std::string& payload) {
+        const size_t n = payload.size() + 2;
+        return std::string("\xff\xd8\xff\xed", 4) + char(n >> 8) + char(n & 0xff) + payload + "\xff\xd9";
+    };
+    const std::string header = std::string(
+        "Photoshop 3.0\0"
+        "8BIM\x04\x04\0\0\0\0",
+        24);
+    const std::string path = dir.file("iptc.jpg");
+    test::write_bytes(path, jpeg_with_app13(header + std::string("\0\x71", 2) + std::string(20, '\x1c')));
+    try {
+        read_rgba8(path);
+        FAIL() << "read an IPTC block claiming 113 of 20 bytes";
+    } catch (const IoError& e) {
+        EXPECT_EQ(std::string(e.what()), path +
+                                             ": cannot read as an image: JPEG APP13 segment at byte 2 has an IPTC "
+                                             "block claiming 113 bytes, more than the 20 left in the segment "
+                                             "(corrupt)");
+    }
+    // One cut inside the "Photoshop 3.0" signature: strcmp would read past it.
+    test::write_bytes(path, jpeg_with_app13("Photo"));
+    try {
+        read_rgba8(path);
+        FAIL() << "read an APP13 segment cut inside its signature";
+    } catch (const IoError& e) {
+        EXPECT_NE(std::string(e.what()).find("JPEG APP13 segment at byte 2 ends inside its \"Photoshop 3.0\" signature"
+                                             " (5 bytes)"),
+                  std::string::npos)
+            << e.what();
+    }
 }
 
 TEST(ImageIo, LimitIsOnPixelsNotOnOneSide) {
