@@ -10,6 +10,7 @@
 #include <memory>
 #include <system_error>
 #include <utility>
+#include <vector>
 
 #include "formats/image_io.h"
 
@@ -87,13 +88,37 @@ private:
     // A run-length encoded file (storage 1) follows it with two tables of ysize x zsize 32-bit entries (where each
     // row of each channel starts, and its length), which OpenImageIO 2.4 allocates and clears at open, from the
     // header's ysize and zsize whatever the dimension: a 577-byte file claiming 16384 rows of 16384 channels made rtm
-    // touch 2.4 GB (found by fuzz/fuzz_relief_loader). The tables must fit in the file.
+    // touch 2.4 GB (found by fuzz/fuzz_relief_loader). The tables must fit in the file; and its reader trusts them
+    // when it reads a row: an empty table (zsize 0) made it read through a null pointer, a length of 2^32 - 1.7e9 made
+    // it allocate 16 EB (later finds). So the bytes per channel are 1 or 2 (as the format has them), and with
+    // run-length encoding there is at least one row and one channel, and every row of every channel lies in the file.
     void sgi() {
         unsigned char h[12];
-        if (!read_at(0, h, 12) || h[2] != 1) return;
+        if (!read_at(0, h, 12)) return;
+        const unsigned storage = h[2], bpc = h[3];
         const std::uintmax_t ysize = std::uintmax_t(h[8]) << 8 | h[9], zsize = std::uintmax_t(h[10]) << 8 | h[11];
+        auto fail = [&](const std::string& what) {
+            throw_io_error(path_, "cannot read as an image: SGI " + what + " (corrupt)");
+        };
+        if (bpc != 1 && bpc != 2) fail("header claims " + std::to_string(bpc) + " bytes per channel, expected 1 or 2");
+        if (storage != 1) return;
+        if (ysize == 0 || zsize == 0)
+            fail("run-length file claims " + std::to_string(ysize) + " rows x " + std::to_string(zsize) + " channels");
+        const std::uintmax_t n = ysize * zsize;
         check("SGI", "run-length tables for", std::to_string(ysize) + " rows x " + std::to_string(zsize) + " channels",
-              512, 8 * ysize * zsize, 512);
+              512, 8 * n, 512);
+        std::vector<unsigned char> tables(size_t(8 * n));
+        if (!read_at(512, tables.data(), tables.size())) return;
+        auto be32 = [](const unsigned char* b) {
+            return std::uintmax_t(b[0]) << 24 | std::uintmax_t(b[1]) << 16 | std::uintmax_t(b[2]) << 8 | b[3];
+        };
+        for (std::uintmax_t i = 0; i < n; ++i) {
+            const std::uintmax_t start = be32(&tables[size_t(4 * i)]), length = be32(&tables[size_t(4 * (n + i))]);
+            if (start > size_ || length > size_ - start)
+                fail("run-length row " + std::to_string(i % ysize) + " of channel " + std::to_string(i / ysize) +
+                     " claims " + std::to_string(length) + " bytes from byte " + std::to_string(start) +
+                     ", past the end of the " + std::to_string(size_) + "-byte file");
+        }
     }
 
     // GIF: OpenImageIO 2.4 allocates and clears a canvas of the logical screen's size (little-endian 16-bit width and

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <functional>
 #include <random>
+#include <vector>
 
 #include "common/io_error.h"
 #include "texmap/test_util.h"
@@ -259,6 +260,60 @@ TEST(ImageIoDeathTest, GifScreenIsCheckedBeforeAllocating) {
                                     std::string(6, '\0') + ";");
         expect_rejected_without_allocating(path, "image claims 19789x19789 pixels, more than the limit of 16384x16384");
     }
+}
+
+// A run-length encoded SGI file (one 8-bit channel, 6 x 4, literal runs) reads; one whose length table puts a row
+// past the end of the file, or whose header claims 0 bytes per channel, is refused before OpenImageIO reads it (its
+// reader allocated what a length claimed, and read through a null pointer: fuzzing finds).
+TEST(ImageIo, SgiRunLengthRowsMustLieInTheFile) {
+    TempDir dir;
+    auto be = [](std::string& s, uint32_t v, int bytes) {
+        for (int i = bytes - 1; i >= 0; --i) s += char((v >> (8 * i)) & 0xff);
+    };
+    auto sgi = [&](uint32_t bad_length, char bpc) {
+        std::string s = {'\x01', '\xda', '\x01', bpc};
+        be(s, 2, 2), be(s, 6, 2), be(s, 4, 2), be(s, 1, 2);
+        s.resize(512, '\0');
+        std::string rows;
+        std::vector<uint32_t> starts, lengths;
+        for (int y = 0; y < 4; ++y) {
+            starts.push_back(uint32_t(512 + 8 * 4 + rows.size()));
+            rows += char(0x80 | 6);
+            for (int x = 0; x < 6; ++x) rows += char(10 * y + x);
+            rows += '\0';
+            lengths.push_back(y == 2 && bad_length ? bad_length : 8u);
+        }
+        for (uint32_t v : starts) be(s, v, 4);
+        for (uint32_t v : lengths) be(s, v, 4);
+        return s + rows;
+    };
+    const std::string path = dir.file("rle.sgi");
+    test::write_bytes(path, sgi(0, 1));
+    const ImageRGBA8 img = read_rgba8(path);
+    ASSERT_EQ(img.width, 6);
+    ASSERT_EQ(img.height, 4);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 6; ++x) {
+            const uint8_t v = uint8_t(10 * (3 - y) + x);  // SGI's rows run bottom to top
+            EXPECT_EQ(img.at(x, y), (Rgba8{v, v, v, 255})) << x << "," << y;
+        }
+    auto refused = [&](const std::string& bytes, const std::string& want) {
+        test::write_bytes(path, bytes);
+        try {
+            read_rgba8(path);
+            ADD_FAILURE() << "read " << want;
+        } catch (const IoError& e) {
+            EXPECT_EQ(std::string(e.what()), path + ": cannot read as an image: SGI " + want + " (corrupt)");
+        }
+    };
+    refused(sgi(0x99e1cc62u, 1),
+            "run-length row 2 of channel 0 claims 2581711970 bytes from byte 560, past the end of "
+            "the 576-byte file");
+    refused(sgi(0, 0), "header claims 0 bytes per channel, expected 1 or 2");
+    std::string no_channels = {'\x01', '\xda', '\x01', '\x01', '\x00', '\x02',
+                               '\x00', '\x06', '\x00', '\xff', '\x00', '\x00'};
+    no_channels.resize(576, '\0');
+    refused(no_channels, "run-length file claims 255 rows x 0 channels");
 }
 
 // An IPTC block claiming more bytes than its JPEG APP13 segment holds: OpenImageIO's decoder would read past the
