@@ -263,14 +263,15 @@ TEST(ImageIoDeathTest, GifScreenIsCheckedBeforeAllocating) {
 }
 
 // A run-length encoded SGI file (one 8-bit channel, 6 x 4, literal runs) reads; one whose length table puts a row
-// past the end of the file, or whose header claims 0 bytes per channel, is refused before OpenImageIO reads it (its
-// reader allocated what a length claimed, and read through a null pointer: fuzzing finds).
+// past the end of the file, whose header claims 0 bytes per channel or no channel, or with a row of more values than
+// the image is wide, is refused before OpenImageIO reads it (its reader allocated what a length claimed, read through
+// a null pointer, and aborts the program on an assertion).
 TEST(ImageIo, SgiRunLengthRowsMustLieInTheFile) {
     TempDir dir;
     auto be = [](std::string& s, uint32_t v, int bytes) {
         for (int i = bytes - 1; i >= 0; --i) s += char((v >> (8 * i)) & 0xff);
     };
-    auto sgi = [&](uint32_t bad_length, char bpc) {
+    auto sgi = [&](uint32_t bad_length, char bpc, bool overlong = false) {
         std::string s = {'\x01', '\xda', '\x01', bpc};
         be(s, 2, 2), be(s, 6, 2), be(s, 4, 2), be(s, 1, 2);
         s.resize(512, '\0');
@@ -278,10 +279,11 @@ TEST(ImageIo, SgiRunLengthRowsMustLieInTheFile) {
         std::vector<uint32_t> starts, lengths;
         for (int y = 0; y < 4; ++y) {
             starts.push_back(uint32_t(512 + 8 * 4 + rows.size()));
-            rows += char(0x80 | 6);
-            for (int x = 0; x < 6; ++x) rows += char(10 * y + x);
+            const int count = y == 1 && overlong ? 127 : 6;  // 127 values for a row of 6: the decoder overruns
+            rows += char(0x80 | count);
+            for (int x = 0; x < count; ++x) rows += char(10 * y + x);
             rows += '\0';
-            lengths.push_back(y == 2 && bad_length ? bad_length : 8u);
+            lengths.push_back(y == 2 && bad_length ? bad_length : uint32_t(count + 2));
         }
         for (uint32_t v : starts) be(s, v, 4);
         for (uint32_t v : lengths) be(s, v, 4);
@@ -310,6 +312,7 @@ TEST(ImageIo, SgiRunLengthRowsMustLieInTheFile) {
             "run-length row 2 of channel 0 claims 2581711970 bytes from byte 560, past the end of "
             "the 576-byte file");
     refused(sgi(0, 0), "header claims 0 bytes per channel, expected 1 or 2");
+    refused(sgi(0, 1, true), "run-length row 1 of channel 0 (byte 552) has 127 values where 6 of its 6 remain");
     std::string no_channels = {'\x01', '\xda', '\x01', '\x01', '\x00', '\x02',
                                '\x00', '\x06', '\x00', '\xff', '\x00', '\x00'};
     no_channels.resize(576, '\0');
