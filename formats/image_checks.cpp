@@ -116,22 +116,23 @@ private:
         std::vector<unsigned char> row;
         for (std::uintmax_t i = 0; i < n; ++i) {
             const std::uintmax_t start = be32(&tables[size_t(4 * i)]), length = be32(&tables[size_t(4 * (n + i))]);
-            const std::string which = "run-length row " + std::to_string(i % ysize) + " of channel " +
-                                      std::to_string(i / ysize);
+            auto which = [&] {
+                return "run-length row " + std::to_string(i % ysize) + " of channel " + std::to_string(i / ysize);
+            };
             if (start > size_ || length > size_ - start)
-                fail(which + " claims " + std::to_string(length) + " bytes from byte " + std::to_string(start) +
+                fail(which() + " claims " + std::to_string(length) + " bytes from byte " + std::to_string(start) +
                      ", past the end of the " + std::to_string(size_) + "-byte file");
             row.resize(size_t(length));
             if (!read_at(start, row.data(), row.size())) return;
             const std::string runs = sgi_runs(row, bpc, width);
-            if (!runs.empty()) fail(which + " (byte " + std::to_string(start) + ") " + runs);
+            if (!runs.empty()) fail(which() + " (byte " + std::to_string(start) + ") " + runs);
         }
     }
     // Walks one row's runs as OpenImageIO 2.4's decoder does (a count byte, or 16-bit word with bpc 2, of which the
     // low 7 bits count: with the high bit set that many values follow, else one value repeated; a count of 0 ends the
     // row) and says what would make it read past the row or write past the `width` values of its output; "" if
-    // nothing. Debian's build of the library checks neither with an assertion that aborts the program (a row of 127
-    // values in an image 6 wide made `rtm` abort).
+    // nothing. Debian's build of the library checks both with assertions that abort the program (a row of 127 values
+    // in an image 6 wide made `rtm` abort).
     static std::string sgi_runs(const std::vector<unsigned char>& row, unsigned bpc, std::uintmax_t width) {
         const size_t len = row.size();
         std::uintmax_t left = width;
