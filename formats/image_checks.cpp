@@ -72,6 +72,10 @@ private:
                                   " bytes, more than the " + std::to_string(size_ - std::min(size_, from)) +
                                   " left in the file (truncated or corrupt)");
     }
+    // A field the container's walk finds wrong: "cannot read as an image: <what> (corrupt)".
+    [[noreturn]] void corrupt(const std::string& what) {
+        throw_io_error(path_, "cannot read as an image: " + what + " (corrupt)");
+    }
     void png() {
         unsigned char h[8];
         for (std::uintmax_t pos = 8; read_at(pos, h, 8);) {
@@ -89,17 +93,16 @@ private:
     // row of each channel starts, and its length), which OpenImageIO 2.4 allocates and clears at open, from the
     // header's ysize and zsize whatever the dimension: a 577-byte file claiming 16384 rows of 16384 channels made rtm
     // touch 2.4 GB (found by fuzz/fuzz_relief_loader). The tables must fit in the file; and its reader trusts them
-    // when it reads a row: an empty table (zsize 0) made it read through a null pointer, a length of 2^32 - 1.7e9 made
-    // it allocate 16 EB (later finds). So the bytes per channel are 1 or 2 (as the format has them), and with
-    // run-length encoding there is at least one row and one channel, and every row of every channel lies in the file.
+    // when it reads a row: an empty table (zsize 0) made it read through a null pointer, a length above 2^31 (negative
+    // as the reader's int) made it ask for 16 EB (later finds). So the bytes per channel are 1 or 2 (as the format has
+    // them), and with run-length encoding there is at least one row and one channel, and every row of every channel
+    // lies in the file.
     void sgi() {
         unsigned char h[12];
         if (!read_at(0, h, 12)) return;
         const unsigned storage = h[2], bpc = h[3];
         const std::uintmax_t ysize = std::uintmax_t(h[8]) << 8 | h[9], zsize = std::uintmax_t(h[10]) << 8 | h[11];
-        auto fail = [&](const std::string& what) {
-            throw_io_error(path_, "cannot read as an image: SGI " + what + " (corrupt)");
-        };
+        auto fail = [&](const std::string& what) { corrupt("SGI " + what); };
         if (bpc != 1 && bpc != 2) fail("header claims " + std::to_string(bpc) + " bytes per channel, expected 1 or 2");
         if (storage != 1) return;
         if (ysize == 0 || zsize == 0)
@@ -202,8 +205,7 @@ private:
                                                                        {2, "ICC_PROFILE"},
                                                                        {13, "Photoshop 3.0"}};
         auto fail = [&](const std::string& what) {
-            throw_io_error(path_, "cannot read as an image: JPEG " + name + " segment at byte " + std::to_string(at) +
-                                      " " + what + " (corrupt)");
+            corrupt("JPEG " + name + " segment at byte " + std::to_string(at) + " " + what);
         };
         for (const auto& [a, sig] : kSignatures) {
             const size_t len = std::strlen(sig) + 1;  // with its \0
@@ -245,8 +247,8 @@ private:
         for (unsigned char c; read_at(pos++, &c, 1);) {
             if (c == 0) return true;
             if (out.size() == 255)
-                throw_io_error(path_, std::string("cannot read as an image: OpenEXR ") + what + " at byte " +
-                                          std::to_string(start) + " is longer than 255 characters (corrupt)");
+                corrupt(std::string("OpenEXR ") + what + " at byte " + std::to_string(start) +
+                        " is longer than 255 characters");
             out += char(c);
         }
         return false;
@@ -283,9 +285,9 @@ private:
     }
     [[noreturn]] void exr_mismatch(const std::string& name, const std::string& type, std::uintmax_t at,
                                    std::uintmax_t claimed, const std::string& takes) {
-        throw_io_error(path_, "cannot read as an image: OpenEXR attribute \"" + printable(name) + "\" (" +
-                                  printable(type) + ") at byte " + std::to_string(at) + " has a size field of " +
-                                  std::to_string(claimed) + " but its value takes " + takes + " (corrupt)");
+        corrupt("OpenEXR attribute \"" + printable(name) + "\" (" + printable(type) + ") at byte " +
+                std::to_string(at) + " has a size field of " + std::to_string(claimed) + " but its value takes " +
+                takes);
     }
     // The bytes a value of a variable-size type takes as OpenEXR reads it, from `pos`; each length inside is held
     // to the file. Returns the size field itself for types read by it (string, opaque, ...).
@@ -361,8 +363,8 @@ private:
         } else if (name == "chunkCount" && type == "int" && read_at(pos, b, 4)) {
             const int32_t chunks = le32(b);
             if (chunks < 0 || std::uintmax_t(chunks) > size_ / 8)  // an 8-byte offset per chunk at least
-                throw_io_error(path_, "cannot read as an image: OpenEXR chunkCount " + std::to_string(chunks) +
-                                          " does not fit in a " + std::to_string(size_) + "-byte file (corrupt)");
+                corrupt("OpenEXR chunkCount " + std::to_string(chunks) + " does not fit in a " + std::to_string(size_) +
+                        "-byte file");
         }
     }
 
