@@ -35,18 +35,20 @@ std::string check_declared_counts(const std::string& path, std::uintmax_t file_s
     const long double size = static_cast<long double>(file_size);
 
     if (line == "ply") {
-        // "element NAME COUNT" lines up to "end_header".
+        // "element NAME COUNT" lines up to "end_header", which must come: assimp 5.2's PLY reader loops without end
+        // on a header cut short (a 77-byte file ending after "element vertex 8", found by changing its test models).
         while (std::getline(lines, line)) {
             std::istringstream words(line);
             std::string word, name, count;
             words >> word;
-            if (word == "end_header") break;
+            if (word == "end_header") return "";
             if (word != "element") continue;
             words >> name >> count;
             long double n = 0;
             if (parse_count(count, n) && n > size) return too_many(count, "\"" + name + "\" elements", file_size);
         }
-        return "";
+        if (file_size <= head.size()) return "header has no \"end_header\" line: the file ends inside its header";
+        return "header has no \"end_header\" line in its first " + std::to_string(head.size()) + " bytes";
     }
     // OFF and its variants (COFF, NOFF, STOFF, 4OFF, ...): the first non-comment line after the keyword (or the
     // rest of the keyword's line) holds the vertex, face and edge counts.

@@ -9,16 +9,24 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
+#include <type_traits>
 
 #include <unistd.h>
 
 #include "formats/image_io.h"
 #include "mesh/header_guard.h"
+#include "mesh/isolated_call.h"
 
 namespace rtm {
 namespace {
@@ -211,14 +219,10 @@ std::string TriangleMesh::to_string() const {
     return os.str();
 }
 
-TriangleMesh load_mesh(const std::string& path) {
-    std::error_code ec;
-    if (!fs::exists(path, ec)) throw_io_error(path, "cannot read mesh: no such file");
-    if (fs::is_directory(path, ec)) throw_io_error(path, "cannot read mesh: it is a folder");
-    const std::uintmax_t bytes = fs::file_size(path, ec);
-    if (ec) throw_io_error(path, "cannot read mesh: " + ec.message());
-    if (const std::string why = check_declared_counts(path, bytes); !why.empty())
-        throw_io_error(path, "cannot read mesh: " + why);
+namespace {
+
+// The mesh read by assimp in this process (load_mesh runs it in a child).
+TriangleMesh read_mesh(const std::string& path) {
     Assimp::Importer importer;
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
     const unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure |
@@ -227,6 +231,7 @@ TriangleMesh load_mesh(const std::string& path) {
     if (!scene || !scene->mRootNode || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE)) {
         std::string why = importer.GetErrorString();
         if (why.empty()) why = "no scene";
+        if (why == "std::bad_alloc") throw std::bad_alloc();  // caught by assimp: out of the child's memory (load_mesh)
         throw_io_error(path, "cannot read mesh: " + why);
     }
     TriangleMesh mesh;
@@ -252,6 +257,195 @@ TriangleMesh load_mesh(const std::string& path) {
     mesh.lo = lo;
     mesh.hi = hi;
     return mesh;
+}
+
+// The mesh as bytes through the child's pipe, and back: trivially copyable parts as they lie in memory (the same
+// program on both ends), strings and arrays after their length.
+class Encoder {
+public:
+    template <class T>
+    void pod(const T& v) {
+        static_assert(std::is_trivially_copyable_v<T>);
+        out_.append(reinterpret_cast<const char*>(&v), sizeof v);
+    }
+    template <class T>
+    void array(const std::vector<T>& v) {
+        pod(uint64_t(v.size()));
+        out_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+    }
+    void text(const std::string& v) {
+        pod(uint64_t(v.size()));
+        out_.append(v);
+    }
+    std::string take() { return std::move(out_); }
+
+private:
+    std::string out_;
+};
+
+class Decoder {
+public:
+    explicit Decoder(const std::string& in) : in_(in) {}
+    template <class T>
+    void pod(T& v) {
+        static_assert(std::is_trivially_copyable_v<T>);
+        std::memcpy(&v, take(sizeof v), sizeof v);
+    }
+    template <class T>
+    void array(std::vector<T>& v) {
+        const uint64_t n = count(sizeof(T));
+        v.resize(size_t(n));
+        if (n) std::memcpy(v.data(), take(size_t(n) * sizeof(T)), size_t(n) * sizeof(T));
+    }
+    void text(std::string& v) {
+        const uint64_t n = count(1);
+        v.assign(take(size_t(n)), size_t(n));
+    }
+    uint64_t count(size_t item) {
+        uint64_t n = 0;
+        pod(n);
+        if (n > (in_.size() - at_) / item) throw std::runtime_error("truncated");
+        return n;
+    }
+    bool done() const { return at_ == in_.size(); }
+
+private:
+    const char* take(size_t n) {
+        if (n > in_.size() - at_) throw std::runtime_error("truncated");
+        const char* p = in_.data() + at_;
+        at_ += n;
+        return p;
+    }
+    const std::string& in_;
+    size_t at_ = 0;
+};
+
+std::string encode(const TriangleMesh& m) {
+    Encoder e;
+    e.array(m.vertices);
+    e.array(m.indices);
+    e.array(m.parts);
+    e.pod(uint64_t(m.materials.size()));
+    for (const MeshMaterial& mat : m.materials) {
+        e.text(mat.name);
+        e.pod(mat.base_color);
+        e.pod(mat.texture.width);
+        e.pod(mat.texture.height);
+        e.array(mat.texture.pixels);
+    }
+    e.pod(m.lo);
+    e.pod(m.hi);
+    e.pod(uint64_t(m.warnings.size()));
+    for (const std::string& w : m.warnings) e.text(w);
+    return e.take();
+}
+
+TriangleMesh decode(const std::string& bytes) {
+    Decoder d(bytes);
+    TriangleMesh m;
+    d.array(m.vertices);
+    d.array(m.indices);
+    d.array(m.parts);
+    m.materials.resize(size_t(d.count(1)));
+    for (MeshMaterial& mat : m.materials) {
+        d.text(mat.name);
+        d.pod(mat.base_color);
+        d.pod(mat.texture.width);
+        d.pod(mat.texture.height);
+        d.array(mat.texture.pixels);
+        if (mat.texture.pixels.size() !=
+            size_t(std::max(mat.texture.width, 0)) * size_t(std::max(mat.texture.height, 0)))
+            throw std::runtime_error("texture size");
+    }
+    d.pod(m.lo);
+    d.pod(m.hi);
+    m.warnings.resize(size_t(d.count(1)));
+    for (std::string& w : m.warnings) d.text(w);
+    if (!d.done()) throw std::runtime_error("trailing bytes");
+    return m;
+}
+
+// A limit of the reader's child from the environment variable `name` (a whole number from 1 to `most`), else
+// `otherwise`.
+uint64_t limit_from_env(const std::string& path, const char* name, uint64_t most, uint64_t otherwise) {
+    const char* env = std::getenv(name);
+    if (!env || !*env) return otherwise;
+    char* end = nullptr;
+    errno = 0;
+    const unsigned long long v = std::strtoull(env, &end, 10);
+    if (errno || *end || v == 0 || v > most || !std::isdigit(static_cast<unsigned char>(env[0])))
+        throw_io_error(path, std::string("cannot read mesh: ") + name + " \"" + env +
+                                 "\" is not a whole number from 1 to " + std::to_string(most));
+    return uint64_t(v);
+}
+
+// What the reader's child may use: RTM_MESH_READER_MB (MiB) of address space beyond its size at the start, else 4 GiB
+// or 64 times the file's size, whichever is more, but at most this machine's memory; RTM_MESH_READER_SECONDS of
+// processor time, else 60 s and 2 s more per MiB of the file (assimp reads tens of MB a second).
+IsolationLimits reader_limits(const std::string& path, uint64_t file_bytes) {
+    const uint64_t want = std::max<uint64_t>(uint64_t(4) << 30, file_bytes * 64);
+    const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    const uint64_t ram = pages > 0 && page > 0 ? uint64_t(pages) * uint64_t(page) : want;
+    IsolationLimits l;
+    l.address_space = limit_from_env(path, "RTM_MESH_READER_MB", uint64_t(1) << 40, std::min(want, ram) >> 20) << 20;
+    l.cpu_seconds = limit_from_env(path, "RTM_MESH_READER_SECONDS", uint64_t(1) << 31, 60 + 2 * (file_bytes >> 20));
+    return l;
+}
+
+std::string gib(uint64_t bytes) {
+    std::ostringstream os;
+    os.precision(3);
+    os << double(bytes) / double(uint64_t(1) << 30) << " GiB";
+    return os.str();
+}
+
+}  // namespace
+
+TriangleMesh load_mesh(const std::string& path) {
+    std::error_code ec;
+    if (!fs::exists(path, ec)) throw_io_error(path, "cannot read mesh: no such file");
+    if (fs::is_directory(path, ec)) throw_io_error(path, "cannot read mesh: it is a folder");
+    const std::uintmax_t bytes = fs::file_size(path, ec);
+    if (ec) throw_io_error(path, "cannot read mesh: " + ec.message());
+    if (const std::string why = check_declared_counts(path, bytes); !why.empty())
+        throw_io_error(path, "cannot read mesh: " + why);
+    const IsolationLimits limits = reader_limits(path, bytes);
+    IsolatedOutcome r;
+    try {
+        r = run_isolated([&] { return encode(read_mesh(path)); }, limits);
+    } catch (const std::runtime_error& e) {
+        throw_io_error(path, std::string("cannot read mesh: no process to read it in (") + e.what() + ")");
+    }
+    if (r.status == IsolatedOutcome::Status::ok) {
+        std::fwrite(r.log.data(), 1, r.log.size(), stderr);  // what the reader said, as if it had read here
+        try {
+            return decode(r.bytes);
+        } catch (const std::exception& e) {
+            throw_io_error(path, std::string("cannot read mesh: its reader's result is damaged (") + e.what() + ")");
+        }
+    }
+    if (r.status == IsolatedOutcome::Status::threw) throw IoError(r.bytes);  // already names the file
+    if (r.status == IsolatedOutcome::Status::out_of_memory)
+        throw_io_error(path, "cannot read mesh: the mesh reader (assimp) ran out of the " + gib(limits.address_space) +
+                                 " it may use for a file of " + std::to_string(bytes) +
+                                 " bytes (RTM_MESH_READER_MB sets more)");
+    if (r.signal == SIGXCPU)
+        throw_io_error(path, "cannot read mesh: the mesh reader (assimp) was stopped after the " +
+                                 std::to_string(limits.cpu_seconds) + " s of processor time it may use for a file of " +
+                                 std::to_string(bytes) + " bytes (" + strsignal(r.signal) +
+                                 "; RTM_MESH_READER_SECONDS sets more)");
+    // The last line the reader wrote as it ended (a failed assertion, an uncaught exception), if any, says where.
+    std::string said;
+    std::istringstream lines(r.log);
+    for (std::string line; std::getline(lines, line);)
+        if (line.find_first_not_of(" \t\r") != std::string::npos) said = line;
+    if (said.size() > 200) said = said.substr(0, 200) + "...";
+    if (!said.empty()) said = "; it said \"" + said + "\"";
+    if (r.signal)
+        throw_io_error(path, "cannot read mesh: the mesh reader (assimp) crashed on it (signal " +
+                                 std::to_string(r.signal) + ", " + strsignal(r.signal) + said + ")");
+    throw_io_error(path, "cannot read mesh: the mesh reader (assimp) ended without a result (exit status " +
+                             std::to_string(r.exit_status) + said + ")");
 }
 
 }  // namespace rtm

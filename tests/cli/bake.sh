@@ -121,7 +121,37 @@ printf 'garbage \001\002\003' >"$T/m/garbage.obj"
 expect_fail 1 'garbage\.obj' -- bake --mesh "$T/m/garbage.obj" --out "$T/o_garbage"
 expect_fail 1 'nothere\.dae' -- bake --mesh "$T/m/nothere.dae" --out "$T/o_missing"
 expect_fail 1 'garbage\.obj' -- render --mesh "$T/m/garbage.obj" --orbit 0,0,3 --out "$T/o_garbage.png"
-for d in o_point o_garbage o_missing o_garbage.png; do
+# Files on which assimp itself aborts or loops without end (tests/mesh/mesh_loader_test.cpp says where they come
+# from): read in a child process, each is one line naming the file and saying what happened.
+printf 'Caligari \0\0\0\0\0\0\0L\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0BitM\0\0\0\0\0\0\0\0\0\0\0\0\0\023\0\0' \
+  >"$T/m/abort.cob"
+expect_fail 1 'abort\.cob: cannot read mesh: the mesh reader \(assimp\) crashed on it \(signal 6, Aborted; it said' \
+  -- render --mesh "$T/m/abort.cob" --orbit 0,0,3 --out "$T/o_abort.png"
+expect_fail 1 'abort\.cob: cannot read mesh: the mesh reader \(assimp\) crashed' -- bake --mesh "$T/m/abort.cob" \
+  --out "$T/o_abort"
+printf 'nodes\n0  1.0 0.' >"$T/m/loop.smd"
+RTM_MESH_READER_SECONDS=1 expect_fail 1 'loop\.smd: .*was stopped after the 1 s of processor time it may use' \
+  -- render --mesh "$T/m/loop.smd" --orbit 0,0,3 --out "$T/o_loop.png"
+RTM_MESH_READER_MB=0 expect_fail 1 'RTM_MESH_READER_MB "0" is not a whole number' \
+  -- render --mesh "$T/m/loop.smd" --orbit 0,0,3 --out "$T/o_loop.png"
+# A reader that loops ends with rtm: rtm killed, its child goes too (it would loop for the 100 s it may use).
+RTM_MESH_READER_SECONDS=100 "$RTM" render --mesh "$T/m/loop.smd" --orbit 0,0,3 --out "$T/o_loop.png" 2>/dev/null &
+parent=$!
+sleep 1
+kill -9 "$parent"
+wait "$parent" 2>/dev/null
+sleep 1
+if pgrep -f -- "--mesh $T/m/loop.smd" >/dev/null; then
+  echo "FAIL: the mesh reader's child outlived rtm: $(pgrep -af -- "--mesh $T/m/loop.smd")"
+  pkill -9 -f -- "--mesh $T/m/loop.smd"
+  fails=$((fails + 1))
+else
+  passes=$((passes + 1))
+fi
+printf 'ply\nformat binary_little_endian 1.0\nelement vertex 8' >"$T/m/cut.ply"
+expect_fail 1 'cut\.ply: cannot read mesh: header has no "end_header" line' \
+  -- render --mesh "$T/m/cut.ply" --orbit 0,0,3 --out "$T/o_cut.png"
+for d in o_point o_garbage o_missing o_garbage.png o_abort.png o_abort o_loop.png o_cut.png; do
   [ -e "$T/$d" ] && { echo "FAIL: $d left behind"; fails=$((fails + 1)); }
 done
 touch "$T/a_file"

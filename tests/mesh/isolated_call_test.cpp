@@ -1,0 +1,112 @@
+// run_isolated (mesh/isolated_call.h): the work's result, its exception, its crash, its runaway allocation and its
+// endless loop each come back to the parent, which goes on.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <csignal>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "mesh/isolated_call.h"
+
+namespace rtm {
+namespace {
+
+using Status = IsolatedOutcome::Status;
+
+int g_touched = 0;  // changed by the work in the child only
+
+TEST(IsolatedCall, ReturnsWhatTheWorkReturnsFromAnotherProcess) {
+    const IsolatedOutcome r = run_isolated(
+        [] {
+            g_touched = 1;
+            return std::to_string(::getpid());
+        },
+        {});
+    EXPECT_EQ(r.status, Status::ok);
+    EXPECT_NE(r.bytes, std::to_string(::getpid()));
+    EXPECT_EQ(g_touched, 0);
+}
+
+TEST(IsolatedCall, ResultsLargerThanAPipeArriveWhole) {
+    // 48 MiB of a pattern with every byte value, zeros included: the pipe holds 64 KiB, so the parent must read while
+    // the child writes.
+    std::string want(size_t(48) << 20, '\0');
+    for (size_t i = 0; i < want.size(); ++i) want[i] = char((i * 7919u) >> 3);
+    const IsolatedOutcome r = run_isolated([&] { return want; }, {});
+    EXPECT_EQ(r.status, Status::ok);
+    EXPECT_TRUE(r.bytes == want) << r.bytes.size() << " bytes";
+    EXPECT_EQ(run_isolated([] { return std::string(); }, {}).status, Status::ok);  // an empty result is a result
+}
+
+TEST(IsolatedCall, AnExceptionComesBackAsItsMessage) {
+    const IsolatedOutcome r = run_isolated([]() -> std::string { throw std::runtime_error("file.obj: bad face"); }, {});
+    EXPECT_EQ(r.status, Status::threw);
+    EXPECT_EQ(r.bytes, "file.obj: bad face");
+}
+
+TEST(IsolatedCall, ACrashEndsTheChildOnly) {
+    const IsolatedOutcome r = run_isolated([]() -> std::string { std::abort(); }, {});
+    EXPECT_EQ(r.status, Status::died);
+    EXPECT_EQ(r.signal, SIGABRT);
+    // A write through a null pointer: SIGSEGV, or under AddressSanitizer its report and exit status 1.
+    const IsolatedOutcome s = run_isolated(
+        []() -> std::string {
+            volatile int* p = nullptr;
+            *p = 1;
+            return "written";
+        },
+        {});
+    EXPECT_EQ(s.status, Status::died);
+    EXPECT_TRUE(s.signal == SIGSEGV || (s.signal == 0 && s.exit_status != 0)) << s.signal << " " << s.exit_status;
+    // Exiting without a result.
+    const IsolatedOutcome e = run_isolated([]() -> std::string { ::_exit(3); }, {});
+    EXPECT_EQ(e.status, Status::died);
+    EXPECT_EQ(e.signal, 0);
+    EXPECT_EQ(e.exit_status, 3);
+}
+
+TEST(IsolatedCall, ProcessorTimeIsCapped) {
+    IsolationLimits limits;
+    limits.cpu_seconds = 1;
+    const IsolatedOutcome r = run_isolated(
+        []() -> std::string {
+            volatile unsigned long n = 0;
+            for (;;) n = n + 1;
+        },
+        limits);
+    EXPECT_EQ(r.status, Status::died);
+    EXPECT_EQ(r.signal, SIGXCPU);
+}
+
+#if defined(__SANITIZE_ADDRESS__)
+// AddressSanitizer maps its allocator's whole space at start, so the cap on the address space does not bound it.
+TEST(IsolatedCall, DISABLED_AddressSpaceIsCapped) {}
+#else
+TEST(IsolatedCall, AddressSpaceIsCapped) {
+    IsolationLimits limits;
+    limits.address_space = uint64_t(256) << 20;
+    const IsolatedOutcome r = run_isolated(
+        [] {
+            std::vector<char> big(size_t(1) << 30, 1);  // 1 GiB: over the cap
+            return std::string(1, big[12345]);
+        },
+        limits);
+    EXPECT_EQ(r.status, Status::out_of_memory);
+    // Under the cap the same work succeeds.
+    const IsolatedOutcome s = run_isolated(
+        [] {
+            std::vector<char> small(size_t(64) << 20, 1);
+            return std::string(1, small[12345]);
+        },
+        limits);
+    EXPECT_EQ(s.status, Status::ok);
+    EXPECT_EQ(s.bytes, std::string(1, '\1'));
+}
+#endif
+
+}  // namespace
+}  // namespace rtm
