@@ -259,7 +259,7 @@ TriangleMesh read_mesh(const std::string& path) {
     return mesh;
 }
 
-// The mesh as bytes through the child's pipe, and back: trivially copyable parts as they lie in memory (the same
+// The mesh as bytes from the child (run_isolated), and back: trivially copyable parts as they lie in memory (the same
 // program on both ends), strings and arrays after their length.
 class Encoder {
 public:
