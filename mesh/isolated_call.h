@@ -20,17 +20,21 @@ struct IsolatedOutcome {
     };
     Status status = Status::died;
     std::string bytes;
-    int signal = 0;       // died: the signal that ended the child, 0 if none did
-    int exit_status = 0;  // died without a signal: the child's exit status
-    std::string log;      // what the child wrote on its standard error (which is not the parent's)
+    int signal = 0;          // died: the signal that ended the child, 0 if none did
+    int exit_status = 0;     // died without a signal: the child's exit status
+    bool timed_out = false;  // died: killed by the parent after IsolationLimits::wall_seconds
+    std::string log;         // what the child wrote on its standard error (which is not the parent's)
 };
 
 // What the child may use (0: no limit). address_space: bytes its address space may grow by beyond its size when it
 // starts; past that an allocation fails (std::bad_alloc). cpu_seconds: processor time; past that the kernel ends it
 // with SIGXCPU (a reader that loops without end: assimp's PLY reader did on a 254-byte file once allocation failed).
+// wall_seconds: time; past that the parent kills it (SIGKILL) and says so (`timed_out`): a reader that waits without
+// end on something it opened, such as a FIFO named by the file as its material library.
 struct IsolationLimits {
     std::uint64_t address_space = 0;
     std::uint64_t cpu_seconds = 0;
+    std::uint64_t wall_seconds = 0;
 };
 
 // Runs `work` in a child process (fork) and returns what it returned, or how it ended, and what it wrote on standard

@@ -381,7 +381,8 @@ uint64_t limit_from_env(const std::string& path, const char* name, uint64_t most
 
 // What the reader's child may use: RTM_MESH_READER_MB (MiB) of address space beyond its size at the start, else 4 GiB
 // or 64 times the file's size, whichever is more, but at most this machine's memory; RTM_MESH_READER_SECONDS of
-// processor time, else 60 s and 2 s more per MiB of the file (assimp reads tens of MB a second).
+// processor time, else 60 s and 2 s more per MiB of the file (assimp reads tens of MB a second), and twice that and 2 s
+// of time.
 IsolationLimits reader_limits(const std::string& path, uint64_t file_bytes) {
     const uint64_t want = std::max<uint64_t>(uint64_t(4) << 30, file_bytes * 64);
     const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
@@ -389,6 +390,7 @@ IsolationLimits reader_limits(const std::string& path, uint64_t file_bytes) {
     IsolationLimits l;
     l.address_space = limit_from_env(path, "RTM_MESH_READER_MB", uint64_t(1) << 40, std::min(want, ram) >> 20) << 20;
     l.cpu_seconds = limit_from_env(path, "RTM_MESH_READER_SECONDS", uint64_t(1) << 31, 60 + 2 * (file_bytes >> 20));
+    l.wall_seconds = 2 * l.cpu_seconds + 2;  // a reader that waits (on a FIFO it opened) uses no processor time
     return l;
 }
 
@@ -405,6 +407,9 @@ TriangleMesh load_mesh(const std::string& path) {
     std::error_code ec;
     if (!fs::exists(path, ec)) throw_io_error(path, "cannot read mesh: no such file");
     if (fs::is_directory(path, ec)) throw_io_error(path, "cannot read mesh: it is a folder");
+    if (!fs::is_regular_file(path, ec))
+        throw_io_error(path,
+                       "cannot read mesh: not a regular file (a FIFO or a device: reading it could wait forever)");
     const std::uintmax_t bytes = fs::file_size(path, ec);
     if (ec) throw_io_error(path, "cannot read mesh: " + ec.message());
     if (const std::string why = check_declared_counts(path, bytes); !why.empty())
@@ -429,6 +434,12 @@ TriangleMesh load_mesh(const std::string& path) {
         throw_io_error(path, "cannot read mesh: the mesh reader (assimp) ran out of the " + gib(limits.address_space) +
                                  " it may use for a file of " + std::to_string(bytes) +
                                  " bytes (RTM_MESH_READER_MB sets more)");
+    if (r.timed_out)
+        throw_io_error(path, "cannot read mesh: the mesh reader (assimp) was stopped after the " +
+                                 std::to_string(limits.wall_seconds) + " s it may take for a file of " +
+                                 std::to_string(bytes) +
+                                 " bytes: it waited on something the file names, a FIFO or a device perhaps "
+                                 "(RTM_MESH_READER_SECONDS sets more)");
     if (r.signal == SIGXCPU)
         throw_io_error(path, "cannot read mesh: the mesh reader (assimp) was stopped after the " +
                                  std::to_string(limits.cpu_seconds) + " s of processor time it may use for a file of " +

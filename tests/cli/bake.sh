@@ -148,10 +148,14 @@ if pgrep -f -- "--mesh $T/m/loop.smd" >/dev/null; then
 else
   passes=$((passes + 1))
 fi
+# A FIFO is refused without being opened (reading it would wait for a writer).
+mkfifo "$T/m/fifo.obj"
+expect_fail 1 'fifo\.obj: cannot read mesh: not a regular file' -- render --mesh "$T/m/fifo.obj" --orbit 0,0,3 \
+  --out "$T/o_fifo.png"
 printf 'ply\nformat binary_little_endian 1.0\nelement vertex 8' >"$T/m/cut.ply"
 expect_fail 1 'cut\.ply: cannot read mesh: header has no "end_header" line' \
   -- render --mesh "$T/m/cut.ply" --orbit 0,0,3 --out "$T/o_cut.png"
-for d in o_point o_garbage o_missing o_garbage.png o_abort.png o_abort o_loop.png o_cut.png; do
+for d in o_point o_garbage o_missing o_garbage.png o_abort.png o_abort o_loop.png o_cut.png o_fifo.png; do
   [ -e "$T/$d" ] && { echo "FAIL: $d left behind"; fails=$((fails + 1)); }
 done
 touch "$T/a_file"

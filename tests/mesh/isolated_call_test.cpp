@@ -86,6 +86,25 @@ TEST(IsolatedCall, ProcessorTimeIsCapped) {
     EXPECT_EQ(r.signal, SIGXCPU);
 }
 
+TEST(IsolatedCall, TimeIsCapped) {
+    // A child that waits uses no processor time: the parent kills it when its time is up.
+    IsolationLimits limits;
+    limits.wall_seconds = 1;
+    const IsolatedOutcome r = run_isolated(
+        []() -> std::string {
+            ::sleep(30);
+            return "woke";
+        },
+        limits);
+    EXPECT_EQ(r.status, Status::died);  // not "woke": killed in its sleep
+    EXPECT_TRUE(r.timed_out);
+    EXPECT_EQ(r.signal, SIGKILL);
+    // A child that ends in time is not marked.
+    const IsolatedOutcome s = run_isolated([] { return std::string("quick"); }, limits);
+    EXPECT_EQ(s.status, Status::ok);
+    EXPECT_FALSE(s.timed_out);
+}
+
 #if defined(__SANITIZE_ADDRESS__)
 // AddressSanitizer maps its allocator's whole space at start, so the cap on the address space does not bound it.
 TEST(IsolatedCall, DISABLED_AddressSpaceIsCapped) {}

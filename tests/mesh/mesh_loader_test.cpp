@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+
+#include <sys/stat.h>
 #include <initializer_list>
 #include <string>
 #include <utility>
@@ -243,6 +245,20 @@ TEST(MeshLoader, ReaderCrashesAndEndlessLoopsEndTheChildOnly) {
     }
     // And this process still reads meshes.
     EXPECT_GT(load_mesh(mesh_testing::write_bump_obj(dir.path().string())).triangle_count(), 0u);
+}
+
+// A FIFO (or a device) is refused without being opened; a file that names one (an OBJ's material library) makes the
+// reader wait, and it is stopped when its time is up.
+TEST(MeshLoader, FifosAreRefusedOrTimedOut) {
+    TempDir dir;
+    ASSERT_EQ(::mkfifo(dir.file("fifo.obj").c_str(), 0600), 0);
+    expect_refused(dir.file("fifo.obj"), "not a regular file");
+    ASSERT_EQ(::mkfifo(dir.file("m.fifo").c_str(), 0600), 0);
+    write_file(dir.file("waits.obj"), "mtllib m.fifo\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const ScopedEnv env{{"RTM_MESH_READER_SECONDS", "1"}};  // 1 s of processor time, 2 * 1 + 2 = 4 s in all
+    expect_refused(dir.file("waits.obj"),
+                   "the mesh reader (assimp) was stopped after the 4 s it may take for a file "
+                   "of 46 bytes: it waited on something the file names");
 }
 
 // A PLY header cut short (a file cut short: the reader loops without end on it) is refused before assimp reads it.
