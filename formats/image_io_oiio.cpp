@@ -16,9 +16,13 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <memory>
 #include <mutex>
 #include <new>
+#include <set>
+#include <system_error>
 #include <vector>
 
 #include <fcntl.h>
@@ -31,6 +35,39 @@ namespace rtm {
 namespace {
 
 static_assert(sizeof(Rgba8) == 4, "Rgba8 must be 4 tightly packed bytes");
+
+#ifdef RTM_IMAGEIO_MODULE_BUILD
+// The ids of this process's threads.
+std::set<long> thread_ids() {
+    std::set<long> ids;
+    std::error_code ec;
+    for (const auto& e : std::filesystem::directory_iterator("/proc/self/task", ec))
+        ids.insert(std::strtol(e.path().filename().c_str(), nullptr, 10));
+    return ids;
+}
+
+// As the module (rtm's own programs), this code reads in a child process forked from the program
+// (formats/image_io.cpp), which has the parent's memory but only the forking thread. A thread pool OpenImageIO or
+// OpenEXR started in the parent would be there without its threads, and a read handing work to it would wait forever;
+// a thread that held one of their locks as the program forked leaves it held in the child forever. So from the
+// moment the module is loaded the program has no thread of theirs: OpenEXR's pool is never started ("exr_threads" -1:
+// its global thread count stays 0), and OpenImageIO's pool is made empty ("threads" 1). OpenImageIO 2.4 creates that
+// pool with one thread at least and, asked for none, tells the thread to end without waiting for it; the thread takes
+// the pool's lock as it ends, and a fork meanwhile left a child spinning on that lock forever (reading TIFF files right
+// after the module loaded: 9 reads in 10). So the loading waits until the threads that appeared have ended (at most
+// 2 s: another part of the program may start a thread of its own meanwhile).
+const bool g_no_library_threads = [] {
+    const std::set<long> before = thread_ids();
+    OIIO::attribute("exr_threads", -1);
+    OIIO::attribute("threads", 1);
+    for (int i = 0; i < 20000; ++i) {
+        const std::set<long> now = thread_ids();
+        if (std::includes(before.begin(), before.end(), now.begin(), now.end())) break;
+        ::usleep(100);
+    }
+    return true;
+}();
+#endif
 
 // OpenImageIO accumulates one error per line; join them into one line.
 std::string one_line(const std::string& s) {

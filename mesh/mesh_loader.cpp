@@ -9,9 +9,7 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -20,13 +18,14 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 #include <type_traits>
 
 #include <unistd.h>
 
 #include "formats/image_io.h"
 #include "mesh/header_guard.h"
-#include "mesh/isolated_call.h"
+#include "formats/isolated_call.h"
 
 namespace rtm {
 namespace {
@@ -285,7 +284,7 @@ private:
 
 class Decoder {
 public:
-    explicit Decoder(const std::string& in) : in_(in) {}
+    explicit Decoder(std::string_view in) : in_(in) {}
     template <class T>
     void pod(T& v) {
         static_assert(std::is_trivially_copyable_v<T>);
@@ -316,7 +315,7 @@ private:
         at_ += n;
         return p;
     }
-    const std::string& in_;
+    std::string_view in_;
     size_t at_ = 0;
 };
 
@@ -340,7 +339,7 @@ std::string encode(const TriangleMesh& m) {
     return e.take();
 }
 
-TriangleMesh decode(const std::string& bytes) {
+TriangleMesh decode(std::string_view bytes) {
     Decoder d(bytes);
     TriangleMesh m;
     d.array(m.vertices);
@@ -365,42 +364,6 @@ TriangleMesh decode(const std::string& bytes) {
     return m;
 }
 
-// A limit of the reader's child from the environment variable `name` (a whole number from 1 to `most`), else
-// `otherwise`.
-uint64_t limit_from_env(const std::string& path, const char* name, uint64_t most, uint64_t otherwise) {
-    const char* env = std::getenv(name);
-    if (!env || !*env) return otherwise;
-    char* end = nullptr;
-    errno = 0;
-    const unsigned long long v = std::strtoull(env, &end, 10);
-    if (errno || *end || v == 0 || v > most || !std::isdigit(static_cast<unsigned char>(env[0])))
-        throw_io_error(path, std::string("cannot read mesh: ") + name + " \"" + env +
-                                 "\" is not a whole number from 1 to " + std::to_string(most));
-    return uint64_t(v);
-}
-
-// What the reader's child may use: RTM_MESH_READER_MB (MiB) of address space beyond its size at the start, else 4 GiB
-// or 64 times the file's size, whichever is more, but at most this machine's memory; RTM_MESH_READER_SECONDS of
-// processor time, else 60 s and 2 s more per MiB of the file (assimp reads tens of MB a second), and twice that and 2 s
-// of time.
-IsolationLimits reader_limits(const std::string& path, uint64_t file_bytes) {
-    const uint64_t want = std::max<uint64_t>(uint64_t(4) << 30, file_bytes * 64);
-    const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
-    const uint64_t ram = pages > 0 && page > 0 ? uint64_t(pages) * uint64_t(page) : want;
-    IsolationLimits l;
-    l.address_space = limit_from_env(path, "RTM_MESH_READER_MB", uint64_t(1) << 40, std::min(want, ram) >> 20) << 20;
-    l.cpu_seconds = limit_from_env(path, "RTM_MESH_READER_SECONDS", uint64_t(1) << 31, 60 + 2 * (file_bytes >> 20));
-    l.wall_seconds = 2 * l.cpu_seconds + 2;  // a reader that waits (on a FIFO it opened) uses no processor time
-    return l;
-}
-
-std::string gib(uint64_t bytes) {
-    std::ostringstream os;
-    os.precision(3);
-    os << double(bytes) / double(uint64_t(1) << 30) << " GiB";
-    return os.str();
-}
-
 }  // namespace
 
 TriangleMesh load_mesh(const std::string& path) {
@@ -414,49 +377,17 @@ TriangleMesh load_mesh(const std::string& path) {
     if (ec) throw_io_error(path, "cannot read mesh: " + ec.message());
     if (const std::string why = check_declared_counts(path, bytes); !why.empty())
         throw_io_error(path, "cannot read mesh: " + why);
-    const IsolationLimits limits = reader_limits(path, bytes);
-    IsolatedOutcome r;
+    constexpr IsolatedReader kReader{"cannot read mesh", "the mesh reader (assimp)", "RTM_MESH_READER_MB",
+                                     "RTM_MESH_READER_SECONDS"};
+    const IsolatedOutcome r = read_isolated(path, bytes, kReader, [&](const ResultWriter& out) {
+        const std::string encoded = encode(read_mesh(path));
+        out.write(encoded.data(), encoded.size());
+    });
     try {
-        r = run_isolated([&] { return encode(read_mesh(path)); }, limits);
-    } catch (const std::runtime_error& e) {
-        throw_io_error(path, std::string("cannot read mesh: no process to read it in (") + e.what() + ")");
+        return decode(r.bytes);
+    } catch (const std::exception& e) {
+        throw_io_error(path, std::string("cannot read mesh: its reader's result is damaged (") + e.what() + ")");
     }
-    if (r.status == IsolatedOutcome::Status::ok) {
-        std::fwrite(r.log.data(), 1, r.log.size(), stderr);  // what the reader said, as if it had read here
-        try {
-            return decode(r.bytes);
-        } catch (const std::exception& e) {
-            throw_io_error(path, std::string("cannot read mesh: its reader's result is damaged (") + e.what() + ")");
-        }
-    }
-    if (r.status == IsolatedOutcome::Status::threw) throw IoError(r.bytes);  // already names the file
-    if (r.status == IsolatedOutcome::Status::out_of_memory)
-        throw_io_error(path, "cannot read mesh: the mesh reader (assimp) ran out of the " + gib(limits.address_space) +
-                                 " it may use for a file of " + std::to_string(bytes) +
-                                 " bytes (RTM_MESH_READER_MB sets more)");
-    if (r.timed_out)
-        throw_io_error(path, "cannot read mesh: the mesh reader (assimp) was stopped after the " +
-                                 std::to_string(limits.wall_seconds) + " s it may take for a file of " +
-                                 std::to_string(bytes) +
-                                 " bytes: it waited on something the file names, a FIFO or a device perhaps "
-                                 "(RTM_MESH_READER_SECONDS sets more)");
-    if (r.signal == SIGXCPU)
-        throw_io_error(path, "cannot read mesh: the mesh reader (assimp) was stopped after the " +
-                                 std::to_string(limits.cpu_seconds) + " s of processor time it may use for a file of " +
-                                 std::to_string(bytes) + " bytes (" + strsignal(r.signal) +
-                                 "; RTM_MESH_READER_SECONDS sets more)");
-    // The last line the reader wrote as it ended (a failed assertion, an uncaught exception), if any, says where.
-    std::string said;
-    std::istringstream lines(r.log);
-    for (std::string line; std::getline(lines, line);)
-        if (line.find_first_not_of(" \t\r") != std::string::npos) said = line;
-    if (said.size() > 200) said = said.substr(0, 200) + "...";
-    if (!said.empty()) said = "; it said \"" + said + "\"";
-    if (r.signal)
-        throw_io_error(path, "cannot read mesh: the mesh reader (assimp) crashed on it (signal " +
-                                 std::to_string(r.signal) + ", " + strsignal(r.signal) + said + ")");
-    throw_io_error(path, "cannot read mesh: the mesh reader (assimp) ended without a result (exit status " +
-                             std::to_string(r.exit_status) + said + ")");
 }
 
 }  // namespace rtm

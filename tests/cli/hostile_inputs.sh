@@ -319,6 +319,48 @@ for img in empty.png text.png text.pgm truncated.png header_only.png corrupt.png
     check 1 "$D/$img: $msg" -- diff "$D/noise64.png" "$D/$img" --heatmap "$O/h.png" --json "$O/d.json"
   fi
 done
+# Files on which OpenImageIO 2.4's readers crash or loop without end (found by changing images it writes at random):
+# read in a child process (formats/image_io.cpp), each is one line naming the file. rtm writes the images, and one
+# field of each is changed: an IFF tile chunk too short for its coordinates (the reader decodes from a null pointer),
+# an RLA matte channel of 0 bits (the reader's bit-depth conversion loops; stopped after 1 s of processor time here).
+new_out
+expect_ok render --relief "$R" --eye 0.5,0.5,3 --size 16x12 --out "$D/written.iff"
+expect_ok render --relief "$R" --eye 0.5,0.5,3 --size 16x12 --out "$D/written.rla"
+python3 - "$D" <<'PY'
+import sys
+d = sys.argv[1]
+iff = bytearray(open(f"{d}/written.iff", "rb").read())
+at = iff.index(b"TBMPRGBA") + 8
+iff[at:at + 4] = (8).to_bytes(4, "big")  # the tile's chunk holds its 8 bytes of coordinates and nothing else
+open(f"{d}/null_tile.iff", "wb").write(iff)
+rla = bytearray(open(f"{d}/written.rla", "rb").read())
+assert rla[662:664] == b"\0\x08", rla[662:664]  # NumOfMatteBits
+rla[662:664] = b"\0\0"
+open(f"{d}/no_matte_bits.rla", "wb").write(rla)
+PY
+new_out
+check 1 "$D/null_tile.iff: cannot read as an image: the image reader (OpenImageIO) crashed on it (signal 11, " -- \
+  diff "$D/noise64.png" "$D/null_tile.iff" --heatmap "$O/h.png"
+reject_relief "$(with_color color_null_tile null_tile.iff)" "$D/null_tile.iff: cannot read as an image: the image"\
+" reader (OpenImageIO) crashed on it (signal 11, "
+new_out
+RTM_IMAGE_READER_SECONDS=1 check 1 "$D/no_matte_bits.rla: cannot read as an image: the image reader (OpenImageIO) was"\
+" stopped after the 1 s of processor time it may use for a file of " -- \
+  diff "$D/no_matte_bits.rla" "$D/noise64.png" --heatmap "$O/h.png"
+new_out
+RTM_IMAGE_READER_SECONDS=x check 1 "$D/no_matte_bits.rla: cannot read as an image: RTM_IMAGE_READER_SECONDS \"x\" is"\
+" not a whole number from 1 to " -- diff "$D/no_matte_bits.rla" "$D/noise64.png" --heatmap "$O/h.png"
+
+# The first image a process reads through the module is read right after the module loads: a TIFF (which OpenImageIO
+# reads in strips, through its thread pool's lock) read then hung in 9 reads of 10 until the loading waited for the
+# pool's thread to end (formats/image_io_oiio.cpp). Ten fresh processes, each stopped after 2 s of processor time
+# (6 s in all) if its reader hangs.
+expect_ok render --relief "$R" --eye 0.5,0.5,3 --size 16x12 --out "$D/written.tif"
+for i in 1 2 3 4 5 6 7 8 9 10; do
+  new_out
+  RTM_IMAGE_READER_SECONDS=2 expect_ok diff "$D/written.tif" "$D/written.tif" --heatmap "$O/h.png"
+done
+
 new_out
 check 1 "$D/nope.png: cannot open: No such file or directory" -- diff "$D/noise64.png" \
   "$D/nope.png" --heatmap "$O/h.png"

@@ -11,7 +11,10 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <initializer_list>
 #include <random>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "common/io_error.h"
@@ -413,6 +416,99 @@ TEST(ImageIo, FormatWithoutAlphaDropsIt) {
     write_rgba8(path, ImageRGBA8(2, 1, Rgba8{10, 20, 30, 0}));
     ImageRGBA8 back = read_rgba8(path);
     EXPECT_EQ(back.at(1, 0), (Rgba8{10, 20, 30, 255}));
+}
+
+// Sets environment variables for its lifetime.
+struct ScopedEnv {
+    std::vector<std::string> names;
+    explicit ScopedEnv(std::initializer_list<std::pair<const char*, const char*>> vars) {
+        for (const auto& [k, v] : vars) {
+            setenv(k, v, 1);
+            names.emplace_back(k);
+        }
+    }
+    ~ScopedEnv() {
+        for (const std::string& k : names) unsetenv(k.c_str());
+    }
+};
+
+// `bytes` with the big-endian number `value` of `width` bytes written at `at`.
+std::string patched(std::string bytes, size_t at, uint32_t value, int width) {
+    for (int i = 0; i < width; ++i) bytes.at(at + size_t(i)) = char(value >> (8 * (width - 1 - i)));
+    return bytes;
+}
+
+// Files on which OpenImageIO 2.4 itself crashes or loops without end (found by changing images it writes at random,
+// then reduced to one field of an image written here): read in a child process (formats/image_io.cpp), each is one
+// line naming the file and saying what happened, and this process goes on.
+TEST(ImageIo, ReaderCrashesAndEndlessLoopsEndTheChildOnly) {
+    TempDir dir;
+    const ImageRGBA8 img = random_rgba(16, 12, 77);
+    // A Maya IFF file whose first tile's chunk (the "RGBA" after "TBMP") claims 8 bytes, its coordinates alone: the
+    // reader takes the tile as compressed and decodes it from the empty buffer's null pointer.
+    const std::string iff = dir.file("empty_tile.iff");
+    write_rgba8(iff, img);
+    EXPECT_EQ(read_rgba8(iff), img);  // as written, it reads
+    std::string bytes = test::read_bytes(iff);
+    const size_t tbmp = bytes.find("TBMPRGBA");
+    ASSERT_NE(tbmp, std::string::npos);
+    test::write_bytes(iff, patched(bytes, tbmp + 8, 8, 4));
+#if defined(__SANITIZE_ADDRESS__)
+    // AddressSanitizer reports the read through a null pointer and ends the child itself (exit status 1, or SIGABRT
+    // with abort_on_error).
+    expect_io_error([&] { read_rgba8(iff); }, iff, "the image reader (OpenImageIO) ");
+#else
+    expect_io_error([&] { read_rgba8(iff); }, iff,
+                    "cannot read as an image: the image reader (OpenImageIO) crashed on it (signal 11, ");
+#endif
+    // A Wavefront RLA file whose matte channel claims 0 bits: the reader's bit-depth conversion loops without end.
+    const std::string rla = dir.file("no_matte_bits.rla");
+    write_rgba8(rla, img);
+    EXPECT_EQ(read_rgba8(rla), img);
+    bytes = test::read_bytes(rla);
+    ASSERT_GE(bytes.size(), 740u);                              // the header
+    ASSERT_EQ(bytes.substr(662, 2), std::string("\0\x08", 2));  // NumOfMatteBits, big-endian
+    test::write_bytes(rla, patched(bytes, 662, 0, 2));
+    {
+        const ScopedEnv env{{"RTM_IMAGE_READER_SECONDS", "1"}};
+        expect_io_error([&] { read_rgba8(rla); }, rla,
+                        "the image reader (OpenImageIO) was stopped after the 1 s of processor time it may use for a "
+                        "file of " +
+                            std::to_string(bytes.size()) + " bytes");
+        expect_io_error([&] { read_gray(rla); }, rla, "was stopped after the 1 s of processor time");
+    }
+    // The limits' variables must be whole numbers in range; the message names the variable and the value.
+    {
+        const ScopedEnv env{{"RTM_IMAGE_READER_SECONDS", "0"}};
+        expect_io_error([&] { read_rgba8(rla); }, rla,
+                        "RTM_IMAGE_READER_SECONDS \"0\" is not a whole number from 1 to");
+    }
+    {
+        const ScopedEnv env{{"RTM_IMAGE_READER_MB", "lots"}};
+        expect_io_error([&] { read_rgba8(rla); }, rla, "RTM_IMAGE_READER_MB \"lots\" is not a whole number from 1 to");
+    }
+    // And this process still reads and writes images.
+    const std::string tif = dir.file("after.tif");
+    write_rgba8(tif, img);
+    EXPECT_EQ(read_rgba8(tif), img);
+}
+
+// OpenEXR compresses and decompresses with a pool of threads unless told not to; a child forked after this process
+// wrote an OpenEXR file would have that pool without its threads and wait for them forever. The image module keeps
+// the pool from starting (image_io_oiio.cpp): a large file (many chunks, which OpenEXR hands to its pool) written
+// here reads back in the child.
+TEST(ImageIo, ReadsBackAfterWritingOpenExr) {
+    TempDir dir;
+    const std::string path = dir.file("many_chunks.exr");
+    ImageF img(512, 384);
+    for (size_t i = 0; i < img.pixels.size(); ++i) img.pixels[i] = float(i % 65536) / 65535.0f;
+    write_gray(path, img);
+    const ScopedEnv env{{"RTM_IMAGE_READER_SECONDS", "5"}};  // a child that waits is stopped after 12 s
+    const ImageF back = read_gray(path);
+    ASSERT_EQ(back.width, 512);
+    ASSERT_EQ(back.height, 384);
+    for (size_t i = 0; i < img.pixels.size(); i += 997)
+        EXPECT_NEAR(back.pixels[i], img.pixels[i], 1.0f / 2048);  // stored as half: 11 bits
 }
 
 }  // namespace

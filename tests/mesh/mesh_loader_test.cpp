@@ -211,7 +211,7 @@ struct ScopedEnv {
 };
 
 // Files on which assimp 5.2 itself crashes or loops without end (found by changing its test models at random, then
-// reduced): read in a child process (mesh/isolated_call.h), each is one line naming the file and saying what
+// reduced): read in a child process (formats/isolated_call.h), each is one line naming the file and saying what
 // happened, and this process goes on.
 TEST(MeshLoader, ReaderCrashesAndEndlessLoopsEndTheChildOnly) {
     TempDir dir;

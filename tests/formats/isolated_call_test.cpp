@@ -1,4 +1,4 @@
-// run_isolated (mesh/isolated_call.h): the work's result, its exception, its crash, its runaway allocation and its
+// run_isolated (formats/isolated_call.h): the work's result, its exception, its crash, its runaway allocation and its
 // endless loop each come back to the parent, which goes on.
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "mesh/isolated_call.h"
+#include "formats/isolated_call.h"
 
 namespace rtm {
 namespace {
@@ -71,6 +71,42 @@ TEST(IsolatedCall, ACrashEndsTheChildOnly) {
     EXPECT_EQ(e.status, Status::died);
     EXPECT_EQ(e.signal, 0);
     EXPECT_EQ(e.exit_status, 3);
+}
+
+// The work writes its result in pieces; a child that ends while writing, or throws after writing part, leaves no
+// result (the tag byte goes in last), and the result outlives the outcome it came in through copies of it.
+TEST(IsolatedCall, PiecesArriveInOrderAndAPartResultIsNone) {
+    IsolatedOutcome kept;
+    {
+        const IsolatedOutcome r = run_isolated(
+            [](const ResultWriter& out) {
+                out.write("ab", 2);
+                out.write("", 0);
+                out.write("cde", 3);
+            },
+            IsolationLimits{});
+        EXPECT_EQ(r.status, Status::ok);
+        EXPECT_EQ(r.bytes, "abcde");
+        kept = r;
+    }
+    EXPECT_EQ(kept.bytes, "abcde");
+    const IsolatedOutcome ended = run_isolated(
+        [](const ResultWriter& out) {
+            out.write("part of it", 10);
+            ::_exit(0);
+        },
+        IsolationLimits{});
+    EXPECT_EQ(ended.status, Status::died);
+    EXPECT_EQ(ended.exit_status, 0);
+    EXPECT_TRUE(ended.bytes.empty());
+    const IsolatedOutcome threw = run_isolated(
+        [](const ResultWriter& out) {
+            out.write("part of it", 10);
+            throw std::runtime_error("x.png: bad row");
+        },
+        IsolationLimits{});
+    EXPECT_EQ(threw.status, Status::threw);
+    EXPECT_EQ(threw.bytes, "x.png: bad row");
 }
 
 TEST(IsolatedCall, ProcessorTimeIsCapped) {
