@@ -11,13 +11,12 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <initializer_list>
 #include <random>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "common/io_error.h"
+#include "common/scoped_env.h"
 #include "texmap/test_util.h"
 
 namespace rtm {
@@ -418,19 +417,7 @@ TEST(ImageIo, FormatWithoutAlphaDropsIt) {
     EXPECT_EQ(back.at(1, 0), (Rgba8{10, 20, 30, 255}));
 }
 
-// Sets environment variables for its lifetime.
-struct ScopedEnv {
-    std::vector<std::string> names;
-    explicit ScopedEnv(std::initializer_list<std::pair<const char*, const char*>> vars) {
-        for (const auto& [k, v] : vars) {
-            setenv(k, v, 1);
-            names.emplace_back(k);
-        }
-    }
-    ~ScopedEnv() {
-        for (const std::string& k : names) unsetenv(k.c_str());
-    }
-};
+using test::ScopedEnv;
 
 // `bytes` with the big-endian number `value` of `width` bytes written at `at`.
 std::string patched(std::string bytes, size_t at, uint32_t value, int width) {

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/scoped_env.h"
 #include "common/temp_dir.h"
 #include "formats/image_io.h"
 #include "mesh/header_guard.h"
@@ -196,19 +197,7 @@ void expect_refused(const std::string& path, const std::string& want) {
     }
 }
 
-// Environment variables set for one scope.
-struct ScopedEnv {
-    std::vector<std::string> names;
-    ScopedEnv(std::initializer_list<std::pair<const char*, const char*>> vars) {
-        for (const auto& [k, v] : vars) {
-            setenv(k, v, 1);
-            names.emplace_back(k);
-        }
-    }
-    ~ScopedEnv() {
-        for (const std::string& k : names) unsetenv(k.c_str());
-    }
-};
+using test::ScopedEnv;
 
 // Files on which assimp 5.2 itself crashes or loops without end (found by changing its test models at random, then
 // reduced): read in a child process (formats/isolated_call.h), each is one line naming the file and saying what
