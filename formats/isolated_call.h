@@ -3,8 +3,8 @@
 // models crash it within seconds (segmentation faults in its MDL and LWS readers) or make it allocate without end (a
 // 254-byte PLY file, which loops without end once it cannot); OpenImageIO 2.4's readers, changed the same way from
 // images it writes, corrupt the heap (IFF) or loop (RLA). load_mesh (mesh/triangle_mesh.h) reads every mesh this way,
-// formats/image_io.h every image that libpng does not read, and read_isolated turns each outcome into one line naming
-// the file.
+// formats/image_io.h every image that libpng does not read when the image module reads it (rtm's own programs: see
+// image_io.cpp), and read_isolated turns each outcome into one line naming the file.
 #pragma once
 
 #include <cstddef>
