@@ -2,6 +2,9 @@
 // endless loop each come back to the parent, which goes on.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/resource.h>
+#include <sys/syscall.h>
 #include <unistd.h>
 
 #include <csignal>
@@ -138,6 +141,53 @@ TEST(IsolatedCall, TimeIsCapped) {
     // A child that ends in time is not marked.
     const IsolatedOutcome s = run_isolated([] { return std::string("quick"); }, limits);
     EXPECT_EQ(s.status, Status::ok);
+    EXPECT_FALSE(s.timed_out);
+}
+
+// Without a process file descriptor (Linux before 5.3, or none left to open) the parent polls for the child's end:
+// the same outcomes. Here the descriptors run out: all but two (the result's and the log's memory files) of those
+// below a lowered limit are taken.
+TEST(IsolatedCall, TimeIsCappedWithoutAProcessDescriptor) {
+    rlimit saved{};
+    ASSERT_EQ(::getrlimit(RLIMIT_NOFILE, &saved), 0);
+    std::vector<int> taken;
+    for (;;) {  // the lowest free descriptors, up to some above the highest open one
+        const int fd = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
+        ASSERT_GE(fd, 0);
+        taken.push_back(fd);
+        if (taken.size() >= 8) break;
+    }
+    rlimit low = saved;
+    low.rlim_cur = rlim_t(taken.back() + 1);
+    ASSERT_EQ(::setrlimit(RLIMIT_NOFILE, &low), 0);
+    ::close(taken.back());
+    taken.pop_back();
+    ::close(taken.back());
+    taken.pop_back();
+    {  // once the two memory files are open, no descriptor is left for the process's
+        const int a = ::open("/dev/null", O_RDONLY | O_CLOEXEC), b = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
+        EXPECT_GE(a, 0);
+        EXPECT_GE(b, 0);
+        EXPECT_LT(::syscall(SYS_pidfd_open, ::getpid(), 0), 0);
+        ::close(a);
+        ::close(b);
+    }
+    IsolationLimits limits;
+    limits.wall_seconds = 1;
+    const IsolatedOutcome r = run_isolated(
+        []() -> std::string {
+            ::sleep(30);
+            return "woke";
+        },
+        limits);
+    const IsolatedOutcome s = run_isolated([] { return std::string("quick"); }, limits);
+    ::setrlimit(RLIMIT_NOFILE, &saved);
+    for (int fd : taken) ::close(fd);
+    EXPECT_EQ(r.status, Status::died);
+    EXPECT_TRUE(r.timed_out);
+    EXPECT_EQ(r.signal, SIGKILL);
+    EXPECT_EQ(s.status, Status::ok);
+    EXPECT_EQ(s.bytes, "quick");
     EXPECT_FALSE(s.timed_out);
 }
 
