@@ -146,7 +146,11 @@ TEST(IsolatedCall, TimeIsCapped) {
 
 // Without a process file descriptor (Linux before 5.3, or none left to open) the parent polls for the child's end:
 // the same outcomes. Here the descriptors run out: all but two (the result's and the log's memory files) of those
-// below a lowered limit are taken.
+// below a lowered limit are taken. Not in the sanitizer build: UBSan's check of an object's dynamic type opens a pipe
+// to test that its memory is readable, and with no descriptor left it reports every object it checks as invalid.
+#if defined(__SANITIZE_ADDRESS__)
+TEST(IsolatedCall, DISABLED_TimeIsCappedWithoutAProcessDescriptor) {}
+#else
 TEST(IsolatedCall, TimeIsCappedWithoutAProcessDescriptor) {
     rlimit saved{};
     ASSERT_EQ(::getrlimit(RLIMIT_NOFILE, &saved), 0);
@@ -190,6 +194,7 @@ TEST(IsolatedCall, TimeIsCappedWithoutAProcessDescriptor) {
     EXPECT_EQ(s.bytes, "quick");
     EXPECT_FALSE(s.timed_out);
 }
+#endif
 
 #if defined(__SANITIZE_ADDRESS__)
 // AddressSanitizer maps its allocator's whole space at start, so the cap on the address space does not bound it.
