@@ -125,24 +125,34 @@ TEST(IsolatedCall, ProcessorTimeIsCapped) {
     EXPECT_EQ(r.signal, SIGXCPU);
 }
 
-TEST(IsolatedCall, TimeIsCapped) {
-    // A child that waits uses no processor time: the parent kills it when its time is up.
+// A child that sleeps for 30 s and one that returns at once, each with 1 s of time.
+struct SleeperAndQuick {
+    IsolatedOutcome sleeper, quick;
+};
+SleeperAndQuick run_sleeper_and_quick() {
     IsolationLimits limits;
     limits.wall_seconds = 1;
-    const IsolatedOutcome r = run_isolated(
+    SleeperAndQuick o;
+    o.sleeper = run_isolated(
         []() -> std::string {
             ::sleep(30);
             return "woke";
         },
         limits);
-    EXPECT_EQ(r.status, Status::died);  // not "woke": killed in its sleep
-    EXPECT_TRUE(r.timed_out);
-    EXPECT_EQ(r.signal, SIGKILL);
-    // A child that ends in time is not marked.
-    const IsolatedOutcome s = run_isolated([] { return std::string("quick"); }, limits);
-    EXPECT_EQ(s.status, Status::ok);
-    EXPECT_FALSE(s.timed_out);
+    o.quick = run_isolated([] { return std::string("quick"); }, limits);
+    return o;
 }
+// The sleeper uses no processor time: the parent kills it when its time is up. The quick one is not marked.
+void expect_sleeper_killed_and_quick_kept(const SleeperAndQuick& o) {
+    EXPECT_EQ(o.sleeper.status, Status::died);  // not "woke": killed in its sleep
+    EXPECT_TRUE(o.sleeper.timed_out);
+    EXPECT_EQ(o.sleeper.signal, SIGKILL);
+    EXPECT_EQ(o.quick.status, Status::ok);
+    EXPECT_EQ(o.quick.bytes, "quick");
+    EXPECT_FALSE(o.quick.timed_out);
+}
+
+TEST(IsolatedCall, TimeIsCapped) { expect_sleeper_killed_and_quick_kept(run_sleeper_and_quick()); }
 
 // Without a process file descriptor (Linux before 5.3, or none left to open) the parent polls for the child's end:
 // the same outcomes. Here the descriptors run out: all but two (the result's and the log's memory files) of those
@@ -176,23 +186,10 @@ TEST(IsolatedCall, TimeIsCappedWithoutAProcessDescriptor) {
         ::close(a);
         ::close(b);
     }
-    IsolationLimits limits;
-    limits.wall_seconds = 1;
-    const IsolatedOutcome r = run_isolated(
-        []() -> std::string {
-            ::sleep(30);
-            return "woke";
-        },
-        limits);
-    const IsolatedOutcome s = run_isolated([] { return std::string("quick"); }, limits);
+    const SleeperAndQuick o = run_sleeper_and_quick();
     ::setrlimit(RLIMIT_NOFILE, &saved);
     for (int fd : taken) ::close(fd);
-    EXPECT_EQ(r.status, Status::died);
-    EXPECT_TRUE(r.timed_out);
-    EXPECT_EQ(r.signal, SIGKILL);
-    EXPECT_EQ(s.status, Status::ok);
-    EXPECT_EQ(s.bytes, "quick");
-    EXPECT_FALSE(s.timed_out);
+    expect_sleeper_killed_and_quick_kept(o);
 }
 #endif
 
