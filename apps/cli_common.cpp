@@ -19,6 +19,12 @@
 
 namespace rtm::cli {
 
+CLI::Option* add_threads_option(CLI::App& app, int& threads, const std::string& what) {
+    return app.add_option("--threads", threads, what + " (0 = all; at most " + std::to_string(kMaxThreads) + ")")
+        ->check(CLI::Range(0, kMaxThreads))
+        ->capture_default_str();
+}
+
 glm::dvec3 parse_vec3(const std::string& text, const std::string& flag) {
     std::vector<double> v;
     std::stringstream ss(text);
@@ -36,8 +42,19 @@ glm::dvec3 parse_vec3(const std::string& text, const std::string& flag) {
         }
     }
     if (!ok || v.size() != 3 || (!text.empty() && text.back() == ','))
-        throw UsageError(flag + ": expected X,Y,Z (three finite numbers separated by commas), found \"" + text + "\"");
+        throw UsageError(flag + ": expected " + (flag == "--orbit" ? "AZ,EL,D" : "X,Y,Z") +
+                         " (three finite numbers separated by commas), found \"" + text + "\"");
     return {v[0], v[1], v[2]};
+}
+
+void check_coordinates(const glm::dvec3& v, const std::string& what) {
+    // Past this, squared lengths in the camera's own checks overflow and single-precision rendering has no digits
+    // left for the scene (docs/DESIGN.md, "Input limits").
+    constexpr double kMaxCoordinate = 1e30;
+    if (std::abs(v.x) <= kMaxCoordinate && std::abs(v.y) <= kMaxCoordinate && std::abs(v.z) <= kMaxCoordinate) return;
+    std::ostringstream os;
+    os << what << v.x << "," << v.y << "," << v.z << " has a coordinate beyond +-1e30";
+    throw UsageError(os.str());
 }
 
 int parse_level(const std::string& text) {
@@ -58,12 +75,16 @@ Isa parse_isa_arg(const std::string& text, const std::string& flag) {
         for (Isa i : supported_isas()) have += std::string(have.empty() ? "" : ", ") + isa_name(i);
         throw UsageError(flag + ": this CPU cannot run target \"" + text + "\"; it runs: " + have);
     }
+    check_isa_environment();  // RTM_ISA, which "auto" follows
+    return isa;
+}
+
+void check_isa_environment() {
     try {
-        default_isa();  // RTM_ISA, which "auto" follows
+        default_isa();
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
     }
-    return isa;
 }
 
 std::vector<Isa> parse_isa_list(const std::string& text, const std::string& flag) {
@@ -153,25 +174,11 @@ Camera CameraArgs::resolve(const Bounds& bounds) const {
     } else {
         throw UsageError("a camera needs --eye X,Y,Z or --orbit AZ,EL,D");
     }
-    // Past this, squared lengths in the camera's own checks overflow and single-precision rendering has no digits
-    // left for the scene (docs/DESIGN.md, "Input limits").
-    constexpr double kMaxCoordinate = 1e30;
-    auto too_far = [&](const glm::dvec3& v) {
-        return std::abs(v.x) > kMaxCoordinate || std::abs(v.y) > kMaxCoordinate || std::abs(v.z) > kMaxCoordinate;
-    };
-    auto fmt = [](const glm::dvec3& v) {
-        std::ostringstream os;
-        os << v.x << "," << v.y << "," << v.z;
-        return os.str();
-    };
-    if (too_far(cam.eye))
-        throw UsageError(std::string(eye.empty() ? "--orbit" : "--eye") + ": the eye " + fmt(cam.eye) +
-                         " has a coordinate beyond +-1e30");
-    if (too_far(cam.look_at))
-        throw UsageError("--look-at: " +
-                         std::string(look_at.empty() ? "the default, the centre of what is rendered, " : "") +
-                         fmt(cam.look_at) + " has a coordinate beyond +-1e30");
-    if (too_far(cam.up)) throw UsageError("--up: " + fmt(cam.up) + " has a coordinate beyond +-1e30");
+    check_coordinates(cam.eye, std::string(eye.empty() ? "--orbit" : "--eye") + ": the eye ");
+    check_coordinates(cam.look_at,
+                      "--look-at: " +
+                          std::string(look_at.empty() ? "the default, the centre of what is rendered, " : ""));
+    check_coordinates(cam.up, "--up: ");
     // Camera::check() is the one judge of a usable camera; it names the setting, which names the flag.
     if (const CameraProblem p = cam.check(); p.field != CameraField::none) {
         const std::string eye_flag = eye.empty() ? "--orbit" : "--eye";
@@ -180,7 +187,10 @@ Camera CameraArgs::resolve(const Bounds& bounds) const {
             case CameraField::eye: flag = eye_flag; break;
             case CameraField::look_at: flag = "--look-at"; break;
             case CameraField::eye_and_look_at: flag = eye_flag + (look_at.empty() ? "" : " and --look-at"); break;
-            case CameraField::up: flag = "--up"; break;
+            case CameraField::up:  // not given: the eye's flag made the view run along the default up
+                flag = up == CameraArgs{}.up ? eye_flag + " (with the default --up " + up + "; give another --up)"
+                                             : "--up";
+                break;
             case CameraField::fov: flag = "--fov"; break;
             case CameraField::none:
             case CameraField::size:

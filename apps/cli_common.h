@@ -23,6 +23,8 @@ struct UsageError : std::runtime_error {
 };
 
 glm::dvec3 parse_vec3(const std::string& text, const std::string& flag);
+// Throws UsageError "<what>X,Y,Z has a coordinate beyond +-1e30" (`what` names the flag) past the camera's limit.
+void check_coordinates(const glm::dvec3& v, const std::string& what);
 // --level N|auto: N >= 0, or -1 for auto.
 int parse_level(const std::string& text);
 // --filter point|coverage; coverage needs the two-pass reconstruction. Throws UsageError naming the value.
@@ -33,6 +35,9 @@ std::vector<std::string> parse_relief_names(const std::string& text, const std::
 // --isa NAME (warp/isa.h): a target this CPU supports ("auto" too). Throws UsageError naming the value when it names
 // no target or one this CPU or build lacks; also when RTM_ISA does (that variable chooses for "auto").
 Isa parse_isa_arg(const std::string& text, const std::string& flag);
+// Throws UsageError when RTM_ISA names no target or one this CPU or build lacks: called first by every subcommand
+// that pre-warps, so that a bad variable is exit 2 before any work (not exit 1 at the first pre-warp).
+void check_isa_environment();
 // --isa LIST: comma-separated targets, each as parse_isa_arg.
 std::vector<Isa> parse_isa_list(const std::string& text, const std::string& flag);
 void parse_size(const std::string& text, const std::string& flag, int& w, int& h);
@@ -40,6 +45,11 @@ void parse_size(const std::string& text, const std::string& flag, int& w, int& h
 // writes a texture N times the source's size in each direction. Throws UsageError naming N when out of range and
 // std::runtime_error naming the relief file `path` when the result would be too large.
 ReliefTexture apply_output_scale(ReliefTexture relief, int factor, const std::string& path);
+
+// --threads N: 0 (all the machine's) to kMaxThreads; anything else is exit 2 naming the value. More threads than the
+// machine has run as many as it has (warp/task_arenas.h arena_threads).
+constexpr int kMaxThreads = 1024;
+CLI::Option* add_threads_option(CLI::App& app, int& threads, const std::string& what = "Threads");
 
 struct CameraArgs {
     std::string eye, orbit, look_at, up = "0,1,0", size = "512x512";

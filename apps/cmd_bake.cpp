@@ -100,12 +100,12 @@ void bake_height(const BakeArgs& a) {
         o.range_min = lo;
         o.range_max = hi;
     }
-    if (a.texel_given) {
-        if (!(std::isfinite(a.texel) && a.texel > 0.0))
-            throw UsageError("--texel: expected a finite size > 0, found " + std::to_string(a.texel));
-        o.texel = a.texel;
+    if (a.texel_given) o.texel = a.texel;  // checked by bake_height_map, with the range it implies
+    try {
+        std::printf("%s\n", bake_height_map(o, a.out).c_str());
+    } catch (const std::invalid_argument& e) {  // a bad --range, --texel or --size: a usage error
+        throw UsageError(e.what());
     }
-    std::printf("%s\n", bake_height_map(o, a.out).c_str());
 }
 
 void run_bake(const BakeArgs& a) {

@@ -17,11 +17,11 @@ struct Args {
 };
 
 void run(const Args& a) {
+    check_isa_environment();
     if (a.size < 8 || a.size > 4096) throw UsageError("--size: expected 8..4096, found " + std::to_string(a.size));
     if (a.samples < 1 || a.samples > 64)
         throw UsageError("--samples: expected 1..64, found " + std::to_string(a.samples));
     if (a.repeat < 1) throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
-    if (a.threads < 0) throw UsageError("--threads: expected N >= 0, found " + std::to_string(a.threads));
     if (!a.json.empty()) check_output_file(a.json, "--json");
     FilterMeasureOptions o;
     o.size = a.size;
@@ -63,7 +63,7 @@ void add_bench_filter_command(CLI::App& app) {
     sub->add_option("--size", a->size, "Relief size in texels")->capture_default_str();
     sub->add_option("--samples", a->samples, "Truth rays per pixel side")->capture_default_str();
     sub->add_option("--repeat", a->repeat, "Timed pre-warps per measurement")->capture_default_str();
-    sub->add_option("--threads", a->threads, "Threads (0 = all)")->capture_default_str();
+    add_threads_option(*sub, a->threads);
     sub->add_option("--json", a->json, "Write the figures as JSON");
     sub->add_option("--out", a->out, "Write the pre-warped textures and their truth into this directory");
     sub->callback([a] { run(*a); });

@@ -24,6 +24,7 @@ struct Args {
 };
 
 void run(const Args& a) {
+    check_isa_environment();
     if (a.frames < 2) throw UsageError("--frames: expected N >= 2, found " + std::to_string(a.frames));
     if (!a.json.empty()) check_output_file(a.json, "--json");
     if (a.no_scene && (a.scene_only || a.scene_given))

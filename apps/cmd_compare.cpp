@@ -27,6 +27,7 @@ struct CompareArgs {
 };
 
 void run_compare(const CompareArgs& a) {
+    check_isa_environment();
     const bool mesh = !a.mesh.mesh.empty();
     if (mesh) {
         if (!a.reliefs.empty() || !a.scene.empty() || a.quick || a.repeat != -1)
@@ -47,7 +48,6 @@ void run_compare(const CompareArgs& a) {
             "compare needs one kind of source: --relief M (repeatable), --object O, --scene S or --mesh FILE");
     if (a.repeat != -1 && a.repeat < 1)
         throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
-    if (a.threads < 0) throw UsageError("--threads: expected N >= 0, found " + std::to_string(a.threads));
     CompareOptions o;
     parse_size(a.size.empty() ? (a.quick ? "128x128" : "512x512") : a.size, "--size", o.width, o.height);
     o.repeat = a.repeat != -1 ? a.repeat : a.quick ? 1 : 3;
@@ -128,7 +128,7 @@ void add_compare_command(CLI::App& app) {
     sub->add_flag("--quick", a->quick, "3 views, 2 settings per method, 1 timed frame, 128x128 pixels");
     sub->add_option("--size", a->size, "Image size WxH (default 512x512; --quick 128x128)");
     sub->add_option("--repeat", a->repeat, "Frames timed per method and view after a warm-up (default 3; --quick 1)");
-    sub->add_option("--threads", a->threads, "Threads (0 = all)")->capture_default_str();
+    add_threads_option(*sub, a->threads);
     sub->callback([a, texels] {
         a->mesh.texels_given = texels->count() > 0;
         run_compare(*a);

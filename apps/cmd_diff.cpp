@@ -25,6 +25,9 @@ nlohmann::json number(double x) {
 }
 
 void run_diff(const DiffArgs& a) {
+    // Both outputs checked before any work: a failure leaves neither (docs/FORMATS.md, "Exit status and errors").
+    if (!a.heatmap.empty()) check_output_file(a.heatmap, "--heatmap");
+    if (!a.json.empty()) check_output_file(a.json, "--json");
     const ImageRGBA8 ref = read_rgba8(a.ref);  // IoError naming the file: exit 1
     const ImageRGBA8 test = read_rgba8(a.test);
     if (ref.width != test.width || ref.height != test.height)

@@ -37,17 +37,19 @@ void run_render_object(const ObjectRenderArgs& a) {
     } catch (const std::invalid_argument& e) {
         throw UsageError(std::string("--method: ") + e.what());
     }
-    if (method == RenderMethod::raycast)
-        throw UsageError(
-            "--method: raycast is not available for --object; known: flat, two-pass, pipelined, micromesh");
+    if (method != RenderMethod::flat && method != RenderMethod::two_pass && method != RenderMethod::pipelined &&
+        method != RenderMethod::micromesh)
+        throw UsageError("--method: " + a.method +
+                         " is not available for --object; known: flat, two-pass, pipelined, micromesh");
     const Filter filter = parse_filter(a.filter, method == RenderMethod::pipelined ? Reconstruction::pipelined
                                                                                    : Reconstruction::two_pass);
     const int level = parse_level(a.level);
     if (a.repeat < 1) throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
-    if (a.threads < 0) throw UsageError("--threads: expected N >= 0, found " + std::to_string(a.threads));
     if (!a.camera.has_eye()) throw UsageError("render needs --eye X,Y,Z or --orbit AZ,EL,D");
     (void)a.camera.resolve(Bounds{glm::dvec3(-1), glm::dvec3(1)});
+    if (a.out.empty() && a.json.empty()) throw UsageError("render --object needs --out or --json");
     if (!a.out.empty()) check_output_file(a.out, "--out");
+    if (!a.json.empty()) check_output_file(a.json, "--json");
 
     SixFaceObject loaded = load_object(a.object);
     if (a.discontinuity >= 0)
@@ -130,7 +132,6 @@ void run_prewarp_object(const ObjectPrewarpArgs& a) {
         throw UsageError("--method: unknown method \"" + a.method + "\" for prewarp; known: two-pass, pipelined");
     int level = parse_level(a.level);
     if (a.repeat < 1) throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
-    if (a.threads < 0) throw UsageError("--threads: expected N >= 0, found " + std::to_string(a.threads));
     opt.exact = a.exact;
     opt.threads = a.threads;
     opt.filter = parse_filter(a.filter, opt.method);

@@ -29,10 +29,14 @@ void run_prewarp(const PrewarpArgs& a) {
     if (a.relief.empty() == a.object.empty())
         throw UsageError("prewarp needs exactly one of --relief M and --object O");
     if (!a.object.empty() && a.output_scale != 1) throw UsageError("--output-scale applies to --relief only");
+    // Both outputs checked before any work: a failure leaves neither (docs/FORMATS.md, "Exit status and errors").
+    if (!a.json.empty()) check_output_file(a.json, "--json");
     if (!a.object.empty())
         return run_prewarp_object({a.object, a.eye, a.out, a.method, a.level, a.json, a.filter, a.exact, a.repeat,
                                    a.threads, a.isa});
+    check_output_file(a.out, "--out");
     const glm::dvec3 eye = parse_vec3(a.eye, "--eye");
+    check_coordinates(eye, "--eye: ");
     PrewarpOptions opt;
     try {
         opt.method = parse_reconstruction(a.method);
@@ -42,7 +46,6 @@ void run_prewarp(const PrewarpArgs& a) {
     }
     const int level_arg = parse_level(a.level);
     if (a.repeat < 1) throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
-    if (a.threads < 0) throw UsageError("--threads: expected N >= 0, found " + std::to_string(a.threads));
     opt.exact = a.exact;
     opt.threads = a.threads;
     opt.filter = parse_filter(a.filter, opt.method);
@@ -60,6 +63,11 @@ void run_prewarp(const PrewarpArgs& a) {
     level = std::min(level, quad.levels() - 1);
     const ReliefTexture& relief = quad.level(level);
     const PrewarpCoefficients k = compute_coefficients(relief.geometry, eye);
+    if (k.side == ViewSide::on_plane)
+        std::fprintf(stderr,
+                     "rtm: warning: --eye %s is in the relief's plane: the relief is seen edge-on, and the "
+                     "pre-warped texture is empty\n",
+                     a.eye.c_str());
     PrewarpWorkspace ws;
     ImageRGBA8 out;
     PrewarpStats stats = prewarp(relief, k, opt, ws, out);  // warm-up (and the only run when repeat == 1)
@@ -123,7 +131,7 @@ void add_prewarp_command(CLI::App& app) {
                     "Pre-warp into a texture N times the relief's size in each direction (1 to 8; --relief only)")
         ->capture_default_str();
     sub->add_option("--repeat", a->repeat, "Run N times after one warm-up, for timing")->capture_default_str();
-    sub->add_option("--threads", a->threads, "Threads (0 = all)")->capture_default_str();
+    add_threads_option(*sub, a->threads);
     sub->add_option("--isa", a->isa,
                     "SIMD target: auto, avx512, avx3, avx2, sse4, neon, sve or generic (the reference "
                     "kernels); auto follows RTM_ISA, else the fastest")

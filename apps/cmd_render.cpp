@@ -33,6 +33,7 @@ struct RenderArgs {
 };
 
 void run_render(const RenderArgs& a) {
+    check_isa_environment();
     if (a.output_scale != 1 && a.relief.empty()) throw UsageError("--output-scale applies to --relief only");
     // --level: 0 unless given, auto for a scene (each quad at the level its screen area asks for, no coarser than
     // its parallax allows: objects/level_choice.h; the town's margin over flat holds at auto, docs/SCENES.md).
@@ -86,6 +87,10 @@ void run_render(const RenderArgs& a) {
     if (!a.camera.has_eye()) throw UsageError("render needs --eye X,Y,Z or --orbit AZ,EL,D");
     // Validate the camera's syntax before any file is read.
     (void)a.camera.resolve(Bounds{glm::dvec3(-1), glm::dvec3(1)});
+    // Every output checked before any work: a failure leaves none (docs/FORMATS.md, "Exit status and errors").
+    if (a.out.empty() && a.json.empty()) throw UsageError("render needs --out or --json");
+    if (!a.out.empty()) check_output_file(a.out, "--out");
+    if (!a.json.empty()) check_output_file(a.json, "--json");
 
     ReliefTexture relief = load_relief(a.relief);
     if (a.discontinuity >= 0) mark_discontinuities(relief, a.discontinuity);
@@ -194,7 +199,7 @@ void add_render_command(CLI::App& app) {
     sub->add_option("--out", a->out, "Output image");
     sub->add_option("--json", a->json, "Write stage times as JSON");
     sub->add_option("--repeat", a->repeat, "Render N frames after one warm-up, for timing")->capture_default_str();
-    sub->add_option("--threads", a->threads, "Threads (0 = all)")->capture_default_str();
+    add_threads_option(*sub, a->threads);
     sub->add_flag("--progress", a->progress, "Show progress of slow methods");
     sub->add_flag("--no-skips", a->no_skips, "Always pre-warp and upload everything (to measure what skips save)");
     sub->add_flag("--no-sidewalls", a->no_sidewalls, "Drop samples that leave the quad (no side polygons)");

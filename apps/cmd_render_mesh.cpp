@@ -19,6 +19,7 @@ void run_render_mesh(const std::string& mesh_path, const CameraArgs& camera, con
                      const std::string& json) {
     if (!camera.has_eye()) throw UsageError("render needs --eye X,Y,Z or --orbit AZ,EL,D");
     (void)camera.resolve(Bounds{glm::dvec3(-1), glm::dvec3(1)});  // the camera's syntax, before any file is read
+    if (out.empty() && json.empty()) throw UsageError("render --mesh needs --out or --json");
     if (!out.empty()) check_output_file(out, "--out");
     if (!json.empty()) check_output_file(json, "--json");
 

@@ -28,12 +28,12 @@ struct ViewArgs {
 };
 
 void run_view(const ViewArgs& a) {
+    check_isa_environment();
     const int given = int(!a.relief.empty()) + int(!a.object.empty()) + int(!a.scene.empty()) + int(!a.file.empty());
     if (given != 1) throw UsageError("view needs one of --relief M, --object O, --scene S or a FILE");
     if (a.frames < 0) throw UsageError("--frames: expected N >= 0, found " + std::to_string(a.frames));
     if (!a.screenshot.empty() && a.frames == 0) throw UsageError("--screenshot needs --frames N");
     if (!a.json.empty() && a.frames == 0) throw UsageError("--json needs --frames N");
-    if (a.threads < 0) throw UsageError("--threads: expected N >= 0, found " + std::to_string(a.threads));
     if (a.timed_every < 1) throw UsageError("--timed-every: expected N >= 1, found " + std::to_string(a.timed_every));
     auto number = [](double v) {
         char buf[32];
@@ -168,7 +168,7 @@ void add_view_command(CLI::App& app) {
     sub->add_option("--level", a->level, "Relief texture pyramid level N or auto")->capture_default_str();
     sub->add_option("--filter", a->filter, "Pre-warp resampling: point or coverage (two-pass only)")
         ->capture_default_str();
-    sub->add_option("--threads", a->threads, "Pre-warp threads (0 = all)")->capture_default_str();
+    add_threads_option(*sub, a->threads, "Pre-warp threads");
     sub->add_option("--discontinuity", a->discontinuity, "Mark discontinuities with this threshold");
     sub->add_flag("--no-sidewalls", a->no_sidewalls, "Do not draw the side polygons");
     sub->add_flag("--depth-correction", a->depth_correction, "Per-fragment depth from the displacement");

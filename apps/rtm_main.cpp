@@ -22,6 +22,16 @@ int main(int argc, char** argv) {
     rtm::cli::add_bench_command(app);
     rtm::cli::add_bench_filter_command(app);
     rtm::cli::add_bake_command(app);
+    // A first word that names no subcommand: say which word, not only that a subcommand is required.
+    if (argc > 1 && argv[1][0] != '-' &&
+        app.get_subcommands([&](const CLI::App* sub) { return sub->get_name() == argv[1]; }).empty()) {
+        std::string known;
+        for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+            known += (known.empty() ? "" : ", ") + sub->get_name();
+        std::fprintf(stderr, "rtm: unknown subcommand \"%s\"; known: %s (try --help)\n",
+                     rtm::printable_one_line(argv[1]).c_str(), known.c_str());
+        return 2;
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

@@ -28,9 +28,27 @@ std::string temp_name_for(const std::string& path) {
     return (p.parent_path() / name).string();
 }
 
+// The file a path names once symbolic links are followed (a link's relative target is relative to the link's folder);
+// the path itself when it is no link or does not exist. A chain of more than 40 links is left as it is (the rename
+// then replaces the last link reached, as the kernel refuses such chains anyway).
+std::string follow_links(const std::string& path) {
+    fs::path p(path);
+    std::error_code ec;
+    for (int hops = 0; hops < 40 && fs::is_symlink(fs::symlink_status(p, ec)); ++hops) {
+        const fs::path target = fs::read_symlink(p, ec);
+        if (ec) break;
+        p = target.is_absolute() ? target : p.parent_path() / target;
+    }
+    return p.string();
+}
+
 }  // namespace
 
-AtomicFile::AtomicFile(std::string path) : path_(std::move(path)), temp_(temp_name_for(path_)) {}
+AtomicFile::AtomicFile(std::string path)
+    : path_(std::move(path)), target_(follow_links(path_)), temp_(temp_name_for(target_)) {
+    std::error_code ec;
+    if (fs::is_directory(target_, ec)) throw_io_error(path_, "is a directory");
+}
 
 AtomicFile::~AtomicFile() {
     if (committed_) return;
@@ -39,7 +57,7 @@ AtomicFile::~AtomicFile() {
 }
 
 void AtomicFile::commit() {
-    if (std::rename(temp_.c_str(), path_.c_str()) != 0) {
+    if (std::rename(temp_.c_str(), target_.c_str()) != 0) {
         const int err = errno;
         std::error_code ignore;
         fs::remove(temp_, ignore);

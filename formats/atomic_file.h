@@ -1,7 +1,9 @@
 // Writing a file atomically: the content goes to a temporary file in the destination's folder, under a name no other
 // writer uses (the file's name, this process's id and a per-process counter), which is then renamed onto the
 // destination. Readers see the old file or the new one, never a part; concurrent writers of one path do not collide
-// (the last rename wins); a failed write removes its temporary file and leaves the destination as it was.
+// (the last rename wins); a failed write removes its temporary file and leaves the destination as it was. A
+// destination that is a symbolic link is written through: the file it points to is replaced and the link stays (a
+// rename onto the link itself would replace the link with a file).
 #pragma once
 
 #include <string>
@@ -12,7 +14,8 @@ namespace rtm {
 
 class AtomicFile {
 public:
-    // Chooses the temporary name beside `path`; creates nothing.
+    // Chooses the temporary name beside the file `path` names (following symbolic links); creates nothing. Throws
+    // IoError "PATH: is a directory" when that is a folder.
     explicit AtomicFile(std::string path);
     // Removes the temporary file unless commit() succeeded.
     ~AtomicFile();
@@ -20,14 +23,14 @@ public:
     AtomicFile& operator=(const AtomicFile&) = delete;
 
     const std::string& path() const { return path_; }
-    // Where to write the content: ".NAME.tmpPID-N" in the destination's folder.
+    // Where to write the content: ".NAME.tmpPID-N" in the destination's folder (the link target's, for a link).
     const std::string& temp_path() const { return temp_; }
     // Renames the temporary file onto path(). Throws IoError "PATH: cannot write: rename from temporary file
     // failed: REASON" (the temporary file is removed).
     void commit();
 
 private:
-    std::string path_, temp_;
+    std::string path_, target_, temp_;
     bool committed_ = false;
 };
 

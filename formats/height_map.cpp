@@ -77,6 +77,15 @@ std::string bake_height_map(const HeightBakeOptions& o, const std::string& out_d
     m.geometry.origin = glm::dvec3(0.0);
     m.geometry.a = glm::dvec3(texel * w / out_w, 0.0, 0.0);  // the relief keeps its world size
     m.geometry.b = glm::dvec3(0.0, texel * h / out_h, 0.0);
+    // What every reader of the manifest checks (formats/relief_manifest.cpp), refused here before anything is written:
+    // texel steps whose cross product a double can hold, and displacements a float can hold.
+    if (const std::string why = m.geometry.validate(); !why.empty())
+        throw std::invalid_argument("--texel: " + num(texel) + " makes texel steps too small or too large for double " +
+                                    "precision (" + why + ")");
+    if (!std::isfinite(float(lo)) || !std::isfinite(float(hi)))
+        throw std::invalid_argument("--range: displacements " + num(lo) + " to " + num(hi) +
+                                    " are beyond single precision (at most about 3.4e38 in magnitude)" +
+                                    (o.range_max ? "" : "; the default range is a tenth of the width (--texel)"));
     const std::string manifest = (std::filesystem::path(out_dir.empty() ? "." : out_dir) / (m.name + ".relief.json"))
                                      .string();
     write_relief(manifest, m, color, height);

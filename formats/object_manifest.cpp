@@ -137,6 +137,10 @@ ObjectManifest parse_object_manifest(const std::string& path) {
     const json& faces = required(path, j, "", "faces", "an object with the six faces \"+x\" ... \"-z\"");
     if (!faces.is_object())
         fail(path, "field \"faces\" must be an object with the six faces \"+x\" ... \"-z\", found " + describe(faces));
+    for (const auto& [key, value] : faces.items())
+        if (std::find(kFaceKeys.begin(), kFaceKeys.end(), key) == kFaceKeys.end())
+            fail(path, "field \"faces\" has the key " + quoted(key) +
+                           ", expected exactly \"+x\", \"-x\", \"+y\", \"-y\", \"+z\", \"-z\"");
     for (int f = 0; f < kFaceCount; ++f) {
         auto it = faces.find(kFaceKeys[size_t(f)]);
         if (it == faces.end())

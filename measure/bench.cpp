@@ -26,6 +26,7 @@
 #include "objects/render_relief.h"
 #include "texmap/gl_context.h"
 #include "warp/simd/schedule.h"
+#include "warp/task_arenas.h"
 
 namespace rtm {
 
@@ -143,7 +144,7 @@ double streaming_copy_ms(double read, double written, int threads, double min_se
             sink = sink + s;
         }
     };
-    tbb::task_arena arena(std::max(threads, 1));
+    tbb::task_arena& arena = task_arena_for(std::max(threads, 1));
     auto once = [&] {
         const auto t0 = Clock::now();
         if (threads == 1) {

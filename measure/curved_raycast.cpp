@@ -1,4 +1,5 @@
 #include "measure/curved_raycast.h"
+#include "warp/task_arenas.h"
 
 #include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
@@ -164,8 +165,7 @@ ImageRGBA8 raycast_curved_relief(const ReliefTexture& t, const CylinderPatch& p,
     // Each row is written by one task alone: the same output for any number of threads.
     const auto loop = [&] { tbb::parallel_for(tbb::blocked_range<int>(0, cam.height, 1), rows); };
     if (threads > 0) {
-        tbb::task_arena arena(threads);
-        arena.execute(loop);
+        task_arena_for(threads).execute(loop);
     } else {
         loop();
     }

@@ -6,10 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <set>
 
 #include "formats/image_io.h"
+#include "formats/manifest_json.h"
 #include "formats/relief_manifest.h"
 #include "mesh/bake_object.h"
 #include "mesh/mesh_renderer.h"
@@ -34,14 +34,8 @@ glm::dvec3 vec3_field(const std::string& path, const std::string& where, const j
 }  // namespace
 
 std::vector<BakePlane> parse_bake_planes(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw_io_error(path, "cannot read planes: no such file or not readable");
-    json j;
-    try {
-        j = json::parse(in);
-    } catch (const json::exception& e) {
-        throw_io_error(path, std::string("not valid JSON: ") + e.what());
-    }
+    // A small regular file (a FIFO or a device is refused without being opened), parsed with errors that say where.
+    const json j = manifest_json::parse(path, manifest_json::read_text(path, "planes"));
     if (!j.is_object() || !j.contains("planes") || !j["planes"].is_array() || j["planes"].empty())
         throw_io_error(path, "expected an object with a non-empty array \"planes\"");
     std::vector<BakePlane> out;

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "truth/raycast.h"
+#include "warp/task_arenas.h"
 
 namespace rtm {
 
@@ -55,8 +56,7 @@ ImageRGBA8 prewarp_truth(const ReliefTexture& t, const glm::dvec3& eye, const Pr
     };
     if (options.progress) options.progress(0.0);
     if (options.threads > 0) {
-        tbb::task_arena arena(options.threads);
-        arena.execute(loop);
+        task_arena_for(options.threads).execute(loop);
     } else {
         loop();
     }

@@ -31,6 +31,7 @@
 // ridges 110 ms on one thread. The quadtree keeps a ray to about log2(256) node tests plus the cells it really
 // passes close to.
 #include "truth/raycast.h"
+#include "warp/task_arenas.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -387,9 +388,8 @@ ImageRGBA8 raycast_relief(const ReliefTexture& t, const Camera& cam, const Rayca
         if (options.progress) options.progress(1.0);
         return img;
     }
-    std::unique_ptr<tbb::task_arena> arena;
-    if (options.threads > 0) arena = std::make_unique<tbb::task_arena>(options.threads);
-    const int concurrency = arena ? options.threads : tbb::this_task_arena::max_concurrency();
+    tbb::task_arena* arena = options.threads > 0 ? &task_arena_for(options.threads) : nullptr;
+    const int concurrency = arena ? arena_threads(options.threads) : tbb::this_task_arena::max_concurrency();
     const int chunk = options.progress ? std::max(8, 4 * concurrency) : std::max(cam.height, 1);
     for (int r0 = 0; r0 < cam.height; r0 += chunk) {
         const int r1 = std::min(cam.height, r0 + chunk);

@@ -4,10 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include "formats/image_io.h"
+#include "formats/manifest_json.h"
 #include "viewer/cameras.h"
 
 namespace rtm::viewer {
@@ -35,12 +34,7 @@ glm::dvec3 key_eye(const PathKey& k, const Bounds& b) {
 }  // namespace
 
 CameraPath parse_camera_path(const std::string& text, const std::string& name) {
-    nlohmann::json j;
-    try {
-        j = nlohmann::json::parse(text);
-    } catch (const std::exception& e) {
-        throw IoError(name + ": not valid JSON: " + e.what());
-    }
+    const nlohmann::json j = manifest_json::parse(name, text);
     if (!j.is_object()) throw IoError(name + ": expected a JSON object with \"keys\"");
     CameraPath p;
     if (j.contains("fps")) {
@@ -84,11 +78,8 @@ CameraPath parse_camera_path(const std::string& text, const std::string& name) {
 }
 
 CameraPath load_camera_path(const std::string& path) {
-    std::ifstream f(path);
-    if (!f) throw IoError(path + ": cannot read the camera path");
-    std::stringstream ss;
-    ss << f.rdbuf();
-    return parse_camera_path(ss.str(), path);
+    // A small regular file: a FIFO or a device is refused without being opened (read_text).
+    return parse_camera_path(manifest_json::read_text(path, "camera path"), path);
 }
 
 namespace {

@@ -140,8 +140,12 @@ Isa default_isa() {
             throw std::invalid_argument(std::string("RTM_ISA: unknown target \"") + env + "\"; known: auto, " +
                                         isa_names());
         if (isa != Isa::automatic) {
-            if (!isa_supported(isa))
-                throw std::invalid_argument(std::string("RTM_ISA: this CPU cannot run target \"") + env + "\"");
+            if (!isa_supported(isa)) {
+                std::string have;
+                for (Isa i : supported_isas()) have += std::string(have.empty() ? "" : ", ") + isa_name(i);
+                throw std::invalid_argument(std::string("RTM_ISA: this CPU cannot run target \"") + env +
+                                            "\"; it runs: " + have);
+            }
             return isa;
         }
     }

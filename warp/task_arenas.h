@@ -9,7 +9,14 @@
 
 namespace rtm {
 
-// The arena of `threads` threads (>= 1; the calling thread is one of them). Thread-safe.
+// The arena of `threads` threads (>= 1; the calling thread is one of them), at most arena_threads(threads).
+// Thread-safe.
 tbb::task_arena& task_arena_for(int threads);
+
+// `threads` (>= 1) capped at the parallelism TBB allows (its global limit: the machine's hardware threads unless a
+// tbb::global_control lowers it). An arena asking for more waits for workers that never come, TBB warns on stderr
+// for each, and arenas of 70,000 slots made and dropped one after another crashed TBB's allocator (`rtm compare
+// --threads 100000`). No output depends on the thread count.
+int arena_threads(int threads);
 
 }  // namespace rtm

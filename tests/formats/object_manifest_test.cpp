@@ -143,6 +143,7 @@ TEST(ObjectManifest, HostileManifestsGiveOneLineNamingTheFaceAndField) {
     };
     const std::vector<Case> cases = {
         {"missing face", face_json("+y") + ",", "", {"faces", "\"+y\""}},
+        {"a seventh face", face_json("+y"), face_json("+y") + ", \"+w\": {}", {"faces", "\"+w\"", "exactly"}},
         {"face not an object", face_json("-z"), "\"-z\": 3", {"face \"-z\"", "object"}},
         {"NaN range", "[-0.5, 0.0]", "[\"nan\", 0]", {"face \"+x\"", "displacement_range"}},
         {"overflowing range", "[-0.5, 0.0]", "[-1e999, 0]", {"overflows"}},

@@ -1,5 +1,6 @@
 // rtm bake --planes (mesh/bake_planes.h): views onto given rectangles, their files and the planes file's checks.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include "common/temp_dir.h"
 #include "formats/image_io.h"
@@ -139,7 +140,7 @@ TEST(BakePlanesParse, RefusesMalformedPlanesNamingTheField) {
         const char* want;
     };
     const Case cases[] = {
-        {"{", "not valid JSON"},
+        {"{", "truncated JSON"},
         {R"({"planes": []})", "planes"},
         {R"({"planes": [{"name": "a b", "origin": [0,0,0], "a": [1,0,0], "b": [0,1,0], "size": [2,2]}]})", "name"},
         {R"({"planes": [{"name": "p", "origin": [0,0], "a": [1,0,0], "b": [0,1,0], "size": [2,2]}]})", "origin"},
@@ -165,6 +166,26 @@ TEST(BakePlanesParse, RefusesMalformedPlanesNamingTheField) {
             EXPECT_EQ(msg.rfind(dir.file("p.json"), 0), 0u) << msg;
             EXPECT_NE(msg.find(c.want), std::string::npos) << msg;
             EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+        }
+    }
+}
+
+// The planes file is read like a manifest: a FIFO (reading it would block until a writer comes, for ever) and a
+// device (/dev/zero never ends) are refused without being opened, a folder is named as one.
+TEST(BakePlanesParse, RefusesWhatIsNotARegularFile) {
+    TempDir dir;
+    ASSERT_EQ(::mkfifo(dir.file("fifo.json").c_str(), 0600), 0);
+    const std::pair<std::string, std::string> cases[] = {{dir.file("fifo.json"), "is not a regular file"},
+                                                         {"/dev/zero", "is not a regular file"},
+                                                         {dir.path().string(), "is a directory"},
+                                                         {dir.file("none.json"), "No such file"}};
+    for (const auto& [path, want] : cases) {
+        try {
+            (void)parse_bake_planes(path);
+            ADD_FAILURE() << "accepted " << path;
+        } catch (const IoError& e) {
+            EXPECT_EQ(std::string(e.what()).rfind(path + ": ", 0), 0u) << e.what();
+            EXPECT_NE(std::string(e.what()).find(want), std::string::npos) << e.what();
         }
     }
 }

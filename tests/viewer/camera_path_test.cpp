@@ -2,6 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
+#include <sys/stat.h>
+
+#include "common/temp_dir.h"
 
 #include "formats/image_io.h"
 #include "viewer/camera_path.h"
@@ -38,6 +41,26 @@ TEST(CameraPath, ExactAtKeysLinearBetween) {
     EXPECT_EQ(e, glm::dvec3(0, 0, 5));
 }
 
+// A camera path file is read like a manifest: a FIFO and a device are refused without being opened (the viewer
+// waited for ever on either), a folder is named as one.
+TEST(CameraPath, RefusesWhatIsNotARegularFile) {
+    objects_testing::TempDir dir;
+    ASSERT_EQ(::mkfifo(dir.file("fifo.json").c_str(), 0600), 0);
+    const std::pair<std::string, std::string> cases[] = {{dir.file("fifo.json"), "is not a regular file"},
+                                                         {"/dev/zero", "is not a regular file"},
+                                                         {dir.path().string(), "is a directory"},
+                                                         {dir.file("none.json"), "No such file"}};
+    for (const auto& [path, want] : cases) {
+        try {
+            (void)load_camera_path(path);
+            ADD_FAILURE() << "accepted " << path;
+        } catch (const IoError& e) {
+            EXPECT_EQ(std::string(e.what()).rfind(path + ": ", 0), 0u) << e.what();
+            EXPECT_NE(std::string(e.what()).find(want), std::string::npos) << e.what();
+        }
+    }
+}
+
 TEST(CameraPath, ErrorsNameTheFileAndField) {
     auto message = [](const std::string& text) {
         try {
@@ -47,7 +70,7 @@ TEST(CameraPath, ErrorsNameTheFileAndField) {
         }
         return std::string("no error");
     };
-    EXPECT_NE(message("{").find("bad.json: not valid JSON"), std::string::npos);
+    EXPECT_NE(message("{").find("bad.json: truncated JSON"), std::string::npos);
     EXPECT_NE(message(R"({"keys": []})").find("\"keys\""), std::string::npos);
     EXPECT_NE(message(R"({"keys": [{"t": 1, "orbit": [0,0,1]}]})").find("t = 0"), std::string::npos);
     EXPECT_NE(message(R"({"keys": [{"t": 0, "orbit": [0,0,1]}, {"t": 0, "orbit": [0,0,1]}]})").find("keys[1]"),
