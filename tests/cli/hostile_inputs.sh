@@ -414,7 +414,9 @@ camera "rtm: --eye and --look-at: eye (0.5,0.5,2) equals look-at (0.5,0.5,2)" --
 camera "rtm: --orbit: eye" --orbit 0,0,1e-300 # the eye lands on the centre
 camera "rtm: --up: up (0,0,1) is parallel to the view direction" --eye 0.5,0.5,3 --look-at 0.5,0.5,0 --up 0,0,1
 camera "rtm: --up: up (0,-2,0) is parallel to the view direction" --eye 0.5,3,0 --look-at 0.5,0.5,0 --up 0,-2,0
-camera "rtm: --orbit (with the default --up 0,1,0; give another --up): up (0,1,0) is parallel to the view direction" --orbit 30,90,2 # straight down the default up
+# straight down the default up, which the user did not give: the message names --orbit
+camera "rtm: --orbit (with the default --up 0,1,0; give another --up): up (0,1,0) is parallel to the view" \
+  --orbit 30,90,2
 camera "rtm: --up: up (0,0,0) is the zero vector" --eye 0.5,0.5,3 --up 0,0,0
 camera "rtm: --fov: expected degrees in (0, 180), found 0" --eye 0.5,0.5,3 --fov 0
 camera "rtm: --fov: expected degrees in (0, 180), found 180" --eye 0.5,0.5,3 --fov 180
@@ -422,7 +424,8 @@ camera "rtm: --fov: expected degrees in (0, 180), found -30" --eye 0.5,0.5,3 --f
 camera "rtm: --fov: expected degrees in (0, 180), found nan" --eye 0.5,0.5,3 --fov nan
 camera "rtm: --orbit: distance D must be > 0, found \"30,20,0\"" --orbit 30,20,0
 camera "rtm: --orbit: distance D must be > 0, found \"30,20,-2\"" --orbit 30,20,-2
-camera "rtm: --orbit: expected AZ,EL,D (three finite numbers separated by commas), found \"30,20,nan\"" --orbit 30,20,nan
+camera "rtm: --orbit: expected AZ,EL,D (three finite numbers separated by commas), found \"30,20,nan\"" \
+  --orbit 30,20,nan
 camera "rtm: --eye: the eye 1e+300,0,0 has a coordinate beyond +-1e30" --eye 1e300,0,0
 camera "rtm: --eye: expected X,Y,Z (three finite numbers separated by commas), found \"1?2,3\"" --eye 1$'\n'2,3
 camera "rtm: --orbit: the eye" --orbit 30,20,1e300
