@@ -122,10 +122,18 @@ std::vector<std::string> parse_relief_names(const std::string& text, const std::
 }
 
 void parse_size(const std::string& text, const std::string& flag, int& w, int& h) {
+    // Digits only on each side of the 'x' (no sign, no space), read as a number of any length and compared with the
+    // limit before any conversion to int: sscanf's %d wrapped 4294967297 to 1.
+    const auto side = [](const std::string& digits, int& out) {
+        if (digits.empty() || digits.size() > 9 ||
+            !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
+            return false;
+        out = std::stoi(digits);
+        return out >= 1 && out <= 16384;
+    };
+    const size_t x = text.find_first_of("xX");
     int a = 0, b = 0;
-    char x = 0, extra = 0;
-    if (std::sscanf(text.c_str(), "%d%c%d%c", &a, &x, &b, &extra) != 3 || (x != 'x' && x != 'X') || a <= 0 || b <= 0 ||
-        a > 16384 || b > 16384)
+    if (x == std::string::npos || !side(text.substr(0, x), a) || !side(text.substr(x + 1), b))
         throw UsageError(flag + ": expected WxH with 1 <= W, H <= 16384, found \"" + text + "\"");
     w = a;
     h = b;

@@ -61,6 +61,23 @@ int auto_level(const Camera& cam, const ReliefTexture& relief) {
                              pyramid_levels(relief.width, relief.height) - 1);
 }
 
+PrewarpExtent fit_texture_size(const PrewarpExtent& e, int width, int height, int max_size) {
+    // One axis: margins lo and hi beside n texels, at most max_size in all; cut in proportion (what is left of the
+    // budget goes to the larger side first, so the sum is exactly the budget).
+    const auto fit = [max_size](int n, int& lo, int& hi) {
+        const long long budget = std::max(0ll, (long long)max_size - n);
+        if ((long long)lo + hi <= budget) return;
+        const long long sum = (long long)lo + hi;
+        const int new_lo = int(budget * lo / sum);
+        hi = int(std::min<long long>(hi, budget - new_lo));
+        lo = new_lo;
+    };
+    PrewarpExtent f = e;
+    fit(width, f.left, f.right);
+    fit(height, f.bottom, f.top);
+    return f;
+}
+
 FramePlan plan_frame(const Camera& cam, RenderMethod method, const PrewarpOptions& options, const DrawOptions& d,
                      const ReliefTexture& relief, const LevelSource& level, const LastPrewarp& last,
                      const std::vector<double>* spreads) {
@@ -124,6 +141,13 @@ FramePlan plan_frame(const Camera& cam, RenderMethod method, const PrewarpOption
             p.prewarp.margin_cap = {seen.left, seen.right, seen.bottom, seen.top};
             extent = seen;
             margins_cut = true;
+        }
+    }
+    if (p.prewarp.keep_outliers && d.max_texture_size > 0) {
+        const PrewarpExtent fit = fit_texture_size(extent, t.width, t.height, d.max_texture_size);
+        if (fit != extent) {
+            p.prewarp.margin_cap = {fit.left, fit.right, fit.bottom, fit.top};
+            extent = fit;
         }
     }
     // The eye moved so little that no texel would move by more than the tolerance (and the last pre-warp holds the

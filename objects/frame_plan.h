@@ -38,6 +38,11 @@ struct DrawOptions {
     // Objects: warp the adjacent faces only where the face's own pre-warp left holes (the same image; off: whole, to
     // measure what it saves).
     bool adjacent_holes_only = true;
+    // The largest texture the texture-mapping stage takes (GL_MAX_TEXTURE_SIZE; 0: no limit). The margins that hold
+    // the side polygons' samples are cut so that the pre-warped texture fits: a 16384x1 relief, or a 4096^2 one seen
+    // at a grazing angle, asks for margins past it (every frame failed at the upload). Set by ReliefQuad::draw and
+    // draw_quad_frame from the renderer; not a skip (it always applies, and changes the picture only past the limit).
+    int max_texture_size = 0;
 };
 
 // Skip names, reported in --json "skips".
@@ -117,6 +122,10 @@ int pyramid_levels(int width, int height);
 // reaches behind the eye).
 int auto_level(const Camera& cam, const ReliefTexture& relief);
 
+// The margins `e` of a width x height pre-warp cut (each axis in proportion) so that the texture is at most
+// max_size texels a side: DrawOptions::max_texture_size.
+PrewarpExtent fit_texture_size(const PrewarpExtent& e, int width, int height, int max_size);
+
 // The frame's plan. `relief` is level 0; `method` is flat, two_pass or pipelined (else std::invalid_argument).
 // The rules, in order (each only with d.skips, except the level choice; the first and third also with d.cull):
 //   outside-frustum: the relief's bounds lie outside the view frustum -> nothing.
@@ -126,6 +135,7 @@ int auto_level(const Camera& cam, const ReliefTexture& relief);
 //          `relief`; computed here when null), else d.level clamped to the pyramid.
 //   subpixel-parallax: a warping method whose largest parallax on screen is below d.subpixel_parallax pixels -> flat.
 //   reuse-prewarp: the last pre-warp has the same setup and no texel moved by d.reuse_tolerance texels since -> reuse.
+// With side polygons, the margins are cut to d.max_texture_size (fit_texture_size) whatever d.skips says.
 FramePlan plan_frame(const Camera& cam, RenderMethod method, const PrewarpOptions& options, const DrawOptions& d,
                      const ReliefTexture& relief, const LevelSource& level, const LastPrewarp& last,
                      const std::vector<double>* spreads = nullptr);

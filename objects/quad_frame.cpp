@@ -32,11 +32,13 @@ void draw_quad_frame(std::vector<ReliefQuad>& quads, Renderer& renderer, const C
     quad_times.assign(n, {});
 
     // 1. Plans (serial: a plan may build the pyramid level it needs).
+    DrawOptions fitted = draw;
+    fitted.max_texture_size = renderer.max_texture_size();
     std::vector<FramePlan> plans(n);
     std::vector<long long> texels(n, 0);
     for (size_t i = 0; i < n; ++i) {
         const auto t0 = Clock::now();
-        plans[i] = quads[i].plan_draw(cam, method, options, draw);
+        plans[i] = quads[i].plan_draw(cam, method, options, fitted);
         reports[i].level = plans[i].level;
         reports[i].skips = plans[i].skips;
         if (plans[i].action == FrameAction::prewarp) {

@@ -131,7 +131,9 @@ double ReliefQuad::prewarp(const glm::dvec3& eye, const PrewarpOptions& options,
 void ReliefQuad::draw(Renderer& renderer, const Camera& cam, RenderMethod method, const PrewarpOptions& options,
                       StageTimes& times, const DrawOptions& d, DrawReport* report) {
     const auto t_start = Clock::now();
-    const FramePlan plan = plan_draw(cam, method, options, d);
+    DrawOptions fitted = d;
+    fitted.max_texture_size = renderer.max_texture_size();
+    const FramePlan plan = plan_draw(cam, method, options, fitted);
     DrawReport rep;
     rep.level = plan.level;
     rep.skips = plan.skips;

@@ -673,6 +673,12 @@ void Renderer::set_timed(bool timed) { impl_->timed = timed; }
 
 bool Renderer::timed() const { return impl_->timed; }
 
+int Renderer::max_texture_size() const {
+    GLint max_size = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+    return max_size;
+}
+
 ImageRGBA8 Renderer::read_pixels(int width, int height) {
     if (width <= 0 || height <= 0)
         throw std::invalid_argument("Renderer::read_pixels: size " + std::to_string(width) + "x" +

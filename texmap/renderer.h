@@ -122,6 +122,7 @@ public:
     void set_timed(bool timed);
     bool timed() const;
     ImageRGBA8 read_pixels(int width, int height);  // top row first
+    int max_texture_size() const;                   // GL_MAX_TEXTURE_SIZE of this context (16384 on llvmpipe)
 
 private:
     struct Impl;

@@ -106,4 +106,54 @@ RTM_IMAGEIO_MODULE=$T/bad_module.so expect_fail 1 'cannot load the image module 
 other=$(ldd "$RTM" | awk '/libstdc\+\+/ {print $3}')  # a shared library, but not the image module
 RTM_IMAGEIO_MODULE=$other expect_fail 1 'module .*libstdc.* is not this version.s \(no rtm_image_backend_v1\)' -- \
   prewarp --relief "$R" --eye 0.5,0.5,3 --out "$T/o_mod.png"
+
+# --- A new user's audit (session 41): each of these crashed, hung, wrote something or gave the wrong exit.
+# --size numbers past int are refused, not wrapped (4294967297 was read as 1 and a 1x1 image written).
+expect_fail 2 'size.*4294967297x1' -- render --relief "$R" --eye 0.5,0.5,3 --size 4294967297x1 --out "$T/a1.png"
+# --threads: 0 to 1024 in every subcommand (compare --threads 100000 crashed in TBB; render took -1).
+expect_fail 2 'threads.*100000' -- compare --relief "$R" --quick --threads 100000 --out "$T/a2"
+expect_fail 2 'threads.*-1' -- render --relief "$R" --eye 0.5,0.5,3 --threads -1 --out "$T/a3.png"
+expect_fail 2 'threads.*2147483647' -- prewarp --relief "$R" --eye 0.5,0.5,3 --threads 2147483647 --out "$T/a4.png"
+# A bad RTM_ISA is exit 2 before any work in every subcommand that pre-warps (compare left pictures behind).
+RTM_ISA=nonsense expect_fail 2 'RTM_ISA.*nonsense' -- render --relief "$R" --eye 0.5,0.5,3 --out "$T/a5.png"
+RTM_ISA=nonsense expect_fail 2 'RTM_ISA.*nonsense' -- compare --relief "$R" --quick --out "$T/a6"
+# An unwritable --json fails before the image is written (render, prewarp, diff).
+expect_fail 1 'json.*nofolder' -- render --relief "$R" --eye 0.5,0.5,3 --out "$T/a7.png" --json "$T/nofolder/j.json"
+expect_fail 1 'json.*nofolder' -- prewarp --relief "$R" --eye 0.5,0.5,3 --out "$T/a8.png" --json "$T/nofolder/j.json"
+expect_fail 1 'json.*nofolder' -- diff "$T/ok_render.png" "$T/ok_render.png" --heatmap "$T/a9.png" \
+  --json "$T/nofolder/j.json"
+expect_fail 2 'needs --out or --json' -- render --relief "$R" --eye 0.5,0.5,3
+for f in a1.png a2 a3.png a4.png a5.png a6 a7.png a8.png a9.png; do
+  [ -e "$T/$f" ] && { echo "FAIL: $T/$f left behind"; fails=$((fails + 1)); }
+done
+# --json through a link to a folder is refused and the link stays; through a link to a file, the file is written.
+mkdir -p "$T/realdir"
+ln -s realdir "$T/linkdir"
+expect_fail 1 'linkdir' -- render --relief "$R" --eye 0.5,0.5,3 --size 16x16 --out "$T/a10.png" --json "$T/linkdir"
+[ -L "$T/linkdir" ] || { echo "FAIL: the link to a folder was replaced"; fails=$((fails + 1)); }
+: >"$T/target.json"
+ln -s target.json "$T/link.json"
+expect_ok render --relief "$R" --eye 0.5,0.5,3 --size 16x16 --out "$T/a11.png" --json "$T/link.json"
+if [ -L "$T/link.json" ] && grep -q '"command"' "$T/target.json"; then
+  passes=$((passes + 1))
+else
+  echo "FAIL: --json through a link to a file: the link was replaced or the file not written"
+  fails=$((fails + 1))
+fi
+# A FIFO as a planes file or a camera path is refused at once (both waited for ever).
+mkfifo "$T/fifo.json"
+timeout 60 "$RTM" bake --mesh "$2/media/room.ply" --planes "$T/fifo.json" --out "$T/a12" 2>"$T/err"
+rc=$?
+if [ "$rc" != 1 ] || ! grep -q 'fifo.json: is not a regular file' "$T/err"; then
+  echo "FAIL: bake --planes FIFO: exit $rc (124: hung), $(cat "$T/err")"
+  fails=$((fails + 1))
+fi
+# Unknown subcommands are named; per-pixel methods on an object are a usage error.
+expect_fail 2 'unknown subcommand "frobnicate"' -- frobnicate
+expect_fail 2 'relief-mapping is not available for --object' -- render --object "$T/nope.object.json" --orbit 30,20,2.5 \
+  --method relief-mapping --out "$T/a13.png"
+# The eye is checked against the camera's +-1e30 limit in prewarp too; an eye in the relief's plane is a warning.
+expect_fail 2 'eye.*beyond' -- prewarp --relief "$R" --eye 1e300,0,1 --out "$T/a14.png"
+"$RTM" prewarp --relief "$R" --eye 0.2,0.1,0 --out "$T/a15.png" 2>"$T/err" && grep -q "relief's plane" "$T/err" ||
+  { echo "FAIL: prewarp with the eye in the relief plane: no warning ($(cat "$T/err"))"; fails=$((fails + 1)); }
 finish

@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cstdio>
+#include <cstdlib>
 
 #include "objects/frame_plan.h"
 #include "objects/bounds.h"
@@ -294,6 +297,53 @@ TEST(FramePlan, Names) {
     EXPECT_EQ(to_string(FrameAction::reuse), "reuse");
     EXPECT_EQ(to_string(TextureContent{TextureContent::Source::flat, 3}), "flat level 3");
     EXPECT_EQ(to_string(TextureContent{}), "none");
+}
+
+// The margins are cut to the largest texture (DrawOptions::max_texture_size) in proportion, each side never grows,
+// and what is left of the budget is used exactly; within the budget nothing changes. Exact integer arithmetic.
+TEST(FramePlan, MarginsAreCutToTheLargestTexture) {
+    EXPECT_EQ(fit_texture_size({10, 30, 5, 5}, 100, 50, 120), (PrewarpExtent{5, 15, 5, 5}));
+    EXPECT_EQ(fit_texture_size({10, 30, 5, 5}, 100, 50, 140), (PrewarpExtent{10, 30, 5, 5}));
+    EXPECT_EQ(fit_texture_size({3, 4, 864, 0}, 16384, 1, 16384), (PrewarpExtent{0, 0, 864, 0}));  // a 16384x1 relief
+    EXPECT_EQ(fit_texture_size({0, 0, 9000, 9000}, 64, 64, 16384), (PrewarpExtent{0, 0, 8160, 8160}));
+    const unsigned seed = 20261207;
+    std::printf("MarginsAreCutToTheLargestTexture: seed %u\n", seed);
+    std::srand(seed);
+    for (int i = 0; i < 10000; ++i) {
+        const int w = 1 + std::rand() % 300, h = 1 + std::rand() % 300, max = 1 + std::rand() % 600;
+        const PrewarpExtent e{std::rand() % 400, std::rand() % 400, std::rand() % 400, std::rand() % 400};
+        const PrewarpExtent f = fit_texture_size(e, w, h, max);
+        EXPECT_TRUE(f.left <= e.left && f.right <= e.right && f.bottom <= e.bottom && f.top <= e.top);
+        EXPECT_TRUE(f.left >= 0 && f.right >= 0 && f.bottom >= 0 && f.top >= 0);
+        for (const auto& [n, lo, hi, flo, fhi] : {std::array<int, 5>{w, e.left, e.right, f.left, f.right},
+                                                  std::array<int, 5>{h, e.bottom, e.top, f.bottom, f.top}}) {
+            const int budget = std::max(0, max - n);
+            if (lo + hi <= budget)
+                EXPECT_TRUE(flo == lo && fhi == hi);
+            else
+                EXPECT_EQ(flo + fhi, budget) << n << " " << lo << " " << hi << " " << max;
+        }
+    }
+}
+
+// The plan applies the cut to a relief seen at a grazing angle, with or without skips: the pre-warp it asks for fits.
+TEST(FramePlan, GrazingMarginsFitTheLargestTexture) {
+    const Relief r;
+    PrewarpOptions o;
+    o.keep_outliers = true;
+    const Camera cam = r.orbit(80, 3, 2.2);
+    const FramePlan free_plan = r.plan(cam, {}, RenderMethod::two_pass, {}, o);
+    const PrewarpExtent all = prewarp_extent(r.t, free_plan.k, free_plan.prewarp);
+    ASSERT_GT(all.left + all.right + all.bottom + all.top, 8) << "the view must ask for margins";
+    for (bool skips : {true, false}) {
+        DrawOptions d;
+        d.skips = skips;
+        d.max_texture_size = 36;  // 32 texels and 4 of margin along each axis
+        const FramePlan p = r.plan(cam, d, RenderMethod::two_pass, {}, o);
+        const PrewarpExtent e = prewarp_extent(r.t, p.k, p.prewarp);
+        EXPECT_LE(r.t.width + e.left + e.right, 36) << skips;
+        EXPECT_LE(r.t.height + e.bottom + e.top, 36) << skips;
+    }
 }
 
 }  // namespace

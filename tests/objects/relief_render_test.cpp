@@ -11,6 +11,7 @@
 #include "texmap/gl_context.h"
 #include "formats/image_io.h"
 #include "texmap/test_util.h"
+#include "texmap/camera_rig.h"
 
 namespace rtm {
 namespace {
@@ -45,6 +46,41 @@ TEST(ReliefRender, TwoPassMatchesGolden) {
     const ImageRGBA8 img = render(gl, quad, cam, RenderMethod::two_pass, o);
     const std::string verdict = test::check_golden("bumps32_two_pass", img, 2);
     EXPECT_TRUE(verdict.empty()) << verdict;
+}
+
+// A relief as long as the largest texture (16384x1, within the project's limits) keeps its side polygons' samples
+// only where the texture has room: every frame used to fail at the upload ("a 17248x3 texture exceeds
+// GL_MAX_TEXTURE_SIZE 16384"). Two-pass and pipelined draw it from an oblique view.
+TEST(ReliefRender, AReliefAsLongAsTheLargestTextureDrawsWithSidePolygons) {
+    Gl gl(64, 64);
+    const int n = gl.renderer->max_texture_size();
+    ASSERT_GE(n, 1024);
+    ImageRGBA8 color(n, 1);
+    ImageF displ(n, 1);
+    for (int x = 0; x < n; ++x) {
+        color.at(x, 0) = Rgba8{uint8_t(x * 7), uint8_t(x * 13), 200, 255};
+        displ.at(x, 0) = 0.02f * float(x % 5);
+    }
+    ReliefGeometry g;
+    g.a = glm::dvec3(1.0 / n, 0, 0);
+    g.b = glm::dvec3(0, 0.05, 0);  // tall texels: the strip is seen (its pixels are the test)
+    ReliefTexture t = make_relief(color, displ, 0.0, 0.08, g);
+    ReliefQuad quad(std::move(t));
+    PrewarpOptions o;
+    o.keep_outliers = true;
+    for (RenderMethod m : {RenderMethod::two_pass, RenderMethod::pipelined}) {
+        const Camera cam = aimed_camera(glm::dvec3(0.2, -0.05, 0.3), glm::dvec3(0.5, 0, 0), 64, 64);
+        RenderSettings rs;  // skips off: the pre-warp keeps every margin, not only those the view shows
+        rs.method = m;
+        rs.prewarp = o;
+        rs.draw.skips = false;
+        StageTimes st;
+        ImageRGBA8 img;
+        ASSERT_NO_THROW(img = render_relief_frame(quad, gl.renderer.get(), cam, rs, st)) << to_string(m);
+        long long covered_pixels = 0;
+        for (const Rgba8& p : img.pixels) covered_pixels += covered(p);
+        EXPECT_GT(covered_pixels, 0) << to_string(m);
+    }
 }
 
 TEST(ReliefRender, SidePolygonsCompleteObliqueSilhouettes) {
