@@ -2,6 +2,7 @@
 // frontal to grazing: time against error. Writes DIR/results.json, DIR/results.csv, DIR/compare.md, the pictures
 // under DIR/images/ and the page DIR/index.html (docs/COMPARE.md). With --mesh: a baked mesh against the mesh
 // (apps/cmd_compare_mesh.h).
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -62,7 +63,13 @@ void run_compare(const CompareArgs& a) {
     std::set<std::string> names;  // unique names: they name the image folders and the rows
     std::vector<CompareSource*> sources;
     for (auto& s : owned) {
-        const std::string base = s->name;
+        // Letters, digits, '-' and '_' only: the name is a folder under --out (images/NAME/), and a manifest's
+        // "name" such as "../../x" or "a/b" wrote pictures outside it.
+        std::string base = s->name;
+        for (char& c : base)
+            if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
+        if (base.empty()) base = "source";
+        s->name = base;
         for (int k = 2; names.count(s->name); ++k) s->name = base + "-" + std::to_string(k);
         names.insert(s->name);
         sources.push_back(s.get());

@@ -156,4 +156,13 @@ expect_fail 2 'relief-mapping is not available for --object' -- render --object 
 expect_fail 2 'eye.*beyond' -- prewarp --relief "$R" --eye 1e300,0,1 --out "$T/a14.png"
 "$RTM" prewarp --relief "$R" --eye 0.2,0.1,0 --out "$T/a15.png" 2>"$T/err" && grep -q "relief's plane" "$T/err" ||
   { echo "FAIL: prewarp with the eye in the relief plane: no warning ($(cat "$T/err"))"; fails=$((fails + 1)); }
+# A manifest's "name" names compare's image folder: "../../x" wrote pictures outside --out.
+mkdir -p "$T/esc/r" "$T/esc/out"
+cp "$T/r/c.ppm" "$T/r/d.pgm" "$T/esc/r/"
+sed 's/^{ /{ "name": "..\/..\/escaped", /' "$R" >"$T/esc/r/e.relief.json"
+expect_ok compare --relief "$T/esc/r/e.relief.json" --quick --size 16x16 --out "$T/esc/out/run"
+if [ -e "$T/esc/out/escaped" ] || [ ! -d "$T/esc/out/run/images/______escaped" ]; then
+  echo "FAIL: compare wrote outside --out for a manifest named ../../escaped: $(find "$T/esc" -maxdepth 4 -type d)"
+  fails=$((fails + 1))
+fi
 finish
