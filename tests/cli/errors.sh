@@ -150,8 +150,8 @@ if [ "$rc" != 1 ] || ! grep -q 'fifo.json: is not a regular file' "$T/err"; then
 fi
 # Unknown subcommands are named; per-pixel methods on an object are a usage error.
 expect_fail 2 'unknown subcommand "frobnicate"' -- frobnicate
-expect_fail 2 'relief-mapping is not available for --object' -- render --object "$T/nope.object.json" --orbit 30,20,2.5 \
-  --method relief-mapping --out "$T/a13.png"
+expect_fail 2 'relief-mapping is not available for --object' -- render --object "$T/nope.object.json" \
+  --orbit 30,20,2.5 --method relief-mapping --out "$T/a13.png"
 # The eye is checked against the camera's +-1e30 limit in prewarp too; an eye in the relief's plane is a warning.
 expect_fail 2 'eye.*beyond' -- prewarp --relief "$R" --eye 1e300,0,1 --out "$T/a14.png"
 "$RTM" prewarp --relief "$R" --eye 0.2,0.1,0 --out "$T/a15.png" 2>"$T/err" && grep -q "relief's plane" "$T/err" ||
