@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "formats/atomic_file.h"
@@ -18,6 +19,43 @@
 #include "formats/image_io.h"
 
 namespace rtm::cli {
+
+CLI::Validator non_negative_threshold() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            size_t used = 0;
+            double v = 0;
+            try {
+                v = std::stod(text, &used);
+            } catch (const std::exception&) {
+                used = 0;
+            }
+            if (used == 0 || used != text.size() || !std::isfinite(v) || v < 0)
+                return "expected a threshold >= 0 (world units), found \"" + text + "\"";
+            return "";
+        },
+        "T >= 0");
+}
+
+CLI::Validator frame_index() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            const bool digits = !text.empty() && text.size() <= 10 &&
+                                std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+            if (!digits || std::stoll(text) > std::numeric_limits<int>::max())
+                return "expected a frame number K >= 0, found \"" + text + "\"";
+            return "";
+        },
+        "K >= 0");
+}
+
+CLI::Validator non_empty_list() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            return text.empty() ? "expected a comma-separated list, found an empty one" : "";
+        },
+        "LIST");
+}
 
 CLI::Option* add_threads_option(CLI::App& app, int& threads, const std::string& what) {
     return app.add_option("--threads", threads, what + " (0 = all; at most " + std::to_string(kMaxThreads) + ")")
@@ -222,6 +260,18 @@ void check_output_file(const std::string& path, const std::string& flag) {
     const AtomicFile probe(path);
     if (!std::ofstream(probe.temp_path()))
         throw IoError(flag + " " + path + ": cannot write in folder " + dir.string());
+}
+
+void make_output_folder(const std::string& path, const std::string& flag) {
+    namespace fs = std::filesystem;
+    if (path.empty()) throw UsageError(flag + ": expected a folder, found an empty name");
+    std::error_code ec;
+    fs::create_directories(path, ec);
+    if (ec || !fs::is_directory(path))
+        throw IoError(flag + " " + path + ": cannot create the output folder" +
+                      (ec                 ? ": " + ec.message()
+                       : fs::exists(path) ? ": it exists and is not a folder"
+                                          : ""));
 }
 
 void write_json(const std::string& path, const nlohmann::json& j) { write_text_atomically(path, j.dump(2) + "\n"); }

@@ -51,6 +51,14 @@ ReliefTexture apply_output_scale(ReliefTexture relief, int factor, const std::st
 constexpr int kMaxThreads = 1024;
 CLI::Option* add_threads_option(CLI::App& app, int& threads, const std::string& what = "Threads");
 
+// Validators of what the user typed (CLI11 runs them on given values only, so a default such as -1 for "not given"
+// never reaches them, and typing it is refused): a finite threshold >= 0 (--discontinuity), a frame index 0..2^31-1
+// (--camera-path K). The message names the value as typed.
+CLI::Validator non_negative_threshold();
+CLI::Validator frame_index();
+// A list option given empty ("--sizes ''") is refused rather than read as not given (the default set ran).
+CLI::Validator non_empty_list();
+
 struct CameraArgs {
     std::string eye, orbit, look_at, up = "0,1,0", size = "512x512";
     double fov = 45.0;
@@ -65,6 +73,10 @@ void write_json(const std::string& path, const nlohmann::json& j);
 // For a long job that writes `path` at its end: throws IoError naming the file (given by `flag`) if its folder does
 // not exist or cannot be written, so that the job does not run for nothing.
 void check_output_file(const std::string& path, const std::string& flag);
+
+// Creates the folder `path` given by `flag` (and its parents) for a job's outputs. Throws UsageError for an empty
+// name and IoError "FLAG PATH: cannot create the output folder: REASON" when it cannot be made.
+void make_output_folder(const std::string& path, const std::string& flag = "--out");
 
 // Statistics over repeated timings.
 nlohmann::json timing_json(std::vector<double> ms);

@@ -124,13 +124,16 @@ void add_bench_command(CLI::App& app) {
     CLI::App* sub = app.add_subcommand("bench", "Pre-warp throughput against the memory bound, and Table 1");
     sub->add_option("--json", a->json, "Write the figures as JSON");
     sub->add_flag("--full", a->full, "All sizes up to 4096^2 (default: 128^2 to 1024^2, about a minute)");
-    sub->add_option("--sizes", a->sizes, "Texture sizes, e.g. 256,1024 (overrides the default set)");
-    sub->add_option("--reliefs", a->reliefs, "Procedural reliefs, e.g. bumps,bricks,ridges");
-    sub->add_option("--methods", a->methods, "Reconstructions, e.g. two-pass,pipelined (default both)");
-    sub->add_option("--threads", a->threads, "Thread counts of the fast kernels, e.g. 1,2");
+    sub->add_option("--sizes", a->sizes, "Texture sizes, e.g. 256,1024 (overrides the default set)")
+        ->check(non_empty_list());
+    sub->add_option("--reliefs", a->reliefs, "Procedural reliefs, e.g. bumps,bricks,ridges")->check(non_empty_list());
+    sub->add_option("--methods", a->methods, "Reconstructions, e.g. two-pass,pipelined (default both)")
+        ->check(non_empty_list());
+    sub->add_option("--threads", a->threads, "Thread counts of the fast kernels, e.g. 1,2")->check(non_empty_list());
     sub->add_option("--isa", a->isa,
                     "SIMD targets to measure side by side, e.g. avx512,avx3,avx2,sse4,generic (default: "
-                    "auto, i.e. RTM_ISA or the fastest)");
+                    "auto, i.e. RTM_ISA or the fastest)")
+        ->check(non_empty_list());
     sub->add_option("--min-time", a->min_time, "Seconds of repeats per measurement (default 0.25)")
         ->each([a](const std::string&) { a->min_time_given = true; });
     sub->add_option("--discontinuity", a->discontinuity,

@@ -31,7 +31,7 @@ void run(const Args& a) {
     if (!a.reliefs.empty()) o.reliefs = parse_relief_names(a.reliefs, "--reliefs");
     o.progress = [](const std::string& s) { std::fprintf(stderr, "%s\n", s.c_str()); };
     if (!a.out.empty()) {
-        std::filesystem::create_directories(a.out);
+        make_output_folder(a.out);
         o.on_image = [&](const std::string& relief, const std::string& view, const std::string& what,
                          const ImageRGBA8& img) {
             write_rgba8((std::filesystem::path(a.out) / (relief + "_" + view + "_" + what + ".png")).string(), img);
@@ -59,7 +59,8 @@ void run(const Args& a) {
 void add_bench_filter_command(CLI::App& app) {
     auto a = std::make_shared<Args>();
     CLI::App* sub = app.add_subcommand("bench-filter", "Coverage (Fant-style) against point filtering: time and error");
-    sub->add_option("--reliefs", a->reliefs, "Procedural reliefs, e.g. bricks,ridges (default: all four)");
+    sub->add_option("--reliefs", a->reliefs, "Procedural reliefs, e.g. bricks,ridges (default: all four)")
+        ->check(non_empty_list());
     sub->add_option("--size", a->size, "Relief size in texels")->capture_default_str();
     sub->add_option("--samples", a->samples, "Truth rays per pixel side")->capture_default_str();
     sub->add_option("--repeat", a->repeat, "Timed pre-warps per measurement")->capture_default_str();

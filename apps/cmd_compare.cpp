@@ -75,9 +75,7 @@ void run_compare(const CompareArgs& a) {
         sources.push_back(s.get());
     }
 
-    std::error_code ec;
-    std::filesystem::create_directories(a.out, ec);
-    if (ec || !std::filesystem::is_directory(a.out)) throw IoError(a.out + ": cannot create the output folder");
+    make_output_folder(a.out);
     check_output_file(a.out + "/results.json", "--out");
     o.out_dir = a.out;
     o.on_progress = [](size_t done, size_t total, const std::string& what) {
@@ -111,7 +109,8 @@ void run_compare(const CompareArgs& a) {
         }
     write_compare_page(page);
     std::printf("%s", md.c_str());
-    std::fprintf(stderr, "compare: wrote %s/index.html, results.csv, results.json\n", a.out.c_str());
+    std::fprintf(stderr, "compare: wrote %s, results.csv, results.json\n",
+                 (std::filesystem::path(a.out) / "index.html").lexically_normal().string().c_str());
 }
 
 }  // namespace
@@ -127,7 +126,8 @@ void add_compare_command(CLI::App& app) {
                     "A mesh: bake it (or take --object) and compare the object with the mesh over 32 views");
     sub->add_option("--discontinuity", a->mesh.discontinuity,
                     "With --mesh: re-mark every face's discontinuities (world units, 0 = none); default: the "
-                    "manifest's");
+                    "manifest's")
+        ->check(non_negative_threshold());
     auto* texels = sub->add_option("--texels", a->mesh.texels, "With --mesh: bake texels along the box's longest side")
                        ->capture_default_str();
     sub->add_flag("--no-images", a->mesh.no_images, "With --mesh: only the table");

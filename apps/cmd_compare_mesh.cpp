@@ -18,12 +18,6 @@ namespace {
 
 nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
-void make_output_folder(const std::string& out) {
-    std::error_code ec;
-    std::filesystem::create_directories(out, ec);
-    if (ec || !std::filesystem::is_directory(out)) throw IoError(out + ": cannot create the output folder");
-}
-
 }  // namespace
 
 // --mesh: the object baked from the mesh (OUT/object/NAME.object.json, or --object) against the mesh itself.

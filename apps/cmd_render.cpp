@@ -178,7 +178,7 @@ void add_render_command(CLI::App& app) {
     sub->add_option("--object", a->object, "Six-face object manifest (NAME.object.json)");
     sub->add_option("--scene", a->scene, "Scene manifest (NAME.scene.json): relief quads and polygons");
     sub->add_option("--camera-path", a->path_frame, "Scene: render frame K of the scene's camera path")
-        ->check(CLI::NonNegativeNumber);
+        ->check(frame_index());
     sub->add_option("--frames", a->frames_dir, "Scene: render every frame of its camera path into DIR");
     sub->add_option("--mesh", a->mesh, "A mesh (any file assimp reads), rendered with conventional OpenGL");
     a->camera.add_to(*sub);
@@ -205,7 +205,8 @@ void add_render_command(CLI::App& app) {
     sub->add_flag("--no-sidewalls", a->no_sidewalls, "Drop samples that leave the quad (no side polygons)");
     sub->add_flag("--depth-correction", a->depth_correction, "Per-fragment depth from the perceived displacement");
     sub->add_option("--discontinuity", a->discontinuity,
-                    "Depth threshold (world units) marking surface discontinuities; 0 = off; default: the manifest's");
+                    "Depth threshold (world units) marking surface discontinuities; 0 = off; default: the manifest's")
+        ->check(non_negative_threshold());
     sub->callback([a, method] {
         a->method_given = method->count() > 0;
         run_render(*a);

@@ -89,11 +89,7 @@ void run_render_scene(const SceneRenderArgs& a) {
         if (const std::string why = c.validate(); !why.empty()) throw IoError(a.scene + ": camera: " + why);
         c.fit_clip_planes(bounds.centre(), bounds.radius());
     }
-    if (!a.frames_dir.empty()) {
-        std::error_code ec;
-        std::filesystem::create_directories(a.frames_dir, ec);
-        if (ec) throw IoError(a.frames_dir + ": cannot create folder: " + ec.message());
-    }
+    if (!a.frames_dir.empty()) make_output_folder(a.frames_dir, "--frames");
 
     PrewarpOptions opt;
     opt.keep_outliers = !a.no_sidewalls;

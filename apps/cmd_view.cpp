@@ -169,7 +169,8 @@ void add_view_command(CLI::App& app) {
     sub->add_option("--filter", a->filter, "Pre-warp resampling: point or coverage (two-pass only)")
         ->capture_default_str();
     add_threads_option(*sub, a->threads, "Pre-warp threads");
-    sub->add_option("--discontinuity", a->discontinuity, "Mark discontinuities with this threshold");
+    sub->add_option("--discontinuity", a->discontinuity, "Mark discontinuities with this threshold")
+        ->check(non_negative_threshold());
     sub->add_flag("--no-sidewalls", a->no_sidewalls, "Do not draw the side polygons");
     sub->add_flag("--depth-correction", a->depth_correction, "Per-fragment depth from the displacement");
     sub->add_flag("--no-skips", a->no_skips, "Always pre-warp and upload everything");

@@ -31,6 +31,8 @@ std::string truncate(std::string s, size_t n) {
 
 void fail(const std::string& path, const std::string& what) { throw_io_error(path, what); }
 
+double largest_coordinate(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
+
 std::string fmt_double(double v) {
     if (std::isnan(v)) return "nan";
     if (std::isinf(v)) return v > 0 ? "inf" : "-inf";

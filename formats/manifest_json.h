@@ -15,6 +15,16 @@ namespace rtm::manifest_json {
 
 using nlohmann::json;
 
+// The project's coordinate limit (docs/DESIGN.md, "Input limits", as the CLI's camera flags): past it, squared
+// lengths in the camera's checks overflow and rendering has no digits left for the scene.
+inline constexpr double kMaxCoordinate = 1e30;
+// The smallest extent of a quad (or box) relative to its largest coordinate (docs/DESIGN.md, "Input limits"). A
+// camera about the quad sits a few sides from it, and Camera::check (texmap/camera.cpp) refuses an eye that equals
+// the point looked at within 1e-12 of their distance from the origin: 1e-9 leaves a factor of several hundred for
+// orbits and eyes closer than a side, and keeps texel positions (origin + u a + v b) far above double rounding.
+inline constexpr double kCoordinatePerMinExtent = 1e9;
+double largest_coordinate(const glm::dvec3& v);  // max |component|; NaN compares false against any limit
+
 // Throws rtm::IoError "<path>: <what>", control characters shown as '?' so the message stays one line.
 [[noreturn]] void fail(const std::string& path, const std::string& what);
 std::string fmt_double(double v);  // shortest round-trip form; nan, inf, -inf

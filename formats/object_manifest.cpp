@@ -23,6 +23,25 @@ using namespace manifest_json;
 
 const char* kAxisNames[3] = {"x", "y", "z"};
 
+// The coordinate limit and the smallest extent relative to the largest coordinate (manifest_json.h) hold for the box,
+// as each of its faces is a relief.
+// What is wrong with the box's size and place (min < max is checked before), or an empty string.
+std::string box_problem(const Box& box) {
+    if (!(largest_coordinate(box.lo) <= kMaxCoordinate))
+        return "field \"min\" " + fmt_vec(box.lo) + " has a coordinate beyond +-1e30";
+    if (!(largest_coordinate(box.hi) <= kMaxCoordinate))
+        return "field \"max\" " + fmt_vec(box.hi) + " has a coordinate beyond +-1e30";
+    const double largest = std::max(largest_coordinate(box.lo), largest_coordinate(box.hi));
+    const glm::dvec3 ext = box.hi - box.lo;
+    for (int i = 0; i < 3; ++i)
+        if (!(ext[i] >= largest / kCoordinatePerMinExtent))
+            return std::string("the extent ") + fmt_double(ext[i]) + " along " + kAxisNames[i] +
+                   " is lost in rounding at the box's coordinates: every extent must be at least 1e-9 times the "
+                   "largest |coordinate| " +
+                   fmt_double(largest) + ", that is " + fmt_double(largest / kCoordinatePerMinExtent);
+    return {};
+}
+
 std::string face_where(int f) { return std::string("face \"") + kFaceKeys[size_t(f)] + "\": "; }
 
 std::string default_name(const std::string& path) {
@@ -134,6 +153,7 @@ ObjectManifest parse_object_manifest(const std::string& path) {
             fail(path, std::string("field \"box\" must have min < max on every axis, found min ") + fmt_vec(m.box.lo) +
                            " and max " + fmt_vec(m.box.hi) + " (axis " + kAxisNames[i] + ")");
     }
+    if (const std::string why = box_problem(m.box); !why.empty()) fail(path, "field \"box\": " + why);
     const json& faces = required(path, j, "", "faces", "an object with the six faces \"+x\" ... \"-z\"");
     if (!faces.is_object())
         fail(path, "field \"faces\" must be an object with the six faces \"+x\" ... \"-z\", found " + describe(faces));
@@ -222,6 +242,7 @@ void write_object_manifest(const std::string& path, const std::string& name, con
     for (int i = 0; i < 3; ++i)
         if (!(ext[i] > 0.0) || !std::isfinite(ext[i]) || !std::isfinite(box.lo[i]))
             fail(path, "cannot write: box must have finite min < max on every axis, found " + box.to_string());
+    if (const std::string why = box_problem(box); !why.empty()) fail(path, "cannot write: box: " + why);
     double spacing[3] = {0, 0, 0};
     int spacing_face[3] = {-1, -1, -1};
     for (int f = 0; f < kFaceCount; ++f) {

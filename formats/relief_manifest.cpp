@@ -43,6 +43,9 @@ using manifest_json::fail;
 using manifest_json::fmt_double;
 using manifest_json::fmt_list;
 using manifest_json::fmt_vec;
+using manifest_json::kCoordinatePerMinExtent;
+using manifest_json::kMaxCoordinate;
+using manifest_json::largest_coordinate;
 using manifest_json::truncate;
 
 // The manifest's text, after checking the file itself.
@@ -164,6 +167,8 @@ glm::dvec3 scaled(const glm::dvec3& v) {
 }
 
 void check_geometry(const std::string& path, const ReliefGeometry& g) {
+    if (!(largest_coordinate(g.origin) <= kMaxCoordinate))
+        fail(path, "field \"origin\" " + fmt_vec(g.origin) + " has a coordinate beyond +-1e30");
     const glm::dvec3 a = scaled(g.a), b = scaled(g.b);
     if (a == glm::dvec3(0.0))
         fail(path, "field \"a\" has zero length, expected a nonzero texel step vector, found " + fmt_vec(g.a));
@@ -199,6 +204,26 @@ std::string resolve(const std::string& manifest_path, const std::string& file) {
 }
 
 std::string size_str(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
+
+// The quad of a w x h texture: its corners within the coordinate limit, its sides not lost in rounding at its
+// origin (kCoordinatePerMinExtent).
+void check_quad(const std::string& path, const ReliefGeometry& g, int w, int h) {
+    const glm::dvec3 aw = g.a * double(w), bh = g.b * double(h);
+    const std::pair<const char*, glm::dvec3> corners[] = {{"origin + width * a", g.origin + aw},
+                                                          {"origin + height * b", g.origin + bh},
+                                                          {"origin + width * a + height * b", g.origin + aw + bh}};
+    for (const auto& [name, c] : corners)
+        if (!(largest_coordinate(c) <= kMaxCoordinate))
+            fail(path, std::string("the quad's corner ") + name + " = " + fmt_vec(c) +
+                           " has a coordinate beyond +-1e30" + " (the texture is " + size_str(w, h) + ")");
+    const double side_a = glm::length(aw), side_b = glm::length(bh);
+    const double least = largest_coordinate(g.origin) / kCoordinatePerMinExtent;
+    if (!(std::min(side_a, side_b) >= least))
+        fail(path, "the quad's extent " + fmt_double(std::min(side_a, side_b)) + " is lost in rounding at origin " +
+                       fmt_vec(g.origin) + ": |a| * width (" + fmt_double(side_a) + ") and |b| * height (" +
+                       fmt_double(side_b) + ") must each be at least 1e-9 times the origin's largest coordinate, " +
+                       fmt_double(least));
+}
 
 }  // namespace
 
@@ -255,6 +280,7 @@ ReliefTexture load_relief(const std::string& manifest_path, ReliefManifest* mani
     if (disp.width != color.width || disp.height != color.height)
         fail(manifest_path, "displacement image " + disp_name + " is " + size_str(disp.width, disp.height) +
                                 " but color " + color_name + " is " + size_str(color.width, color.height));
+    check_quad(manifest_path, m.geometry, color.width, color.height);
 
     // Normalized 0..1 onto displacement_range, in world units along +f.
     const double span = m.range_max - m.range_min;
@@ -278,6 +304,10 @@ ReliefTexture load_relief(const std::string& manifest_path, ReliefManifest* mani
             world.at(x, row) = d;
         }
     }
+    // After the texels, so that a range beyond single precision is named as such.
+    if (!(std::max(std::abs(m.range_min), std::abs(m.range_max)) <= kMaxCoordinate))
+        fail(manifest_path, "field \"displacement_range\" [" + fmt_double(m.range_min) + ", " +
+                                fmt_double(m.range_max) + "] reaches beyond the coordinate limit +-1e30");
 
     ReliefTexture t;
     try {

@@ -4,6 +4,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
@@ -31,6 +32,49 @@ double get_number(const std::string& path, const json& j, const std::string& whe
     return v.get<double>();
 }
 
+bool within_limit(const glm::dvec3& v) { return largest_coordinate(v) <= kMaxCoordinate; }
+
+// `what` (e.g. "field \"eye\" ") is v; fails naming it when a coordinate lies beyond the limit.
+void check_coordinates(const std::string& path, const std::string& where, const std::string& what,
+                       const glm::dvec3& v) {
+    if (!within_limit(v)) fail(path, where + what + fmt_vec(v) + " has a coordinate beyond +-1e30");
+}
+
+// get_vec3, within the coordinate limit.
+glm::dvec3 get_point(const std::string& path, const json& j, const std::string& where, const char* key) {
+    const glm::dvec3 v = get_vec3(path, j, where, key);
+    check_coordinates(path, where, std::string("field \"") + key + "\" ", v);
+    return v;
+}
+
+// A quad given by 4 coplanar points (the first three not collinear, unit normal n) must be strictly convex: the
+// cross products of consecutive edges all point along n. The tolerance is on the sine of each corner's turn,
+// |e_i x e_i+1| . n / (|e_i| |e_i+1|) > 1e-9: relative to the edge lengths, so independent of the quad's size, far
+// above double rounding (1e-16 of the coordinates) and far below any corner a person draws (1e-9 radians). Returns
+// what is wrong, or an empty string.
+std::string convexity_problem(const std::vector<glm::dvec3>& v, const glm::dvec3& n) {
+    constexpr double kMinTurn = 1e-9;
+    double turn[4];
+    int forward = 0, backward = 0;
+    for (size_t i = 0; i < 4; ++i) {
+        const glm::dvec3 e0 = v[(i + 1) % 4] - v[i], e1 = v[(i + 2) % 4] - v[(i + 1) % 4];
+        const double l0 = glm::length(e0), l1 = glm::length(e1);
+        if (!(l0 > 0))
+            return "vertices " + std::to_string(i) + " and " + std::to_string((i + 1) % 4) + " are the same point";
+        turn[i] = glm::dot(glm::cross(e0, e1), n) / (l0 * l1);  // the corner at vertex i + 1
+        forward += turn[i] > kMinTurn;
+        backward += turn[i] < -kMinTurn;
+    }
+    for (size_t i = 0; i < 4; ++i)
+        if (!(std::abs(turn[i]) > kMinTurn))
+            return "its corner at vertex " + std::to_string((i + 1) % 4) + " is straight";
+    if (forward == 2 && backward == 2) return "its edges cross (a bow-tie: vertices in the wrong order)";
+    for (size_t i = 0; i < 4; ++i)
+        if ((turn[i] > 0) == (forward == 1))
+            return "its corner at vertex " + std::to_string((i + 1) % 4) + " bends inward";
+    return {};
+}
+
 SceneTransform parse_transform(const std::string& path, const json& item, const std::string& where) {
     SceneTransform t;
     auto it = item.find("transform");
@@ -38,10 +82,14 @@ SceneTransform parse_transform(const std::string& path, const json& item, const 
     const json& tj = *it;
     if (!tj.is_object()) fail(path, where + "field \"transform\" must be an object, found " + describe(tj));
     const std::string w = where + "transform: ";
-    if (tj.contains("translate")) t.translate = get_vec3(path, tj, w, "translate");
+    if (tj.contains("translate")) t.translate = get_point(path, tj, w, "translate");
     if (tj.contains("scale")) {
         t.scale = get_number(path, tj, w, "scale", "a finite number > 0");
         if (!(t.scale > 0)) fail(path, w + "field \"scale\" must be > 0, found " + fmt_double(t.scale));
+        // Squared lengths of the scaled axes must neither overflow nor underflow (the placement's similarity check),
+        // and a unit-sized item scaled past 1e30 lies beyond the coordinate limit.
+        if (!(t.scale >= 1.0 / kMaxCoordinate && t.scale <= kMaxCoordinate))
+            fail(path, w + "field \"scale\" must be within 1e-30..1e30, found " + fmt_double(t.scale));
     }
     if (auto r = tj.find("rotate"); r != tj.end()) {
         // One rotation [ax, ay, az, deg] or a list of them.
@@ -66,14 +114,21 @@ SceneTransform parse_transform(const std::string& path, const json& item, const 
 SceneCameraKey parse_camera(const std::string& path, const json& j, const std::string& where) {
     if (!j.is_object()) fail(path, where + "must be an object, found " + describe(j));
     SceneCameraKey c;
-    c.eye = get_vec3(path, j, where, "eye");
-    c.look_at = get_vec3(path, j, where, "look_at");
-    if (j.contains("up")) c.up = get_vec3(path, j, where, "up");
+    c.eye = get_point(path, j, where, "eye");
+    c.look_at = get_point(path, j, where, "look_at");
+    if (j.contains("up")) c.up = get_point(path, j, where, "up");
     if (j.contains("fov")) c.fov_deg = get_number(path, j, where, "fov", "degrees in (0, 180)");
     if (!(c.fov_deg > 0 && c.fov_deg < 180))
         fail(path, where + "field \"fov\" must be in (0, 180) degrees, found " + fmt_double(c.fov_deg));
     const glm::dvec3 d = c.look_at - c.eye;
-    if (!(glm::length(d) > 1e-12)) fail(path, where + "\"eye\" and \"look_at\" are the same point " + fmt_vec(c.eye));
+    // Relative, as the camera's own check (Camera::check, texmap/camera.cpp): far from the origin, two points
+    // closer than rounding can tell apart are the same point.
+    const double scale = std::max({glm::length(c.eye), glm::length(c.look_at), 1.0});
+    if (!(glm::length(d) > 1e-12 * scale)) {
+        if (c.eye == c.look_at) fail(path, where + "\"eye\" and \"look_at\" are the same point " + fmt_vec(c.eye));
+        fail(path, where + "\"eye\" " + fmt_vec(c.eye) + " and \"look_at\" " + fmt_vec(c.look_at) +
+                       " are the same point within rounding (closer than 1e-12 of their distance from the origin)");
+    }
     if (!(glm::length(glm::cross(d, c.up)) > 1e-12 * glm::length(d) * glm::length(c.up)))
         fail(path, where + "\"up\" " + fmt_vec(c.up) + " is parallel to the view direction");
     return c;
@@ -98,8 +153,12 @@ SceneItem parse_item(const std::string& path, const json& j, size_t index) {
         const glm::dmat4 m = item.transform.matrix();
         for (size_t i = 0; i < vs.size(); ++i) {
             const json holder = {{"vertex", vs[i]}};
-            const glm::dvec3 p = get_vec3(path, holder, where + "vertices[" + std::to_string(i) + "]: ", "vertex");
-            item.vertices.push_back(glm::dvec3(m * glm::dvec4(p, 1.0)));
+            const std::string vertex = "vertices[" + std::to_string(i) + "]";
+            const glm::dvec3 p = get_vec3(path, holder, where + vertex + ": ", "vertex");
+            check_coordinates(path, where, vertex + " ", p);
+            const glm::dvec3 placed(m * glm::dvec4(p, 1.0));
+            check_coordinates(path, where, vertex + " " + fmt_vec(p) + " placed by the transform at ", placed);
+            item.vertices.push_back(placed);
         }
         const glm::dvec3 n = glm::cross(item.vertices[1] - item.vertices[0], item.vertices[2] - item.vertices[0]);
         if (!(glm::length(n) > 0)) fail(path, where + "the polygon's first three vertices are collinear");
@@ -108,6 +167,8 @@ SceneItem parse_item(const std::string& path, const json& j, size_t index) {
             const double off = std::abs(glm::dot(item.vertices[3] - item.vertices[0], un));
             const double size = glm::length(item.vertices[2] - item.vertices[0]);
             if (off > 1e-6 * size) fail(path, where + "the polygon's fourth vertex is off the plane of the others");
+            if (const std::string why = convexity_problem(item.vertices, un); !why.empty())
+                fail(path, where + "the polygon is not convex: " + why);
         }
         if (j.contains("color")) {
             const std::vector<double> c = get_numbers(path, j, where, "color", 3, "[r, g, b], each in 0..1");

@@ -14,8 +14,9 @@
 // non-zero axis through the origin, right-handed, degrees), then the translation. Relief quads and six-face
 // objects keep their shape (a similarity), so displacements scale with `scale`; a mesh (any file assimp reads) has
 // its vertices transformed. Polygons are convex, planar, 3 or 4 vertices, colour
-// components in 0..1. Unknown fields are ignored, malformed ones rejected: every error is an rtm::IoError, one line
-// that starts with the scene manifest's path and names the item and the field.
+// components in 0..1. Every point (translate, vertices before and after the transform, camera eye, look_at, up) lies
+// within +-1e30 per coordinate, and scale within 1e-30..1e30. Unknown fields are ignored, malformed ones rejected:
+// every error is an rtm::IoError, one line that starts with the scene manifest's path and names the item and the field.
 #pragma once
 
 #include <glm/mat4x4.hpp>

@@ -155,6 +155,20 @@ TEST(ObjectManifest, HostileManifestsGiveOneLineNamingTheFaceAndField) {
         {"bad discontinuity", "\"discontinuity\": 0.05", "\"discontinuity\": -1", {"face \"+z\"", "discontinuity"}},
         {"flat box", "\"max\": [1.0, 1.0, 0.5]", "\"max\": [1.0, 0.0, 0.5]", {"box", "min < max"}},
         {"box not numbers", "\"max\": [1.0, 1.0, 0.5]", "\"max\": [1.0, 1.0]", {"box", "\"max\""}},
+        // The coordinate limit (+-1e30), named before any face's frame is made of the box.
+        {"box beyond the limit",
+         "\"min\": [-1.0, 0.0, 0.0], \"max\": [1.0, 1.0, 0.5]",
+         "\"min\": [-1e300, -1e300, -1e300], \"max\": [1e300, 1e300, 1e300]",
+         {"field \"box\": field \"min\" [-1e+300, -1e+300, -1e+300] has a coordinate beyond +-1e30"}},
+        {"box max just beyond the limit",
+         "\"max\": [1.0, 1.0, 0.5]",
+         "\"max\": [1.0, 1.0, 2e30]",
+         {"field \"box\": field \"max\" [1.0, 1.0, 2e+30] has a coordinate beyond +-1e30"}},
+        // Each face is a relief: its sides must be at least 1e-9 of the largest coordinate (the relief's rule).
+        {"box extent lost in rounding",
+         "\"max\": [1.0, 1.0, 0.5]",
+         "\"max\": [1e30, 1.0, 0.5]",
+         {"field \"box\": the extent 1.0 along y is lost in rounding", "1e-9", "1e+30", "1e+21"}},
         {"missing image", "good_nx_disp.png", "nothing.png", {"face \"-x\"", "nothing.png"}},
         {"truncated", text, text.substr(0, text.size() / 2), {"truncated JSON"}},
     };
@@ -203,7 +217,23 @@ TEST(ObjectManifest, WriterRefusesWhatTheReaderWould) {
     faces = test_faces();
     faces[1].color = ImageRGBA8(3, 8);
     expect_io_error([&] { write_object_manifest(path, "w", kBox, faces); }, path, {"face \"-x\""}, "size");
+    const Box far{{-1, 0, 0}, {1, 1, 2e30}};
+    expect_io_error([&] { write_object_manifest(path, "w", far, test_faces()); }, path,
+                    {"cannot write: box: field \"max\" [1.0, 1.0, 2e+30] has a coordinate beyond +-1e30"}, "far");
     EXPECT_FALSE(fs::exists(path));
+}
+
+// Far from the origin, within the rule (every extent >= 1e-9 of the largest coordinate), a box loads: the test box
+// moved to x = 1e8 (its thinnest extent 0.5 against the rule's 0.1).
+TEST(ObjectManifest, BoxFarFromTheOriginWithinTheRuleLoads) {
+    TempDir dir;
+    const std::string path = (dir.path() / "far.object.json").string();
+    const glm::dvec3 shift(1e8, 0, 0);
+    const Box far{kBox.lo + shift, kBox.hi + shift};
+    write_object_manifest(path, "far", far, test_faces());
+    const SixFaceObject obj = load_object(path);
+    EXPECT_EQ(obj.box.lo, far.lo);
+    EXPECT_EQ(obj.faces[0].geometry.origin.x, 1e8 + 1);
 }
 
 }  // namespace

@@ -185,6 +185,13 @@ std::vector<BadCase> bad_manifest_corpus() {
         {"threshold_array",
          manifest({{"discontinuity_threshold", "[0.1]"}}),
          {"field \"discontinuity_threshold\"", "found [0.1]"}},
+        // The coordinate limit (docs/DESIGN.md, "Input limits"): refused here, not later by a camera flag.
+        {"origin_beyond_limit",
+         manifest({{"origin", "[1e300, 0, 0]"}}),
+         {"field \"origin\" [1e+300, 0.0, 0.0] has a coordinate beyond +-1e30"}},
+        {"origin_just_beyond_limit",
+         manifest({{"origin", "[0, -1.5e30, 0]"}}),
+         {"field \"origin\" [0.0, -1.5e+30, 0.0] has a coordinate beyond +-1e30"}},
     };
 }
 
@@ -236,6 +243,64 @@ TEST_F(ReliefManifestTest, EqualRangeAndTinyButIndependentVectorsAreValid) {
     EXPECT_EQ(t.width, 4);
     EXPECT_EQ(t.height, 3);
     for (float d : t.displacement) EXPECT_EQ(d, 0.1f);
+}
+
+// A quad (4x3 texels here) whose corners lie beyond the coordinate limit, or whose sides are lost in rounding at
+// its origin, is refused by load_relief (the rule needs the image's size), before any camera is made about it. The
+// sides |a| * width and |b| * height must each be at least 1e-9 times the origin's largest |coordinate|.
+TEST_F(ReliefManifestTest, QuadsBeyondTheLimitOrLostInRoundingAreRefused) {
+    struct Case {
+        std::string label, text;
+        std::vector<std::string> parts;
+    };
+    const std::vector<Case> cases = {
+        // The audit's case: a unit quad at 1e30, where every camera's eye equalled its look-at.
+        {"unit_quad_at_1e30",
+         manifest({{"origin", "[1e30, 0, 0]"}, {"a", "[0.25, 0, 0]"}, {"b", "[0, 0.5, 0]"}}),
+         {"the quad's extent 1.0 is lost in rounding at origin [1e+30, 0.0, 0.0]", "|a| * width (1.0)",
+          "|b| * height (1.5)", "1e-9", "1e+21"}},
+        // Just past the rule: the shorter side 1 at a coordinate 1.01e9 (1e9 passes, below).
+        {"just_lost",
+         manifest({{"origin", "[0, 0, -1.01e9]"}, {"a", "[0.25, 0, 0]"}, {"b", "[0, 0.5, 0]"}}),
+         {"the quad's extent 1.0 is lost in rounding at origin [0.0, 0.0, -1010000000.0]"}},
+        // One side long enough is not enough.
+        {"thin_side",
+         manifest({{"origin", "[1e12, 0, 0]"}, {"a", "[0, 1e6, 0]"}, {"b", "[0, 0, 1e-4]"}}),
+         {"the quad's extent 0.000", "is lost in rounding at origin [1000000000000.0, 0.0, 0.0]",
+          "|a| * width (4000000.0)"}},
+        {"corner_beyond_limit",
+         manifest({{"a", "[1e30, 0, 0]"}, {"b", "[0, 1, 0]"}}),
+         {"the quad's corner origin + width * a = [4e+30, 0.0, 0.0] has a coordinate beyond +-1e30",
+          "the texture is 4x3"}},
+        // Both sides' own corners within the limit, the corner across from the origin beyond it.
+        {"far_corner_beyond_limit",
+         manifest({{"a", "[1.5e29, 0, 0]"}, {"b", "[2e29, 2e29, 0]"}}),
+         {"the quad's corner origin + width * a + height * b = [1.2", "beyond +-1e30"}},
+        {"range_beyond_limit",
+         manifest({{"displacement_range", "[-1e35, 0]"}}),
+         {"field \"displacement_range\" [-1e+35, 0.0] reaches beyond the coordinate limit +-1e30"}},
+    };
+    for (const Case& c : cases) {
+        const std::string path = dir.file(c.label + ".relief.json");
+        write_file(path, c.text);
+        EXPECT_NO_THROW(parse_relief_manifest(path)) << c.label << ": the manifest alone is well formed";
+        expect_io_error([&] { load_relief(path); }, path, c.parts, c.label);
+    }
+    // At the rule's edge and at the limit itself, loaded.
+    const std::vector<std::pair<std::string, std::string>> good = {
+        {"at_rule", manifest({{"origin", "[0, 0, -1e9]"}, {"a", "[0.25, 0, 0]"}, {"b", "[0, 0.5, 0]"}})},
+        {"at_limit", manifest({{"origin", "[1e30, -1e30, 0]"},
+                               {"a", "[0, 2.5e29, 0]"},
+                               {"b", "[0, 0, 1e29]"},
+                               {"displacement_range", "[-1e30, 1e30]"}})},
+    };
+    for (const auto& [label, text] : good) {
+        const std::string path = dir.file(label + ".relief.json");
+        write_file(path, text);
+        ReliefTexture t;
+        EXPECT_NO_THROW(t = load_relief(path)) << label;
+        EXPECT_EQ(t.width, 4) << label;
+    }
 }
 
 TEST_F(ReliefManifestTest, PathsResolveAgainstTheManifestFolder) {
@@ -397,6 +462,10 @@ TEST_F(ReliefManifestTest, WriteReliefRefusesWhatCannotBeLoaded) {
     inverted.range_min = 1.0;
     expect_io_error([&] { write_relief(path, inverted, color, disp); }, path, {"displacement_range", "[1.0, 0.1]"},
                     "inverted");
+    ReliefManifest far = good;
+    far.geometry.origin = {0, 0, 2e30};
+    expect_io_error([&] { write_relief(path, far, color, disp); }, path,
+                    {"field \"origin\" [0.0, 0.0, 2e+30] has a coordinate beyond +-1e30"}, "origin");
     ReliefManifest negative = good;
     negative.discontinuity_threshold = -0.5;
     expect_io_error([&] { write_relief(path, negative, color, disp); }, path, {"discontinuity_threshold", "-0.5"},

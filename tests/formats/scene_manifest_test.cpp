@@ -179,6 +179,68 @@ TEST(SceneManifest, HostileScenesGiveOneLineNamingTheField) {
          R"({"items": [{"type": "relief", "relief": "a.json"}], "camera_path": {"frames": 10,
                              "keys": [{"eye": [0,0,1], "look_at": [0,0,0]}]}})",
          {"camera_path", "keys"}},
+        // The coordinate limit (+-1e30, docs/DESIGN.md "Input limits"): refused here, naming the item and the field,
+        // not later by the camera flag that placed an eye about them.
+        {"translate beyond the limit",
+         R"({"items": [{"type": "relief", "relief": "a.json", "transform": {"translate": [1e300, 0, 0]}}]})",
+         {"item 0: transform: field \"translate\" [1e+300, 0.0, 0.0] has a coordinate beyond +-1e30"}},
+        {"translate of an object just beyond",
+         R"({"items": [{"type": "polygon", "vertices": [[0,0,0],[1,0,0],[1,1,0]]},
+                       {"type": "object", "object": "o.object.json", "transform": {"translate": [0, 0, -2e30]}}]})",
+         {"item 1: transform: field \"translate\" [0.0, 0.0, -2e+30] has a coordinate beyond +-1e30"}},
+        {"huge scale",
+         R"({"items": [{"type": "mesh", "mesh": "m.ply", "transform": {"scale": 1e300}}]})",
+         {"item 0: transform: field \"scale\" must be within 1e-30..1e30, found 1e+300"}},
+        {"tiny scale",
+         R"({"items": [{"type": "relief", "relief": "a.json", "transform": {"scale": 1e-300}}]})",
+         {"item 0: transform: field \"scale\" must be within 1e-30..1e30, found 1e-300"}},
+        {"vertex beyond the limit",
+         R"({"items": [{"type": "polygon", "vertices": [[0,0,0],[1,0,0],[1,1,0],[1e300,1,0]]}]})",
+         {"item 0: vertices[3] [1e+300, 1.0, 0.0] has a coordinate beyond +-1e30"}},
+        {"vertex placed beyond the limit",
+         R"({"items": [{"type": "polygon", "vertices": [[0,0,0],[1e10,0,0],[0,1,0]],
+                        "transform": {"scale": 1e30}}]})",
+         {"item 0: vertices[1] [10000000000.0, 0.0, 0.0] placed by the transform at [1e+40, 0.0, 0.0]",
+          "beyond +-1e30"}},
+        {"camera eye beyond the limit",
+         R"({"items": [{"type": "relief", "relief": "a.json"}], "camera": {"eye": [1e300,0,0], "look_at": [0,0,0]}})",
+         {"camera: field \"eye\" [1e+300, 0.0, 0.0] has a coordinate beyond +-1e30"}},
+        {"camera look_at beyond the limit",
+         R"({"items": [{"type": "relief", "relief": "a.json"}], "camera": {"eye": [0,0,1], "look_at": [0,-1e31,0]}})",
+         {"camera: field \"look_at\" [0.0, -1e+31, 0.0] has a coordinate beyond +-1e30"}},
+        {"camera up beyond the limit",
+         R"({"items": [{"type": "relief", "relief": "a.json"}],
+             "camera": {"eye": [0,0,1], "look_at": [0,0,0], "up": [0,1e40,0]}})",
+         {"camera: field \"up\" [0.0, 1e+40, 0.0] has a coordinate beyond +-1e30"}},
+        {"path key beyond the limit",
+         R"({"items": [{"type": "relief", "relief": "a.json"}], "camera_path": {"frames": 10,
+             "keys": [{"eye": [0,0,1], "look_at": [0,0,0]}, {"eye": [5e30,0,1], "look_at": [0,0,0]}]}})",
+         {"camera_path: key 1: field \"eye\" [5e+30, 0.0, 1.0] has a coordinate beyond +-1e30"}},
+        // As Camera::check: closer than 1e-12 of their distance from the origin is the same point.
+        {"camera eye at look_at within rounding",
+         R"({"items": [{"type": "relief", "relief": "a.json"}], "camera": {"eye": [1e20,0,0], "look_at": [1e20,1,0]}})",
+         {"camera: \"eye\" [1e+20, 0.0, 0.0] and \"look_at\" [1e+20, 1.0, 0.0] are the same point within rounding"}},
+        // Convexity of 4-vertex polygons (docs/SCENES.md: "3 or 4 vertices, convex and planar").
+        {"bow-tie",
+         R"({"items": [{"type": "polygon", "vertices": [[0,0,0],[1,1,0],[1,0,0],[0,1,0]]}]})",
+         {"item 0: the polygon is not convex: its edges cross"}},
+        {"bow-tie placed second",
+         R"({"items": [{"type": "polygon", "vertices": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]]},
+                       {"type": "polygon", "vertices": [[0,0,0],[1,0,1],[1,0,0],[0,0,1]],
+                        "transform": {"rotate": [1, 2, 3, 40], "translate": [5, 5, 5]}}]})",
+         {"item 1: the polygon is not convex: its edges cross"}},
+        {"reflex corner",
+         R"({"items": [{"type": "polygon", "vertices": [[0,0,0],[1,0,0],[0.1,0.1,0],[0,1,0]]}]})",
+         {"item 0: the polygon is not convex: its corner at vertex 2 bends inward"}},
+        {"reflex corner at the first vertex",
+         R"({"items": [{"type": "polygon", "vertices": [[0.1,0.1,0],[0,1,0],[0,0,0],[1,0,0]]}]})",
+         {"item 0: the polygon is not convex: its corner at vertex 0 bends inward"}},
+        {"straight corner",
+         R"({"items": [{"type": "polygon", "vertices": [[0,0,0],[1,0,0],[1,1,0],[0.5,0.5,0]]}]})",
+         {"item 0: the polygon is not convex: its corner at vertex 3 is straight"}},
+        {"repeated vertex",
+         R"({"items": [{"type": "polygon", "vertices": [[0,0,0],[1,0,0],[1,1,0],[1,1,0]]}]})",
+         {"item 0: the polygon is not convex: vertices 2 and 3 are the same point"}},
     };
     TempDir dir;
     for (const Hostile& h : cases) {
@@ -187,6 +249,41 @@ TEST(SceneManifest, HostileScenesGiveOneLineNamingTheField) {
         expect_io_error([&] { parse_scene_manifest(path); }, path, h.parts, h.label);
     }
     EXPECT_THROW(parse_scene_manifest((dir.path() / "missing.scene.json").string()), IoError);
+}
+
+// What the new checks must still accept: convex quads in either winding and every starting vertex, placed by a
+// rotation; corners turning by far less than a person draws but more than the 1e-9 tolerance; points at the limit.
+TEST(SceneManifest, ConvexQuadsAndPointsAtTheLimitAreAccepted) {
+    TempDir dir;
+    const std::string path = (dir.path() / "ok.scene.json").string();
+    const std::string rotated = R"(, "transform": {"rotate": [[1, 2, 3, 70]], "translate": [4, 5, 6]})";
+    const std::vector<std::pair<std::string, std::string>> quads = {
+        {"[[0,0,0],[1,0,0],[1,1,0],[0,1,0]]", rotated},                         // counter-clockwise about +z
+        {"[[0,1,0],[1,1,0],[1,0,0],[0,0,0]]", rotated},                         // clockwise
+        {"[[1,1,0],[0,1,0],[0,0,0],[1,0,0]]", rotated},                         // another starting vertex
+        {"[[0,0,0],[2,0,0],[1.01,0.5,0],[0,1,0]]", rotated},                    // nearly a triangle, still convex
+        {"[[0,0,0],[1,0,0],[1,1,0],[0.5,0.5000001,0]]", rotated},               // a corner turning by about 2e-7
+        {"[[0,0,0],[0,0,3],[0,2,3],[0,2,0]]", ""},                              // in another plane
+        {"[[-1e30,-1e30,0],[1e30,-1e30,0],[1e30,1e30,0],[-1e30,1e30,0]]", ""},  // at the limit
+    };
+    for (const auto& [q, transform] : quads) {
+        write_file(path, R"({"items": [{"type": "polygon", "vertices": )" + q + transform + "}]}");
+        SceneManifest m;
+        ASSERT_NO_THROW(m = parse_scene_manifest(path)) << q;
+        EXPECT_EQ(m.items.at(0).vertices.size(), 4u) << q;
+    }
+    write_file(path, R"({"items": [{"type": "relief", "relief": "a.json",
+                                    "transform": {"translate": [1e30, -1e30, 0], "scale": 1e30}},
+                                   {"type": "relief", "relief": "a.json", "transform": {"scale": 1e-30}}],
+                         "camera": {"eye": [1e30, 0, 0], "look_at": [0, 0, -1e30], "up": [0, 1e30, 0]},
+                         "camera_path": {"frames": 2, "keys": [{"eye": [-1e30, 0, 1], "look_at": [0, 0, 0]},
+                                                               {"eye": [0, 0, 1e30], "look_at": [0, 0, 0]}]}})");
+    const SceneManifest m = parse_scene_manifest(path);
+    EXPECT_EQ(m.items[0].transform.translate, glm::dvec3(1e30, -1e30, 0));
+    EXPECT_EQ(m.items[0].transform.scale, 1e30);
+    EXPECT_EQ(m.items[1].transform.scale, 1e-30);
+    EXPECT_EQ(m.camera->eye, glm::dvec3(1e30, 0, 0));
+    EXPECT_EQ(m.path_keys.at(1).eye, glm::dvec3(0, 0, 1e30));
 }
 
 }  // namespace
