@@ -4,8 +4,10 @@
 #include <glm/trigonometric.hpp>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -69,15 +71,14 @@ glm::dvec3 parse_vec3(const std::string& text, const std::string& flag) {
     std::string item;
     bool ok = true;
     while (std::getline(ss, item, ',')) {
-        try {
-            size_t used = 0;
-            const double x = std::stod(item, &used);
-            while (used < item.size() && std::isspace(static_cast<unsigned char>(item[used]))) ++used;
-            if (used != item.size() || !std::isfinite(x)) ok = false;
-            v.push_back(x);
-        } catch (const std::exception&) {
-            ok = false;
-        }
+        // strtod, not stod: stod refuses a number that underflows (1e-320, finite, read as a denormal or 0).
+        char* end = nullptr;
+        errno = 0;
+        const double x = std::strtod(item.c_str(), &end);
+        const bool overflow = errno == ERANGE && std::abs(x) > 1.0;
+        while (*end != '\0' && std::isspace(static_cast<unsigned char>(*end))) ++end;
+        if (end == item.c_str() || *end != '\0' || overflow || !std::isfinite(x)) ok = false;
+        v.push_back(x);
     }
     if (!ok || v.size() != 3 || (!text.empty() && text.back() == ','))
         throw UsageError(flag + ": expected " + (flag == "--orbit" ? "AZ,EL,D" : "X,Y,Z") +

@@ -137,9 +137,8 @@ void add_bake_command(CLI::App& app) {
     sub->add_option("--range", a->range, "MIN,MAX world units the height's 0..1 map onto (default 0, width/10)");
     auto* texel = sub->add_option("--texel", a->texel, "World size of a height-map texel (default 1/width)");
     auto* size = sub->add_option("--size", a->size,
-                                 "Texels along the mesh box's longest side, or the height map's longer side "
-                                 "(resampled; default: its own size)")
-                     ->capture_default_str();
+                                 "Texels along the longest side: the mesh box's (default 256), or the height map's "
+                                 "(resampled; default: the map's own size)");
     sub->add_option("--out", a->out, "Output folder (created if missing)")->required();
     sub->callback([a, texel, size] {
         a->texel_given = texel->count() > 0;

@@ -3,6 +3,7 @@
 // (--frames N --screenshot IMG, --keys, --camera-path, --json).
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 
 #include "cli_common.h"
@@ -189,7 +190,16 @@ void add_view_command(CLI::App& app) {
                     "Render the panel at least every T ms, else copy its last pixels; 0 = every frame")
         ->capture_default_str();
     sub->add_option("--content-scale", a->content_scale,
-                    "Scripted: the window's content scale changes to S before the first frame (as on another monitor)");
+                    "Scripted: the window's content scale changes to S before the first frame (as on another monitor)")
+        ->check(CLI::Validator(  // checked as typed: 0, the default, means "not given" and is refused when typed
+            [](std::string& text) -> std::string {
+                char* end = nullptr;
+                const double v = std::strtod(text.c_str(), &end);
+                if (text.empty() || *end != '\0' || !(v >= 0.25 && v <= 8))
+                    return "expected a scale in [0.25, 8], found \"" + text + "\"";
+                return "";
+            },
+            "S"));
     sub->add_option("--screenshot", a->screenshot, "Write the last frame to IMG (with --frames)");
     sub->add_option("--camera-path", a->camera_path,
                     "Play a camera path (JSON keyframes, docs/VIEWER.md; the scene's own path given the scene)");

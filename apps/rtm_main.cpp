@@ -1,6 +1,7 @@
 // rtm: relief texture mapping. Thin command line over the warp, texmap and objects libraries.
 #include <cstdio>
 #include <exception>
+#include <new>
 #include <string>
 
 #include "cli_common.h"
@@ -46,6 +47,10 @@ int main(int argc, char** argv) {
     } catch (const rtm::cli::UsageError& e) {
         std::fprintf(stderr, "rtm: %s\n", rtm::printable_one_line(e.what()).c_str());
         return 2;
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "rtm %s: out of memory: the input needs more than this machine can give\n",
+                     argc > 1 ? rtm::printable_one_line(argv[1]).c_str() : "");
+        return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "rtm: %s\n", rtm::printable_one_line(e.what()).c_str());
         return 1;

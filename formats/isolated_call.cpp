@@ -236,10 +236,14 @@ std::uint64_t limit_from_env(const std::string& path, const IsolatedReader& read
     return std::uint64_t(v);
 }
 
+// "4 GiB", "512 MiB" (RTM_MESH_READER_MB=1 read "0.000977 GiB").
 std::string gib(std::uint64_t bytes) {
     std::ostringstream os;
     os.precision(3);
-    os << double(bytes) / double(std::uint64_t(1) << 30) << " GiB";
+    if (bytes >= (std::uint64_t(1) << 30))
+        os << double(bytes) / double(std::uint64_t(1) << 30) << " GiB";
+    else
+        os << double(bytes) / double(std::uint64_t(1) << 20) << " MiB";
     return os.str();
 }
 

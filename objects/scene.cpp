@@ -64,7 +64,11 @@ Scene::Scene(SceneManifest manifest) : manifest_(std::move(manifest)) {
             continue;
         }
         auto it = loaded.find(item.relief_path);
-        if (it == loaded.end()) it = loaded.emplace(item.relief_path, load_relief(item.relief_path)).first;
+        try {  // a relief that cannot be read: the line names the scene and the item too
+            if (it == loaded.end()) it = loaded.emplace(item.relief_path, load_relief(item.relief_path)).first;
+        } catch (const IoError& e) {
+            throw IoError(manifest_.path + ": item " + std::to_string(i) + ": " + e.what());
+        }
         try {
             quads_.emplace_back(transform_relief(it->second, item.transform.matrix()));
         } catch (const std::invalid_argument& e) {
@@ -96,6 +100,8 @@ void Scene::load_placed_item(size_t i, std::map<std::string, SixFaceObject>& obj
             meshes_.emplace_back(it->second, item.transform.matrix());
         }
     } catch (const std::invalid_argument& e) {
+        throw IoError(manifest_.path + ": item " + std::to_string(i) + ": " + e.what());
+    } catch (const IoError& e) {  // a file that cannot be read: the line names the scene and the item too
         throw IoError(manifest_.path + ": item " + std::to_string(i) + ": " + e.what());
     }
 }

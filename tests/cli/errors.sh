@@ -165,4 +165,19 @@ if [ -e "$T/esc/out/escaped" ] || [ ! -d "$T/esc/out/run/images/______escaped" ]
   echo "FAIL: compare wrote outside --out for a manifest named ../../escaped: $(find "$T/esc" -maxdepth 4 -type d)"
   fails=$((fails + 1))
 fi
+# Out of memory is one line naming the subcommand (it said only "std::bad_alloc"). Not under AddressSanitizer,
+# whose shadow memory needs more address space than the limit leaves.
+if ! ldd "$RTM" | grep -q libasan; then
+  (
+    ulimit -v 900000
+    "$RTM" render --relief "$R" --eye 0.5,0.5,3 --size 16384x16384 --method raycast --out "$T/a16.png"
+  ) 2>"$T/err"
+  rc=$?
+  if [ "$rc" != 1 ] || ! grep -q '^rtm render: out of memory' "$T/err" || [ "$(grep -c '' "$T/err")" != 1 ]; then
+    echo "FAIL: out of memory: exit $rc, $(cat "$T/err")"
+    fails=$((fails + 1))
+  fi
+fi
+# A coordinate that underflows to a denormal is finite and accepted (stod refused 1e-320 as not finite).
+expect_ok prewarp --relief "$R" --eye 1e-320,0.5,3 --out "$T/a17.png"
 finish
