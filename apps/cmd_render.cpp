@@ -92,6 +92,16 @@ void run_render(const RenderArgs& a) {
     if (!a.out.empty()) check_output_file(a.out, "--out");
     if (!a.json.empty()) check_output_file(a.json, "--json");
 
+    // Pre-warp options with a method that pre-warps nothing: said once each, not silently ignored.
+    if (method != RenderMethod::two_pass && method != RenderMethod::pipelined) {
+        const std::pair<bool, const char*> unused[] = {{a.exact, "--exact"},
+                                                       {filter != Filter::point, "--filter coverage"},
+                                                       {a.no_sidewalls, "--no-sidewalls"}};
+        for (const auto& [given, flag] : unused)
+            if (given)
+                std::fprintf(stderr, "rtm: warning: %s applies to the pre-warp, which --method %s does not do\n", flag,
+                             a.method.c_str());
+    }
     ReliefTexture relief = load_relief(a.relief);
     if (a.discontinuity >= 0) mark_discontinuities(relief, a.discontinuity);
     relief = apply_output_scale(std::move(relief), a.output_scale, a.relief);

@@ -180,4 +180,12 @@ if ! ldd "$RTM" | grep -q libasan; then
 fi
 # A coordinate that underflows to a denormal is finite and accepted (stod refused 1e-320 as not finite).
 expect_ok prewarp --relief "$R" --eye 1e-320,0.5,3 --out "$T/a17.png"
+# Pre-warp flags with a method that pre-warps nothing: a warning each, the image still written.
+if "$RTM" render --relief "$R" --eye 0.5,0.5,3 --size 16x16 --method flat --exact --out "$T/a18.png" 2>"$T/err" &&
+  grep -q '^rtm: warning: --exact applies to the pre-warp, which --method flat does not do$' "$T/err"; then
+  passes=$((passes + 1))
+else
+  echo "FAIL: render --method flat --exact: no warning ($(cat "$T/err"))"
+  fails=$((fails + 1))
+fi
 finish
