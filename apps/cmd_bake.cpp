@@ -76,11 +76,12 @@ void bake_mesh(const BakeArgs& a) {
         // Progress only for bakes that take more than a second.
         if (ms_since(start) < 1000.0 && !shown) return;
         shown = true;
-        std::fprintf(stderr, "\rbake: %d of %d faces", done, total);
+        // On a terminal one line updated in place; in a log one line each.
+        std::fprintf(stderr, isatty(2) ? "\rbake: %d of %d faces" : "bake: %d of %d faces\n", done, total);
     });
     for (const std::string& w : obj.warnings) std::fprintf(stderr, "rtm: warning: %s: %s\n", a.mesh.c_str(), w.c_str());
     const std::string manifest = write_object(a.out, name, obj, std::filesystem::path(a.mesh).filename().string());
-    if (shown) std::fprintf(stderr, "\n");
+    if (shown && isatty(2)) std::fprintf(stderr, "\n");
     std::printf("%s\n", manifest.c_str());
 }
 

@@ -8,6 +8,7 @@
 #include <backends/imgui_impl_opengl3.h>
 
 #include <glm/geometric.hpp>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -214,13 +215,13 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
     auto prepare = [&](Loaded& l) {
         bool shown = false;
         l.prepare([&](const std::string& line) {
-            std::fprintf(stderr, "\r%s", line.c_str());
+            std::fprintf(stderr, isatty(2) ? "\r%s" : "%s\n", line.c_str());  // a log gets one line each
             glfwSetWindowTitle(win, ("rtm view: " + line).c_str());
             status = line;
             ctx->poll_events();
             shown = true;
         });
-        if (shown) std::fprintf(stderr, "\n");
+        if (shown && isatty(2)) std::fprintf(stderr, "\n");
         status.clear();
     };
     prepare(*loaded);
