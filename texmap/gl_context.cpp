@@ -156,7 +156,9 @@ public:
             glfwSetErrorCallback(glfw_error_callback);
             if (g_glfw_users == 0) {
                 if (!have_display())
-                    throw GlError("cannot open a window: no display (set DISPLAY or use the headless default)");
+                    throw GlError(
+                        "cannot open a window: no display (set DISPLAY, or run under xvfb-run; rtm render draws "
+                        "without one)");
                 if (!glfwInit()) throw GlError("cannot open a window: glfwInit failed: " + take_glfw_error());
             }
             ++g_glfw_users;
