@@ -251,16 +251,21 @@ Camera CameraArgs::resolve(const Bounds& bounds) const {
 
 void check_output_file(const std::string& path, const std::string& flag) {
     namespace fs = std::filesystem;
-    std::error_code ec;
-    const fs::path p(path);
-    const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-    if (!fs::is_directory(dir, ec))
-        throw IoError(flag + " " + path + ": cannot write: folder " + dir.string() + " does not exist");
-    if (fs::is_directory(p, ec)) throw IoError(flag + " " + path + ": cannot write: it is a folder");
-    // A temporary file as write_json makes one, created and removed: the folder takes new files.
-    const AtomicFile probe(path);
-    if (!std::ofstream(probe.temp_path()))
-        throw IoError(flag + " " + path + ": cannot write in folder " + dir.string());
+    try {
+        // Where the file will be written: a symbolic link is written through (formats/atomic_file.h), so its
+        // target's folder is the one that must exist and take new files.
+        const fs::path p(output_target(path));
+        const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+        std::error_code ec;
+        if (!fs::is_directory(dir, ec))
+            throw IoError(path + ": cannot write: folder " + dir.string() + " does not exist");
+        if (fs::is_directory(p, ec)) throw IoError(path + ": cannot write: it is a folder");
+        // A temporary file as write_json makes one, created and removed: the folder takes new files.
+        const AtomicFile probe(path);
+        if (!std::ofstream(probe.temp_path())) throw IoError(path + ": cannot write in folder " + dir.string());
+    } catch (const IoError& e) {
+        throw IoError(flag + " " + e.what());
+    }
 }
 
 void make_output_folder(const std::string& path, const std::string& flag) {

@@ -28,26 +28,29 @@ std::string temp_name_for(const std::string& path) {
     return (p.parent_path() / name).string();
 }
 
-// The file a path names once symbolic links are followed (a link's relative target is relative to the link's folder);
-// the path itself when it is no link or does not exist. A chain of more than 40 links is left as it is (the rename
-// then replaces the last link reached, as the kernel refuses such chains anyway).
-std::string follow_links(const std::string& path) {
+}  // namespace
+
+std::string output_target(const std::string& path) {
     fs::path p(path);
     std::error_code ec;
-    for (int hops = 0; hops < 40 && fs::is_symlink(fs::symlink_status(p, ec)); ++hops) {
+    for (int hops = 0; fs::is_symlink(fs::symlink_status(p, ec)); ++hops) {
+        if (hops == 40) throw_io_error(path, "cannot write: too many levels of symbolic links (a loop?)");
         const fs::path target = fs::read_symlink(p, ec);
-        if (ec) break;
+        if (ec) throw_io_error(path, "cannot write: cannot read the link: " + ec.message());
         p = target.is_absolute() ? target : p.parent_path() / target;
     }
     return p.string();
 }
 
-}  // namespace
-
 AtomicFile::AtomicFile(std::string path)
-    : path_(std::move(path)), target_(follow_links(path_)), temp_(temp_name_for(target_)) {
+    : path_(std::move(path)), target_(output_target(path_)), temp_(temp_name_for(target_)) {
     std::error_code ec;
-    if (fs::is_directory(target_, ec)) throw_io_error(path_, "is a directory");
+    const fs::file_status st = fs::status(target_, ec);
+    if (fs::is_directory(st)) throw_io_error(path_, "is a directory");
+    // A device, FIFO or socket would be replaced by a regular file (as root, --json /dev/null would replace the
+    // system's /dev/null): rtm writes regular files only.
+    if (fs::exists(st) && !fs::is_regular_file(st))
+        throw_io_error(path_, "cannot write: it is not a regular file (a device, FIFO or socket); rtm writes files");
 }
 
 AtomicFile::~AtomicFile() {

@@ -12,10 +12,16 @@
 
 namespace rtm {
 
+// The file `path` names once symbolic links are followed (a link's relative target is relative to the link's
+// folder); the path itself when it is no link or does not exist. Throws IoError naming `path` for a chain of more
+// than 40 links (a loop) or a link that cannot be read.
+std::string output_target(const std::string& path);
+
 class AtomicFile {
 public:
     // Chooses the temporary name beside the file `path` names (following symbolic links); creates nothing. Throws
-    // IoError "PATH: is a directory" when that is a folder.
+    // IoError "PATH: is a directory" when that is a folder, and IoError when it is another file than a regular one
+    // (a device, a FIFO: replacing it would be wrong) or the links loop.
     explicit AtomicFile(std::string path);
     // Removes the temporary file unless commit() succeeded.
     ~AtomicFile();

@@ -28,6 +28,7 @@ TiledMicroMesh build_tiled_micromesh(const ReliefTexture& t, int tile_cells) {
     std::stable_sort(order.begin(), order.end(),
                      [&](uint32_t a, uint32_t b) { return tile_of(cells[a]) < tile_of(cells[b]); });
     out.mesh.vertices = std::move(m.vertices);
+    out.mesh.origin = m.origin;
     out.mesh.indices.reserve(m.indices.size());
     for (size_t i = 0; i < order.size(); ++i) {
         const size_t tri = order[i];
@@ -40,7 +41,7 @@ TiledMicroMesh build_tiled_micromesh(const ReliefTexture& t, int tile_cells) {
         for (int k = 0; k < 3; ++k) {
             const uint32_t v = m.indices[3 * tri + size_t(k)];
             out.mesh.indices.push_back(v);
-            mt.bounds.extend(glm::dvec3(out.mesh.vertices[v].position));
+            mt.bounds.extend(out.mesh.origin + glm::dvec3(out.mesh.vertices[v].position));  // world bounds
         }
         mt.count += 3;
     }

@@ -50,7 +50,7 @@ const MicroMesh& ReliefQuad::micromesh() {
 void ReliefQuad::draw_micromesh(Renderer& renderer, const Camera& cam, bool tiles, DrawReport* report) {
     if (!tiles) {
         const MicroMesh& m = micromesh();
-        renderer.draw_mesh(cam, m.vertices, m.indices);
+        draw_mesh(renderer, cam, m);
         if (report) report->micromesh_triangles = report->micromesh_triangles_total = (long long)(m.indices.size() / 3);
         return;
     }
@@ -61,10 +61,12 @@ void ReliefQuad::draw_micromesh(Renderer& renderer, const Camera& cam, bool tile
         gl->upload(tm.mesh.vertices, tm.mesh.indices);
         micromesh_gl_ = std::move(gl);
         micromesh_tiles_ = std::move(tm.tiles);
+        micromesh_origin_ = tm.mesh.origin;
         micromesh_tiled_triangles_ = (long long)(tm.mesh.indices.size() / 3);
     }
     size_t drawn = 0;
-    renderer.draw_mesh_ranges(cam, *micromesh_gl_, visible_tile_ranges(micromesh_tiles_, cam, &drawn));
+    renderer.draw_mesh_ranges(cam, *micromesh_gl_, visible_tile_ranges(micromesh_tiles_, cam, &drawn),
+                              micromesh_origin_);
     if (report) {
         report->micromesh_triangles = (long long)drawn;
         report->micromesh_triangles_total = micromesh_tiled_triangles_;

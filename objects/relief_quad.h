@@ -115,6 +115,7 @@ private:
     // use; on the CPU only its tiles' index ranges and bounds (and its triangle count) stay.
     std::unique_ptr<GlMesh> micromesh_gl_;
     std::vector<MicroMeshTile> micromesh_tiles_;
+    glm::dvec3 micromesh_origin_{0.0};  // the GPU copy's positions are relative to it (MicroMesh::origin)
     long long micromesh_tiled_triangles_ = 0;
     LastPrewarp last_prewarp_;                // what prewarped_ was made for (reuse when the eye barely moved)
     UploadedTexture uploaded_;                // what texture_ holds (partial upload)

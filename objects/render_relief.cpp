@@ -24,7 +24,7 @@ ImageRGBA8 render_relief_frame(ReliefQuad& quad, Renderer* renderer, const Camer
     renderer->begin_frame(cam);
     if (s.method == RenderMethod::micromesh) {
         const MicroMesh& mesh = quad.micromesh();
-        renderer->draw_mesh(cam, mesh.vertices, mesh.indices);
+        draw_mesh(*renderer, cam, mesh);
         renderer->finish();
         times.texture_map_ms += ms_since(t0);
     } else if (const auto pp = perpixel_method(s.method)) {

@@ -164,7 +164,7 @@ void Scene::draw(Renderer& renderer, const Camera& cam, RenderMethod method, con
         const auto tm = Clock::now();
         for (ReliefQuad& quad : quads_) {
             const MicroMesh& mesh = quad.micromesh();
-            renderer.draw_mesh(cam, mesh.vertices, mesh.indices);
+            draw_mesh(renderer, cam, mesh);
             ++report.drawn;
         }
         renderer.finish();

@@ -69,7 +69,7 @@ void PlacedObject::draw(Renderer& renderer, const Camera& cam, RenderMethod meth
     if (method == RenderMethod::micromesh) {
         for (int f = 0; f < kFaceCount; ++f) {
             const MicroMesh& mm = object_.face(f).micromesh();
-            renderer.draw_mesh(local, mm.vertices, mm.indices);
+            draw_mesh(renderer, local, mm);
         }
         return;
     }

@@ -156,7 +156,9 @@ void require_context(const char* what) {
 }
 
 // Model-view-projection in double (the camera's precision), handed to GL as float.
-glm::mat4 mvp_of(const Camera& cam) { return glm::mat4(cam.projection() * cam.view()); }
+glm::mat4 mvp_of(const Camera& cam, const glm::dvec3& origin = glm::dvec3(0.0)) {
+    return glm::mat4(cam.projection() * cam.view() * glm::translate(glm::dmat4(1.0), origin));  // in double, then float
+}
 
 void check_image(const ImageRGBA8& img, const char* what) {
     if (img.width <= 0 || img.height <= 0)
@@ -615,7 +617,7 @@ void Renderer::draw_relief(const Camera& cam, const ReliefSurface& rs, const GlT
 }
 
 void Renderer::draw_mesh(const Camera& cam, const std::vector<MeshVertex>& vertices,
-                         const std::vector<uint32_t>& indices) {
+                         const std::vector<uint32_t>& indices, const glm::dvec3& origin) {
     impl_->issue_pending_clear();
     const size_t count = indices.size() - indices.size() % 3;  // whole triangles only
     if (vertices.empty() || count == 0) return;
@@ -624,7 +626,7 @@ void Renderer::draw_mesh(const Camera& cam, const std::vector<MeshVertex>& verti
             throw std::out_of_range("Renderer::draw_mesh: index " + std::to_string(i) + " is " +
                                     std::to_string(indices[i]) + " but there are only " +
                                     std::to_string(vertices.size()) + " vertices");
-    const glm::mat4 mvp = mvp_of(cam);
+    const glm::mat4 mvp = mvp_of(cam, origin);
     Impl& m = *impl_;
     glUseProgram(m.mesh_program);
     glUniformMatrix4fv(m.mesh_mvp, 1, GL_FALSE, glm::value_ptr(mvp));
@@ -637,7 +639,8 @@ void Renderer::draw_mesh(const Camera& cam, const std::vector<MeshVertex>& verti
     check_gl("Renderer::draw_mesh");
 }
 
-void Renderer::draw_mesh_ranges(const Camera& cam, const GlMesh& mesh, const std::vector<IndexRange>& ranges) {
+void Renderer::draw_mesh_ranges(const Camera& cam, const GlMesh& mesh, const std::vector<IndexRange>& ranges,
+                                const glm::dvec3& origin) {
     impl_->issue_pending_clear();
     std::vector<GLsizei> counts;
     std::vector<const void*> offsets;
@@ -655,7 +658,7 @@ void Renderer::draw_mesh_ranges(const Camera& cam, const GlMesh& mesh, const std
         offsets.push_back(reinterpret_cast<const void*>(size_t(r.first) * sizeof(uint32_t)));
     }
     if (counts.empty()) return;
-    const glm::mat4 mvp = mvp_of(cam);
+    const glm::mat4 mvp = mvp_of(cam, origin);
     Impl& m = *impl_;
     glUseProgram(m.mesh_program);
     glUniformMatrix4fv(m.mesh_mvp, 1, GL_FALSE, glm::value_ptr(mvp));

@@ -112,10 +112,13 @@ public:
     // polygons show exactly what the plane's extension would, clipped to the walls. Texture convention: empty
     // texels are (0, 0, 0, 0), so bilinear filtering divided by alpha gives no dark fringe at silhouettes.
     void draw_relief(const Camera& cam, const ReliefSurface& surface, const GlTexture& color);
-    void draw_mesh(const Camera& cam, const std::vector<MeshVertex>& vertices, const std::vector<uint32_t>& indices);
+    // Positions are relative to `origin` (world point = origin + position; the offset is applied in double).
+    void draw_mesh(const Camera& cam, const std::vector<MeshVertex>& vertices, const std::vector<uint32_t>& indices,
+                   const glm::dvec3& origin = glm::dvec3(0.0));
     // Draws these ranges of a mesh on the GPU in one call (glMultiDrawElements), the same fragments as draw_mesh of
     // the same triangles. A range past the mesh's indices or not of whole triangles is std::out_of_range.
-    void draw_mesh_ranges(const Camera& cam, const GlMesh& mesh, const std::vector<IndexRange>& ranges);
+    void draw_mesh_ranges(const Camera& cam, const GlMesh& mesh, const std::vector<IndexRange>& ranges,
+                          const glm::dvec3& origin = glm::dvec3(0.0));
     void finish();  // glFinish, so a timer around draw calls measures them
     // While not timed, finish() returns at once: the stage timers then measure only the CPU's side, and llvmpipe
     // renders a frame's draws without waiting between them. Timed by default; the viewer times 1 frame in 16.

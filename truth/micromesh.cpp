@@ -26,12 +26,13 @@ MicroMesh build_micromesh(const ReliefTexture& t, std::vector<uint32_t>* triangl
         throw std::invalid_argument("relief of " + std::to_string(w) + "x" + std::to_string(h) +
                                     " texels is too large for 32-bit mesh indices");
     std::vector<uint32_t> index(size_t(w) * size_t(h), kNone);
+    m.origin = t.geometry.origin;
     for (int row = 0; row < h; ++row)
         for (int x = 0; x < w; ++x) {
             if (t.empty_at(x, row)) continue;
             const ReliefTexel& tx = t.texel(x, row);
             index[size_t(row) * size_t(w) + size_t(x)] = uint32_t(m.vertices.size());
-            m.vertices.push_back({glm::vec3(t.point(x, row)), glm::u8vec4(tx.r, tx.g, tx.b, 255)});
+            m.vertices.push_back({glm::vec3(t.point(x, row) - m.origin), glm::u8vec4(tx.r, tx.g, tx.b, 255)});
         }
     for (int row = 0; row + 1 < h; ++row)
         for (int x = 0; x + 1 < w; ++x) {

@@ -57,7 +57,7 @@ void LoadedRelief::draw(Renderer& renderer, const Camera& cam, const ViewSetting
     if (s.method == RenderMethod::micromesh) {
         const auto t0 = Clock::now();
         const MicroMesh& mesh = quad_->micromesh();
-        renderer.draw_mesh(cam, mesh.vertices, mesh.indices);
+        draw_mesh(renderer, cam, mesh);
         renderer.finish();
         report.times.texture_map_ms += ms_since(t0);
         report.times.total_ms += ms_since(t0);

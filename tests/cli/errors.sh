@@ -188,4 +188,16 @@ else
   echo "FAIL: render --method flat --exact: no warning ($(cat "$T/err"))"
   fails=$((fails + 1))
 fi
+# An output that is a FIFO (or a device) is refused, not replaced by a regular file (as root, --json /dev/null replaced
+# the system's /dev/null); a loop of links is refused too.
+mkfifo "$T/out_fifo.json"
+ln -s loop_b "$T/loop_a"
+ln -s loop_a "$T/loop_b"
+expect_fail 1 'out_fifo.json: cannot write: it is not a regular file' -- render --relief "$R" --eye 0.5,0.5,3 \
+  --size 16x16 --out "$T/a19.png" --json "$T/out_fifo.json"
+expect_fail 1 'out_fifo.json: cannot write: it is not a regular file' -- diff "$T/ok_render.png" "$T/ok_render.png" \
+  --heatmap "$T/out_fifo.json"
+expect_fail 1 'loop_a: cannot write: too many levels of symbolic links' -- render --relief "$R" --eye 0.5,0.5,3 \
+  --size 16x16 --out "$T/loop_a"
+[ -p "$T/out_fifo.json" ] && [ -L "$T/loop_a" ] || { echo "FAIL: the FIFO or the link was replaced"; fails=$((fails + 1)); }
 finish

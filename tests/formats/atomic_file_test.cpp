@@ -2,6 +2,7 @@
 // concurrent writers of one path do not collide, no temporary file left behind.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -33,6 +34,42 @@ TEST(AtomicFile, WritesTheWholeTextAndLeavesNoTemporaryFile) {
     write_text_atomically(path, "second, longer");
     EXPECT_EQ(read_file(path), "second, longer");
     EXPECT_EQ(files_in(dir.path()), 1u);
+}
+
+// Symbolic links are written through: the file a link names is replaced and the link stays, also for a chain of
+// links and a link to a file in another folder (the temporary file goes beside the target, so the rename stays on
+// its file system). A link to a folder, a FIFO and a loop of links are refused and left as they are.
+TEST(AtomicFile, LinksAreWrittenThroughAndOtherFilesRefused) {
+    namespace fs = std::filesystem;
+    TempDir dir;
+    fs::create_directory(dir.path() / "sub");
+    write_text_atomically(dir.file("sub/target.json"), "old");
+    fs::create_symlink("sub/target.json", dir.path() / "link1.json");
+    fs::create_symlink("link1.json", dir.path() / "link2.json");
+    write_text_atomically(dir.file("link2.json"), "through two links");
+    EXPECT_TRUE(fs::is_symlink(dir.path() / "link1.json"));
+    EXPECT_TRUE(fs::is_symlink(dir.path() / "link2.json"));
+    EXPECT_EQ(read_file(dir.file("sub/target.json")), "through two links");
+    EXPECT_EQ(files_in(dir.path() / "sub"), 1u);  // no temporary file left beside the target
+
+    fs::create_symlink("sub", dir.path() / "folder_link");
+    ASSERT_EQ(::mkfifo(dir.file("fifo").c_str(), 0600), 0);
+    fs::create_symlink("loop_b", dir.path() / "loop_a");
+    fs::create_symlink("loop_a", dir.path() / "loop_b");
+    const std::pair<const char*, const char*> refused[] = {{"folder_link", "is a directory"},
+                                                           {"fifo", "not a regular file"},
+                                                           {"loop_a", "too many levels of symbolic links"}};
+    for (const auto& [name, want] : refused) {
+        try {
+            write_text_atomically(dir.file(name), "x");
+            ADD_FAILURE() << "wrote " << name;
+        } catch (const IoError& e) {
+            EXPECT_NE(std::string(e.what()).find(want), std::string::npos) << e.what();
+        }
+    }
+    EXPECT_TRUE(fs::is_symlink(dir.path() / "folder_link"));
+    EXPECT_TRUE(fs::is_fifo(dir.path() / "fifo"));
+    EXPECT_TRUE(fs::is_symlink(dir.path() / "loop_a"));
 }
 
 TEST(AtomicFile, TemporaryNamesAreUniqueAndBesideTheFile) {

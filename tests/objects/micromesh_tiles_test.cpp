@@ -59,7 +59,7 @@ TEST(MicromeshTiles, SameTrianglesAsTheMeshEachTilesInItsOrder) {
                 ASSERT_EQ(mt.count % 3, 0u);
                 next += mt.count;
                 for (uint32_t i = mt.first; i < mt.first + mt.count; ++i) {
-                    const glm::dvec3 p(m.mesh.vertices[m.mesh.indices[i]].position);
+                    const glm::dvec3 p = m.mesh.origin + glm::dvec3(m.mesh.vertices[m.mesh.indices[i]].position);
                     ASSERT_TRUE(p.x >= mt.bounds.lo.x && p.x <= mt.bounds.hi.x && p.y >= mt.bounds.lo.y &&
                                 p.y <= mt.bounds.hi.y && p.z >= mt.bounds.lo.z && p.z <= mt.bounds.hi.z);
                 }
@@ -127,7 +127,9 @@ TEST(MicromeshTiles, CullingKeepsEveryTriangleInView) {
             if (in_range[tri]) continue;
             for (int k = 0; k < 3; ++k) {
                 const glm::dvec4 c = clip *
-                                     glm::dvec4(glm::dvec3(m.mesh.vertices[m.mesh.indices[3 * tri + k]].position), 1.0);
+                                     glm::dvec4(m.mesh.origin +
+                                                    glm::dvec3(m.mesh.vertices[m.mesh.indices[3 * tri + k]].position),
+                                                1.0);
                 const bool inside = std::abs(c.x) < c.w && std::abs(c.y) < c.w && std::abs(c.z) < c.w;
                 ASSERT_FALSE(inside) << "view " << view << ": triangle " << tri
                                      << " has a vertex in view but was culled";

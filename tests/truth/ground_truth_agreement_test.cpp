@@ -110,7 +110,7 @@ void agree(const char* relief_name, const ReliefTexture& t, double min_iou, std:
         cam.width = cam.height = size;
         cam.fit_clip_planes(c, r);
         renderer.begin_frame(cam);
-        renderer.draw_mesh(cam, mesh.vertices, mesh.indices);
+        draw_mesh(renderer, cam, mesh);
         renderer.finish();
         const ImageRGBA8 gl = renderer.read_pixels(size, size);
         const ImageRGBA8 rc = raycast_relief(t, cam);

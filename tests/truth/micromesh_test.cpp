@@ -61,13 +61,14 @@ TEST(Micromesh, VerticesOnTheExactPointsWithTheirColours) {
     const ReliefTexture t = relief_with_holes(w, h, g, {{2, 3}, {8, 0}});
     const MicroMesh m = build_micromesh(t);
     ASSERT_EQ(m.vertices.size(), size_t(w * h - 2));
+    EXPECT_EQ(m.origin, g.origin);
     // Vertices are in texel order (row 0 first), skipping empties.
     size_t k = 0;
     for (int r = 0; r < h; ++r)
         for (int x = 0; x < w; ++x) {
             if (t.empty_at(x, r)) continue;
             const MeshVertex& v = m.vertices[k++];
-            const glm::dvec3 p = t.point(x, r);
+            const glm::dvec3 p = t.point(x, r) - m.origin;         // positions are relative to the relief's origin
             EXPECT_EQ(v.position, glm::vec3(p)) << x << "," << r;  // the exact point, rounded to float once
             EXPECT_LT(glm::length(glm::dvec3(v.position) - p), 1e-6 * (1 + glm::length(p)));
             const ReliefTexel& tx = t.texel(x, r);
