@@ -61,13 +61,19 @@ void run_render_scene(const SceneRenderArgs& a) {
     if (!a.json.empty()) check_output_file(a.json, "--json");
     const int level = parse_level(a.level);
 
+    // Which camera is known from the manifest alone: a scene without one is refused before its items are loaded.
+    if (!a.camera.has_eye() && a.frames_dir.empty() && a.path_frame < 0 && !parse_scene_manifest(a.scene).camera)
+        throw UsageError(a.scene + " has no default camera: give --eye X,Y,Z or --orbit AZ,EL,D or --camera-path K");
     Scene scene = Scene::load(a.scene);
     const SceneManifest& m = scene.manifest();
     const Bounds bounds = scene.bounds();
-    // The image size and clip planes come from the CAMERA flags (orbit or eye) resolved on the scene's bounds.
-    CameraArgs sized_args = a.camera;
-    if (!sized_args.has_eye()) sized_args.orbit = "0,30,2";
-    const Camera sized = sized_args.resolve(bounds);
+    // The CAMERA flags resolved on the scene's bounds when given; otherwise only the image size is taken from them
+    // (the scene's camera or path gives the rest; a stand-in orbit here was blamed for what it could not reach).
+    Camera sized;
+    if (a.camera.has_eye())
+        sized = a.camera.resolve(bounds);
+    else
+        parse_size(a.camera.size, "--size", sized.width, sized.height);
 
     std::vector<Camera> cams;
     if (!a.frames_dir.empty() || a.path_frame >= 0) {

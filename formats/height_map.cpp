@@ -1,12 +1,13 @@
 #include "formats/height_map.h"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
 
 #include "formats/image_io.h"
+#include "formats/manifest_json.h"
 #include "formats/relief_manifest.h"
 #include "warp/image_resample.h"
 
@@ -82,10 +83,12 @@ std::string bake_height_map(const HeightBakeOptions& o, const std::string& out_d
     if (const std::string why = m.geometry.validate(); !why.empty())
         throw std::invalid_argument("--texel: " + num(texel) + " makes texel steps too small or too large for double " +
                                     "precision (" + why + ")");
-    if (!std::isfinite(float(lo)) || !std::isfinite(float(hi)))
-        throw std::invalid_argument("--range: displacements " + num(lo) + " to " + num(hi) +
-                                    " are beyond single precision (at most about 3.4e38 in magnitude)" +
-                                    (o.range_max ? "" : "; the default range is a tenth of the width (--texel)"));
+    if (!std::isfinite(float(lo)) || !std::isfinite(float(hi)) ||
+        std::max(std::abs(lo), std::abs(hi)) > manifest_json::kMaxCoordinate)
+        throw std::invalid_argument(
+            "--range: displacements " + num(lo) + " to " + num(hi) +
+            " are beyond the coordinate limit +-1e30 that every reader of the manifest applies" +
+            (o.range_max ? "" : "; the default range is a tenth of the width (--texel)"));
     const std::string manifest = (std::filesystem::path(out_dir.empty() ? "." : out_dir) / (m.name + ".relief.json"))
                                      .string();
     write_relief(manifest, m, color, height);

@@ -127,7 +127,8 @@ SceneCameraKey parse_camera(const std::string& path, const json& j, const std::s
     if (!(glm::length(d) > 1e-12 * scale)) {
         if (c.eye == c.look_at) fail(path, where + "\"eye\" and \"look_at\" are the same point " + fmt_vec(c.eye));
         fail(path, where + "\"eye\" " + fmt_vec(c.eye) + " and \"look_at\" " + fmt_vec(c.look_at) +
-                       " are the same point within rounding (closer than 1e-12 of their distance from the origin)");
+                       " are the same point to the camera (closer than 1e-12 times the larger of 1 and their distance "
+                       "from the origin)");
     }
     if (!(glm::length(glm::cross(d, c.up)) > 1e-12 * glm::length(d) * glm::length(c.up)))
         fail(path, where + "\"up\" " + fmt_vec(c.up) + " is parallel to the view direction");

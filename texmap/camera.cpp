@@ -79,7 +79,12 @@ CameraProblem Camera::check() const {
     const glm::dvec3 view_dir = look_at - eye;
     const double dist = glm::length(view_dir);
     const double scale = std::max({glm::length(eye), glm::length(look_at), 1.0});
-    if (!(dist > 1e-12 * scale)) return {F::eye_and_look_at, "eye " + str(eye) + " equals look-at " + str(look_at)};
+    if (!(dist > 1e-12 * scale)) {
+        if (eye == look_at) return {F::eye_and_look_at, "eye " + str(eye) + " equals look-at " + str(look_at)};
+        return {F::eye_and_look_at, "eye " + str(eye) + " and look-at " + str(look_at) +
+                                        " are closer than 1e-12 times the larger of 1 and their distance from the "
+                                        "origin: the same point to the camera"};
+    }
     const double up_len = glm::length(up);
     if (!(up_len > 0.0)) return {F::up, "up " + str(up) + " is the zero vector"};
     const double sin_angle = glm::length(glm::cross(view_dir / dist, up / up_len));

@@ -189,6 +189,10 @@ expect_fail 2 'size' -- bake --mesh "$T/m/bump.obj" --planes "$T/planes.json" --
 printf 'P2\n4 2\n255\n0 51 102 255\n255 102 51 0\n' >"$T/h.pgm"
 printf 'P3\n4 2\n255\n' >"$T/c.ppm"; for i in $(seq 8); do printf '10 20 30\n' >>"$T/c.ppm"; done
 expect_ok bake --height "$T/h.pgm" --color "$T/c.ppm" --range -0.5,0.5 --texel 0.25 --out "$T/hm"
+# A range every reader refuses is refused here (0,1e35 was written, then refused by every command).
+expect_fail 2 'range.*beyond the coordinate limit' -- bake --height "$T/h.pgm" --range 0,1e35 --out "$T/o_range"
+expect_fail 2 'range.*beyond the coordinate limit' -- bake --height "$T/h.pgm" --range 0,1e300 --out "$T/o_range"
+expect_fail 2 'texel.*too small' -- bake --height "$T/h.pgm" --texel 1e-300 --out "$T/o_range"
 [ -f "$T/hm/h.relief.json" ] || { echo "FAIL: no h.relief.json: $(ls "$T/hm")"; fails=$((fails + 1)); }
 expect_ok render --relief "$T/hm/h.relief.json" --orbit 0,30,3 --size 32x32 --out "$T/hm.png"
 # --size N resamples the height map and the colour to N texels along the longer side (tent filter, docs/BAKE.md)

@@ -112,7 +112,10 @@ expect_fail 1 "missing.scene.json" -- render --scene "$T/missing.scene.json" --o
 printf '{"items": [{"type": "polygon", "vertices": [[0,0,0],[1,0,0]]}]}' >"$T/bad.scene.json"
 expect_fail 1 "bad.scene.json: item 0: .*vertices" -- render --scene "$T/bad.scene.json" --out "$T/x.png"
 printf '{"items": [{"type": "relief", "relief": "nope.relief.json"}]}' >"$T/nofile.scene.json"
-expect_fail 1 "nope.relief.json" -- render --scene "$T/nofile.scene.json" --out "$T/x.png"
+# (with a camera: a scene without one is refused first, before its items are loaded)
+expect_fail 1 "nofile.scene.json: item 0: .*nope.relief.json" -- render --scene "$T/nofile.scene.json" --orbit 0,30,2 \
+  --out "$T/x.png"
+expect_fail 2 "nofile.scene.json has no default camera" -- render --scene "$T/nofile.scene.json" --out "$T/x.png"
 printf '{"items": [{"type": "polygon", "vertices": [[0,0,0],[1,0,0],[1,1,0]]}]}' >"$T/nocam.scene.json"
 expect_fail 2 "no default camera" -- render --scene "$T/nocam.scene.json" --out "$T/x.png"
 [ ! -e "$T/x.png" ] && passes=$((passes + 1)) || { echo "FAIL: partial output left"; fails=$((fails + 1)); }

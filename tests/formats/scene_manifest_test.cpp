@@ -216,10 +216,10 @@ TEST(SceneManifest, HostileScenesGiveOneLineNamingTheField) {
          R"({"items": [{"type": "relief", "relief": "a.json"}], "camera_path": {"frames": 10,
              "keys": [{"eye": [0,0,1], "look_at": [0,0,0]}, {"eye": [5e30,0,1], "look_at": [0,0,0]}]}})",
          {"camera_path: key 1: field \"eye\" [5e+30, 0.0, 1.0] has a coordinate beyond +-1e30"}},
-        // As Camera::check: closer than 1e-12 of their distance from the origin is the same point.
+        // As Camera::check: closer than 1e-12 times the larger of 1 and their distance from the origin is one point.
         {"camera eye at look_at within rounding",
          R"({"items": [{"type": "relief", "relief": "a.json"}], "camera": {"eye": [1e20,0,0], "look_at": [1e20,1,0]}})",
-         {"camera: \"eye\" [1e+20, 0.0, 0.0] and \"look_at\" [1e+20, 1.0, 0.0] are the same point within rounding"}},
+         {"camera: \"eye\" [1e+20, 0.0, 0.0] and \"look_at\" [1e+20, 1.0, 0.0] are the same point to the camera"}},
         // Convexity of 4-vertex polygons (docs/SCENES.md: "3 or 4 vertices, convex and planar").
         {"bow-tie",
          R"({"items": [{"type": "polygon", "vertices": [[0,0,0],[1,1,0],[1,0,0],[0,1,0]]}]})",
