@@ -25,14 +25,9 @@ namespace rtm::cli {
 CLI::Validator non_negative_threshold() {
     return CLI::Validator(
         [](std::string& text) -> std::string {
-            size_t used = 0;
-            double v = 0;
-            try {
-                v = std::stod(text, &used);
-            } catch (const std::exception&) {
-                used = 0;
-            }
-            if (used == 0 || used != text.size() || !std::isfinite(v) || v < 0)
+            char* end = nullptr;  // strtod: a value that underflows (1e-320) is a small threshold, not an error
+            const double v = std::strtod(text.c_str(), &end);
+            if (end == text.c_str() || *end != '\0' || !std::isfinite(v) || v < 0)
                 return "expected a threshold >= 0 (world units), found \"" + text + "\"";
             return "";
         },

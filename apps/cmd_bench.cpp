@@ -1,5 +1,6 @@
 // rtm bench: pre-warp throughput against the memory bound, and the paper's Table 1 (measure/bench.h). Progress on
 // stderr, a Markdown report on stdout, JSON with --json FILE.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -11,6 +12,7 @@
 #include "measure/bench.h"
 #include "measure/scene_bench.h"
 #include "objects/render_method.h"
+#include "warp/task_arenas.h"
 
 namespace rtm::cli {
 
@@ -47,7 +49,18 @@ std::vector<int> parse_ints(const std::string& text, const std::string& flag, in
 void run_bench_command(const BenchArgs& a) {
     BenchConfig c = default_bench_config(a.full);
     if (!a.sizes.empty()) c.sizes = parse_ints(a.sizes, "--sizes", 8, 8192);
-    if (!a.threads.empty()) c.threads = parse_ints(a.threads, "--threads", 1, 1024);
+    if (!a.threads.empty()) {
+        // What runs is what is reported: a count past the machine's parallelism runs as that (warp/task_arenas.h).
+        std::vector<int> runs;
+        for (int t : parse_ints(a.threads, "--threads", 1, 1024)) {
+            const int can = arena_threads(t);
+            if (can < t)
+                std::fprintf(stderr, "rtm: warning: --threads %d: this machine runs at most %d; measured with %d\n", t,
+                             can, can);
+            if (std::find(runs.begin(), runs.end(), can) == runs.end()) runs.push_back(can);
+        }
+        c.threads = runs;
+    }
     if (!a.reliefs.empty()) c.reliefs = parse_relief_names(a.reliefs, "--reliefs");
     c.isas = parse_isa_list(a.isa.empty() ? std::string("auto") : a.isa, "--isa");
     if (a.isa.empty()) c.isas.clear();

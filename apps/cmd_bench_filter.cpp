@@ -32,6 +32,7 @@ void run(const Args& a) {
     o.progress = [](const std::string& s) { std::fprintf(stderr, "%s\n", s.c_str()); };
     if (!a.out.empty()) {
         make_output_folder(a.out);
+        check_output_file((std::filesystem::path(a.out) / "probe.png").string(), "--out");  // takes files, before work
         o.on_image = [&](const std::string& relief, const std::string& view, const std::string& what,
                          const ImageRGBA8& img) {
             write_rgba8((std::filesystem::path(a.out) / (relief + "_" + view + "_" + what + ".png")).string(), img);

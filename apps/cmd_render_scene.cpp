@@ -91,11 +91,19 @@ void run_render_scene(const SceneRenderArgs& a) {
     } else {
         throw UsageError(a.scene + " has no default camera: give --eye X,Y,Z or --orbit AZ,EL,D or --camera-path K");
     }
-    for (Camera& c : cams) {
-        if (const std::string why = c.validate(); !why.empty()) throw IoError(a.scene + ": camera: " + why);
-        c.fit_clip_planes(bounds.centre(), bounds.radius());
+    const bool path = !a.frames_dir.empty() || a.path_frame >= 0;
+    for (size_t k = 0; k < cams.size(); ++k) {
+        if (const std::string why = cams[k].validate(); !why.empty())
+            throw IoError(a.scene + ": camera" +
+                          (path ? " of path frame " + std::to_string(a.path_frame >= 0 ? size_t(a.path_frame) : k)
+                                : std::string()) +
+                          ": " + why);
+        cams[k].fit_clip_planes(bounds.centre(), bounds.radius());
     }
-    if (!a.frames_dir.empty()) make_output_folder(a.frames_dir, "--frames");
+    if (!a.frames_dir.empty()) {  // the folder made and its first frame's name probed before any frame is drawn
+        make_output_folder(a.frames_dir, "--frames");
+        check_output_file((std::filesystem::path(a.frames_dir) / "frame_0000.png").string(), "--frames");
+    }
 
     PrewarpOptions opt;
     opt.keep_outliers = !a.no_sidewalls;

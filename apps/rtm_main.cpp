@@ -23,6 +23,16 @@ int main(int argc, char** argv) {
     rtm::cli::add_bench_command(app);
     rtm::cli::add_bench_filter_command(app);
     rtm::cli::add_bake_command(app);
+    // An option before any subcommand that rtm itself does not take: name it (CLI11 says only that a subcommand is
+    // required).
+    if (argc > 1 && argv[1][0] == '-') {
+        const std::string first = argv[1];
+        if (first != "-h" && first != "--help" && first != "--version" && first != "--help-all") {
+            std::fprintf(stderr, "rtm: unknown option \"%s\" before the subcommand (try --help)\n",
+                         rtm::printable_one_line(first).c_str());
+            return 2;
+        }
+    }
     // A first word that names no subcommand: say which word, not only that a subcommand is required.
     if (argc > 1 && argv[1][0] != '-' &&
         app.get_subcommands([&](const CLI::App* sub) { return sub->get_name() == argv[1]; }).empty()) {

@@ -203,4 +203,7 @@ if [ ! -p "$T/out_fifo.json" ] || [ ! -L "$T/loop_a" ]; then
   echo "FAIL: the FIFO or the link was replaced"
   fails=$((fails + 1))
 fi
+# An unknown option before the subcommand is named; a threshold that underflows is a threshold.
+expect_fail 2 'unknown option "--frobnicate" before the subcommand' -- --frobnicate
+expect_ok render --relief "$R" --eye 0.5,0.5,3 --size 16x16 --discontinuity 1e-320 --out "$T/a20.png"
 finish
