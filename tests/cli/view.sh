@@ -169,8 +169,11 @@ expect_fail 2 "^rtm: --keys: unknown key \"nope\"" -- view --relief "$M" --keys 
 expect_fail 2 "^rtm: --split: raycast" -- view --relief "$M" --split raycast --frames 1
 expect_fail 2 "^rtm: --panel-refresh-ms: expected a time >= 0, found -1$" -- view --relief "$M" \
   --panel-refresh-ms -1 --frames 1
-expect_fail 2 "^rtm: --content-scale: expected a scale in \\[0.25, 8\\], found 100$" -- view --relief "$M" \
-  --content-scale 100 --frames 1
+expect_fail 2 "^rtm: --content-scale: expected a scale in \\[0.25, 8\\], found \"100\" \\(try --help\\)$" -- \
+  view --relief "$M" --content-scale 100 --frames 1
+# 0, the default meaning "not given", is refused when typed
+expect_fail 2 "^rtm: --content-scale: expected a scale in \\[0.25, 8\\], found \"0\" \\(try --help\\)$" -- \
+  view --relief "$M" --content-scale 0 --frames 1
 echo '{"keys": []}' >"$T/bad_path.json"
 expect_fail 1 "bad_path.json: \"keys\"" -- view --relief "$M" --camera-path "$T/bad_path.json" --frames 1
 
