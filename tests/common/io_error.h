@@ -3,6 +3,7 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <functional>
 #include <string>
@@ -27,6 +28,20 @@ inline void expect_io_error(const std::function<void()>& fn, const std::string& 
     } catch (const std::exception& e) {
         ADD_FAILURE() << label << ": expected rtm::IoError, got another exception: " << e.what();
     }
+}
+
+// A reader of a small text file (a manifest, a planes file, a camera path) refuses what is not a regular file without
+// opening it: a FIFO (a read would wait for a writer for ever), a device (/dev/zero never ends), a folder and a
+// missing file, each with one line naming the path. `read(path)` reads the file; `dir` is an empty temporary folder.
+inline void expect_refuses_non_regular_files(const std::function<void(const std::string&)>& read,
+                                             const std::string& dir) {
+    const std::string fifo = dir + "/fifo.json";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    const std::pair<std::string, std::string> cases[] = {{fifo, "is not a regular file"},
+                                                         {"/dev/zero", "is not a regular file"},
+                                                         {dir, "is a directory"},
+                                                         {dir + "/none.json", "No such file"}};
+    for (const auto& [path, want] : cases) expect_io_error([&, p = path] { read(p); }, path, {want}, path);
 }
 
 }  // namespace rtm::objects_testing
