@@ -49,11 +49,14 @@ public:
             return img;
         }
         CurvedMesh& m = curved_[angle];
-        if (m.vertices.empty())
-            curved_micromesh(quad_.relief(), cylinder_patch_for(quad_.relief(), angle), m.vertices, m.indices);
+        if (m.vertices.empty()) {
+            m.origin = quad_.relief().geometry.origin;  // positions relative to it: far from 0 they keep their digits
+            curved_micromesh(quad_.relief(), cylinder_patch_for(quad_.relief(), angle), m.vertices, m.indices,
+                             m.origin);
+        }
         const auto t0 = Clock::now();
         renderer.begin_frame(cam);
-        renderer.draw_mesh(cam, m.vertices, m.indices);
+        renderer.draw_mesh(cam, m.vertices, m.indices, m.origin);
         renderer.finish();
         times.texture_map_ms += ms_since(t0);
         times.total_ms += ms_since(t0);
@@ -65,6 +68,7 @@ private:
     struct CurvedMesh {
         std::vector<MeshVertex> vertices;
         std::vector<uint32_t> indices;
+        glm::dvec3 origin{0.0};
     };
     ReliefQuad quad_;
     std::map<int, ReliefQuad> scaled_;     // the relief at each output scale asked for, built once

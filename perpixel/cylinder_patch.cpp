@@ -38,7 +38,7 @@ CylinderPatch cylinder_patch_for(const ReliefTexture& t, double angle) {
 }
 
 void cylinder_base_mesh(const CylinderPatch& p, int segments, int rows, std::vector<QuadricVertex>& vertices,
-                        std::vector<uint32_t>& indices) {
+                        std::vector<uint32_t>& indices, const glm::dvec3& origin) {
     vertices.clear();
     indices.clear();
     const int nx = segments + 1, ny = rows + 1;
@@ -47,7 +47,7 @@ void cylinder_base_mesh(const CylinderPatch& p, int segments, int rows, std::vec
         for (int i = 0; i < nx; ++i) {
             const double s = double(i) / segments, t = double(j) / rows;
             QuadricVertex v;
-            v.position = glm::vec3(p.point(s, t));
+            v.position = glm::vec3(p.point(s, t) - origin);
             v.normal = glm::vec3(p.normal(s));
             v.tangent = glm::vec3(p.tangent(s));
             v.binormal = glm::vec3(p.b_hat);
@@ -92,7 +92,7 @@ void cylinder_base_mesh(const CylinderPatch& p, int segments, int rows, std::vec
 }
 
 void curved_micromesh(const ReliefTexture& t, const CylinderPatch& p, std::vector<MeshVertex>& vertices,
-                      std::vector<uint32_t>& indices) {
+                      std::vector<uint32_t>& indices, const glm::dvec3& origin) {
     vertices.clear();
     indices.clear();
     const double range = t.quant.max - t.quant.min;
@@ -101,7 +101,7 @@ void curved_micromesh(const ReliefTexture& t, const CylinderPatch& p, std::vecto
             const double s = (i + 0.5) / t.width, tt = (t.height - 1 - row + 0.5) / t.height;
             const ReliefTexel& x = t.texel(i, row);
             const double d = x.q == kEmptyIndex || range <= 0 ? 1.0 : (t.quant.max - t.displ(i, row)) / range;
-            vertices.push_back({glm::vec3(p.point(s, tt, d)),
+            vertices.push_back({glm::vec3(p.point(s, tt, d) - origin),
                                 glm::u8vec4(x.r, x.g, x.b, x.q == kEmptyIndex ? 0 : 255)});
         }
     auto id = [&](int i, int row) { return uint32_t(row * t.width + i); };

@@ -42,13 +42,15 @@ struct QuadricVertex {
 };
 
 // The base mesh, `segments` quads around and `rows` along b, with the quadric coefficients fitted at each vertex
-// to its neighbours (the vertices of the triangles sharing it).
+// to its neighbours (the vertices of the triangles sharing it). Positions are relative to `origin` (subtracted in
+// double, so that a patch far from the world's origin keeps its digits in float).
 void cylinder_base_mesh(const CylinderPatch& p, int segments, int rows, std::vector<QuadricVertex>& vertices,
-                        std::vector<uint32_t>& indices);
+                        std::vector<uint32_t>& indices, const glm::dvec3& origin = glm::dvec3(0.0));
 
 // The relief displaced inwards on the patch: a vertex at each texel centre with its colour, triangles between
-// texel centres (cells with an empty texel left out).
+// texel centres (cells with an empty texel left out). Positions relative to `origin`, as above (draw with
+// Renderer::draw_mesh's origin).
 void curved_micromesh(const ReliefTexture& t, const CylinderPatch& p, std::vector<MeshVertex>& vertices,
-                      std::vector<uint32_t>& indices);
+                      std::vector<uint32_t>& indices, const glm::dvec3& origin = glm::dvec3(0.0));
 
 }  // namespace rtm

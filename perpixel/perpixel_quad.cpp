@@ -190,12 +190,10 @@ void PerPixelQuad::draw_quadric(const Camera& cam, const ReliefTexture& t, const
     const CylinderPatch patch = cylinder_patch_for(t, q.angle);
     std::vector<QuadricVertex> vertices;
     std::vector<uint32_t> indices;
-    cylinder_base_mesh(patch, q.segments, q.rows, vertices, indices);
     const glm::dvec3 E = cam.eye;
-    for (QuadricVertex& v : vertices) {
-        v.position = glm::vec3(glm::dvec3(v.position) - E);  // eye-relative
-        if (!q.quadric) v.quadric = glm::vec2(0.0f);
-    }
+    cylinder_base_mesh(patch, q.segments, q.rows, vertices, indices, E);  // eye-relative positions
+    if (!q.quadric)
+        for (QuadricVertex& v : vertices) v.quadric = glm::vec2(0.0f);
     if (!quadric_vao_) {
         glGenVertexArrays(1, &quadric_vao_);
         glGenBuffers(1, &quadric_vbo_);
