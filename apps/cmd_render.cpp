@@ -80,6 +80,16 @@ void run_render(const RenderArgs& a) {
     if (a.repeat < 1) throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
     if (!a.mesh.empty()) {
         if (!a.relief.empty()) throw UsageError("render takes one of --relief M and --mesh FILE, not both");
+        // What only a relief takes: said once each, not silently ignored.
+        const std::pair<bool, const char*> unused[] = {{a.exact, "--exact"},
+                                                       {filter != Filter::point, "--filter coverage"},
+                                                       {a.no_sidewalls, "--no-sidewalls"},
+                                                       {a.depth_correction, "--depth-correction"},
+                                                       {a.discontinuity >= 0, "--discontinuity"},
+                                                       {!a.level.empty(), "--level"},
+                                                       {a.no_skips, "--no-skips"}};
+        for (const auto& [given, flag] : unused)
+            if (given) std::fprintf(stderr, "rtm: warning: %s applies to reliefs; a mesh is drawn as it is\n", flag);
         run_render_mesh(a.mesh, a.camera, a.out, a.json);
         return;
     }

@@ -206,4 +206,12 @@ fi
 # An unknown option before the subcommand is named; a threshold that underflows is a threshold.
 expect_fail 2 'unknown option "--frobnicate" before the subcommand' -- --frobnicate
 expect_ok render --relief "$R" --eye 0.5,0.5,3 --size 16x16 --discontinuity 1e-320 --out "$T/a20.png"
+# Relief options with --mesh: a warning each.
+if "$RTM" render --mesh "$2/media/room.ply" --orbit 30,20,2.5 --size 16x16 --level 2 --out "$T/a21.png" 2>"$T/err" &&
+  grep -q '^rtm: warning: --level applies to reliefs' "$T/err"; then
+  passes=$((passes + 1))
+else
+  echo "FAIL: render --mesh --level: no warning ($(cat "$T/err"))"
+  fails=$((fails + 1))
+fi
 finish
