@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
 #include <memory>
 
 #include <unistd.h>
@@ -31,6 +32,12 @@ struct RenderArgs {
     double discontinuity = -1;
     int repeat = 1, threads = 0, path_frame = -1, output_scale = 1;
 };
+
+// One warning line for each flag given that what is drawn does not use ("rtm: warning: FLAG WHY").
+void warn_unused(std::initializer_list<std::pair<bool, const char*>> flags, const std::string& why) {
+    for (const auto& [given, flag] : flags)
+        if (given) std::fprintf(stderr, "rtm: warning: %s %s\n", flag, why.c_str());
+}
 
 void run_render(const RenderArgs& a) {
     check_isa_environment();
@@ -81,15 +88,14 @@ void run_render(const RenderArgs& a) {
     if (!a.mesh.empty()) {
         if (!a.relief.empty()) throw UsageError("render takes one of --relief M and --mesh FILE, not both");
         // What only a relief takes: said once each, not silently ignored.
-        const std::pair<bool, const char*> unused[] = {{a.exact, "--exact"},
-                                                       {filter != Filter::point, "--filter coverage"},
-                                                       {a.no_sidewalls, "--no-sidewalls"},
-                                                       {a.depth_correction, "--depth-correction"},
-                                                       {a.discontinuity >= 0, "--discontinuity"},
-                                                       {!a.level.empty(), "--level"},
-                                                       {a.no_skips, "--no-skips"}};
-        for (const auto& [given, flag] : unused)
-            if (given) std::fprintf(stderr, "rtm: warning: %s applies to reliefs; a mesh is drawn as it is\n", flag);
+        warn_unused({{a.exact, "--exact"},
+                     {filter != Filter::point, "--filter coverage"},
+                     {a.no_sidewalls, "--no-sidewalls"},
+                     {a.depth_correction, "--depth-correction"},
+                     {a.discontinuity >= 0, "--discontinuity"},
+                     {!a.level.empty(), "--level"},
+                     {a.no_skips, "--no-skips"}},
+                    "applies to reliefs; a mesh is drawn as it is");
         run_render_mesh(a.mesh, a.camera, a.out, a.json);
         return;
     }
@@ -104,13 +110,10 @@ void run_render(const RenderArgs& a) {
 
     // Pre-warp options with a method that pre-warps nothing: said once each, not silently ignored.
     if (method != RenderMethod::two_pass && method != RenderMethod::pipelined) {
-        const std::pair<bool, const char*> unused[] = {{a.exact, "--exact"},
-                                                       {filter != Filter::point, "--filter coverage"},
-                                                       {a.no_sidewalls, "--no-sidewalls"}};
-        for (const auto& [given, flag] : unused)
-            if (given)
-                std::fprintf(stderr, "rtm: warning: %s applies to the pre-warp, which --method %s does not do\n", flag,
-                             a.method.c_str());
+        warn_unused({{a.exact, "--exact"},
+                     {filter != Filter::point, "--filter coverage"},
+                     {a.no_sidewalls, "--no-sidewalls"}},
+                    "applies to the pre-warp, which --method " + a.method + " does not do");
     }
     ReliefTexture relief = load_relief(a.relief);
     if (a.discontinuity >= 0) mark_discontinuities(relief, a.discontinuity);
