@@ -23,8 +23,6 @@ nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::js
 // --mesh: the object baked from the mesh (OUT/object/NAME.object.json, or --object) against the mesh itself.
 void run_compare_mesh(const CompareMeshArgs& a) {
     if (!a.object.empty() && a.texels_given) throw UsageError("--texels bakes the mesh; it does not apply to --object");
-    if (!(a.discontinuity >= 0 || a.discontinuity == -1) || !std::isfinite(a.discontinuity))
-        throw UsageError("--discontinuity: expected a threshold >= 0, found " + std::to_string(a.discontinuity));
     if (a.texels < 1 || a.texels > 16384)
         throw UsageError("--texels: expected N texels along the longest side, 1..16384, found " +
                          std::to_string(a.texels));

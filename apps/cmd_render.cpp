@@ -48,8 +48,6 @@ void run_render(const RenderArgs& a) {
     if (!a.object.empty()) {
         if (!a.relief.empty() || !a.scene.empty())
             throw UsageError("render takes one of --relief, --object and --scene");
-        if (!(a.discontinuity >= 0 || a.discontinuity == -1) || !std::isfinite(a.discontinuity))
-            throw UsageError("--discontinuity: expected a threshold >= 0, found " + std::to_string(a.discontinuity));
         return run_render_object({a.object, a.out, a.json, a.method, level, a.filter, a.camera, a.exact,
                                   a.depth_correction, a.no_skips, a.repeat, a.threads, a.discontinuity});
     }
@@ -82,8 +80,6 @@ void run_render(const RenderArgs& a) {
     const Filter filter = parse_filter(a.filter, method == RenderMethod::pipelined ? Reconstruction::pipelined
                                                                                    : Reconstruction::two_pass);
     const int level_n = parse_level(level);
-    if (!(a.discontinuity >= 0 || a.discontinuity == -1) || !std::isfinite(a.discontinuity))
-        throw UsageError("--discontinuity: expected a threshold >= 0, found " + std::to_string(a.discontinuity));
     if (a.repeat < 1) throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
     if (!a.mesh.empty()) {
         if (!a.relief.empty()) throw UsageError("render takes one of --relief M and --mesh FILE, not both");

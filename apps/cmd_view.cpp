@@ -43,10 +43,6 @@ void run_view(const ViewArgs& a) {
     };
     if (!(a.panel_refresh_ms >= 0))
         throw UsageError("--panel-refresh-ms: expected a time >= 0, found " + number(a.panel_refresh_ms));
-    if (!(a.content_scale == 0 || (a.content_scale >= 0.25 && a.content_scale <= 8)))
-        throw UsageError("--content-scale: expected a scale in [0.25, 8], found " + number(a.content_scale));
-    if (!(a.discontinuity >= 0 || a.discontinuity == -1))
-        throw UsageError("--discontinuity: expected a threshold >= 0, found " + std::to_string(a.discontinuity));
     viewer::ViewerOptions o;
     viewer::ViewSettings& s = o.settings;
     try {
