@@ -174,7 +174,7 @@ std::vector<StillWallMeasurement> measure_still_wall(int size, int rounds,
     walls[3] = walls[0];
     bool still_level[256] = {};
     for (int q = 0; q < 255; ++q) still_level[q] = walls[0].quant.decode(uint8_t(q)) == 0.0;
-    for (ReliefTexel& tx : walls[3].texels)
+    for (ReliefTexel& tx : walls[3].texels.edit())
         if (still_level[tx.q]) tx.q = kEmptyIndex;
     // The still texels copied to their own pixels (no margins: PrewarpOptions' default).
     ImageRGBA8 copy_out(size, size);

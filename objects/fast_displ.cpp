@@ -9,7 +9,7 @@ namespace rtm {
 
 ReliefTexture index_relief(const ReliefTexture& t) {
     ReliefTexture o = t;
-    for (ReliefTexel& x : o.texels)
+    for (ReliefTexel& x : o.texels.edit())
         if (x.q != kEmptyIndex) x.r = x.g = x.b = x.q;
     return o;
 }

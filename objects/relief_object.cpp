@@ -75,9 +75,10 @@ void find_cracks(const ImageRGBA8& img, const Image2D<uint8_t>* displ, int r0, i
 
 }  // namespace
 
-ReliefObject::ReliefObject(SixFaceObject object) : name_(std::move(object.name)), box_(object.box) {
+ReliefObject::ReliefObject(SixFaceObject object, const FacePyramids& pyramids)
+    : name_(std::move(object.name)), box_(object.box) {
     quads_.reserve(kFaceCount);
-    for (ReliefTexture& t : object.faces) quads_.emplace_back(std::move(t));
+    for (size_t k = 0; k < object.faces.size(); ++k) quads_.emplace_back(std::move(object.faces[k]), pyramids[k]);
 }
 ReliefObject::~ReliefObject() = default;
 ReliefObject::ReliefObject(ReliefObject&&) noexcept = default;

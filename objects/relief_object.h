@@ -85,7 +85,10 @@ struct ObjectReport {
 
 class ReliefObject {
 public:
-    explicit ReliefObject(SixFaceObject object);
+    // With `pyramids`, face k's pyramid levels come from pyramids[k] (shared with the other placements of the same
+    // object in a scene: SharedPyramid, warp/pyramid.h); null entries build their own.
+    using FacePyramids = std::array<std::shared_ptr<SharedPyramid>, kFaceCount>;
+    explicit ReliefObject(SixFaceObject object, const FacePyramids& pyramids = {});
     ~ReliefObject();
     ReliefObject(ReliefObject&&) noexcept;
 

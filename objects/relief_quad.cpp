@@ -36,7 +36,8 @@ void premultiply_alpha(ImageRGBA8& img) {
     }
 }
 
-ReliefQuad::ReliefQuad(ReliefTexture relief) : relief_(std::move(relief)) {}
+ReliefQuad::ReliefQuad(ReliefTexture relief, std::shared_ptr<SharedPyramid> pyramid)
+    : relief_(std::move(relief)), shared_pyramid_(std::move(pyramid)) {}
 ReliefQuad::~ReliefQuad() = default;
 ReliefQuad::ReliefQuad(ReliefQuad&&) noexcept = default;
 
@@ -87,7 +88,8 @@ const ReliefTexture& ReliefQuad::level_texture(int i) {
     while (int(pyramid_.size()) < i) {
         const ReliefTexture& prev = pyramid_.empty() ? relief_ : pyramid_.back();
         if (prev.width == 1 && prev.height == 1) break;
-        pyramid_.push_back(downsample(prev, relief_));
+        pyramid_.push_back(shared_pyramid_ ? shared_pyramid_->level(relief_, int(pyramid_.size()) + 1)
+                                           : downsample(prev, relief_));
     }
     return pyramid_[size_t(std::min<int>(i, int(pyramid_.size()))) - 1];
 }

@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <memory>
 #include <stdexcept>
 
 #include "formats/image_io.h"
@@ -12,21 +14,28 @@
 #include "formats/relief_manifest.h"
 #include "perpixel/perpixel_quad.h"
 #include "truth/micromesh.h"
+#include "warp/pyramid.h"
 #include "warp/timing.h"
 
 namespace rtm {
 
-ReliefTexture transform_relief(ReliefTexture t, const glm::dmat4& m) {
+void scale_relief_displacements(ReliefTexture& t, double s) {
+    if (s == 1.0) return;
+    t.quant = Quantizer::from_range(t.quant.min * s, t.quant.max * s);
+    for (float& d : t.displacement.edit()) d = float(double(d) * s);
+    t.discontinuity_threshold *= s;
+}
+
+void place_relief_geometry(ReliefTexture& t, const glm::dmat4& m) {
     const glm::dmat3 l(m);
-    const double s = similarity_scale(m);  // a relief keeps its shape
     t.geometry.origin = glm::dvec3(m * glm::dvec4(t.geometry.origin, 1.0));
     t.geometry.a = l * t.geometry.a;
     t.geometry.b = l * t.geometry.b;
-    if (s != 1.0) {
-        t.quant = Quantizer::from_range(t.quant.min * s, t.quant.max * s);
-        for (float& d : t.displacement) d = float(double(d) * s);
-        t.discontinuity_threshold *= s;
-    }
+}
+
+ReliefTexture transform_relief(ReliefTexture t, const glm::dmat4& m) {
+    scale_relief_displacements(t, similarity_scale(m));  // throws where m does not keep the relief's shape
+    place_relief_geometry(t, m);
     return t;
 }
 
@@ -50,8 +59,15 @@ Camera scene_path_camera(const Scene& scene, int k, const Camera& base) {
 Scene Scene::load(const std::string& manifest_path) { return Scene(parse_scene_manifest(manifest_path)); }
 
 Scene::Scene(SceneManifest manifest) : manifest_(std::move(manifest)) {
-    std::map<std::string, ReliefTexture> loaded;  // each relief file read once
-    std::map<std::string, SixFaceObject> objects;
+    // Each relief file read once; its displacements scaled once per scale its placements use, and the placements of
+    // one file at one scale share its texels and pyramid levels (each quad keeps its own geometry).
+    struct Scaled {
+        ReliefTexture relief;
+        std::shared_ptr<SharedPyramid> pyramid;
+    };
+    std::map<std::string, ReliefTexture> loaded;
+    std::map<std::pair<std::string, double>, Scaled> scaled;
+    std::map<std::string, LoadedObject> objects;
     std::map<std::string, TriangleMesh> meshes;
     for (size_t i = 0; i < manifest_.items.size(); ++i) {
         const SceneItem& item = manifest_.items[i];
@@ -70,7 +86,17 @@ Scene::Scene(SceneManifest manifest) : manifest_(std::move(manifest)) {
             throw IoError(manifest_.path + ": item " + std::to_string(i) + ": " + e.what());
         }
         try {
-            quads_.emplace_back(transform_relief(it->second, item.transform.matrix()));
+            const glm::dmat4 m = item.transform.matrix();
+            const double s = similarity_scale(m);
+            auto sc = scaled.find({item.relief_path, s});
+            if (sc == scaled.end()) {
+                Scaled fresh{it->second, std::make_shared<SharedPyramid>()};
+                scale_relief_displacements(fresh.relief, s);
+                sc = scaled.emplace(std::pair{item.relief_path, s}, std::move(fresh)).first;
+            }
+            ReliefTexture placed = sc->second.relief;
+            place_relief_geometry(placed, m);
+            quads_.emplace_back(std::move(placed), sc->second.pyramid);
         } catch (const std::invalid_argument& e) {
             throw IoError(manifest_.path + ": item " + std::to_string(i) + ": " + e.what());
         }
@@ -84,14 +110,18 @@ Scene::Scene(SceneManifest manifest) : manifest_(std::move(manifest)) {
     }
 }
 
-void Scene::load_placed_item(size_t i, std::map<std::string, SixFaceObject>& objects,
+void Scene::load_placed_item(size_t i, std::map<std::string, LoadedObject>& objects,
                              std::map<std::string, TriangleMesh>& meshes) {
     const SceneItem& item = manifest_.items[i];
     try {
         if (item.kind == SceneItem::Kind::object) {
             auto it = objects.find(item.file_path);
-            if (it == objects.end()) it = objects.emplace(item.file_path, load_object(item.file_path)).first;
-            objects_.emplace_back(it->second, item.transform.matrix());
+            if (it == objects.end()) {
+                LoadedObject fresh{load_object(item.file_path), {}};
+                for (auto& p : fresh.pyramids) p = std::make_shared<SharedPyramid>();
+                it = objects.emplace(item.file_path, std::move(fresh)).first;
+            }
+            objects_.emplace_back(it->second.object, item.transform.matrix(), it->second.pyramids);
         } else {
             auto it = meshes.find(item.file_path);
             if (it == meshes.end()) it = meshes.emplace(item.file_path, load_mesh(item.file_path)).first;

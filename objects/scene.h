@@ -21,6 +21,11 @@ namespace rtm {
 // A relief texture placed by a similarity transform: origin, a and b move with it, displacements scale with it.
 // Throws std::invalid_argument when the transform does not keep the relief's shape (shear or unequal scale).
 ReliefTexture transform_relief(ReliefTexture t, const glm::dmat4& m);
+// transform_relief in its two steps: the displacements (quantizer, discontinuity threshold) scaled by s > 0, and
+// the geometry moved by m, whose scale is s (similarity_scale). The scene does the first once per file and scale and
+// the second per placement, so the placements of one file at one scale share its texels and pyramid.
+void scale_relief_displacements(ReliefTexture& t, double s);
+void place_relief_geometry(ReliefTexture& t, const glm::dmat4& m);
 
 // The camera of a scene's key (its default camera or a frame of its path) with the image size and clip planes of
 // `base`.
@@ -80,8 +85,14 @@ public:
               const DrawOptions& draw, SceneFrameReport& report, const QuadFrameOptions& frame = {});
 
 private:
+    // An object file as read, and its faces' pyramid levels, which its placements share (each placement keeps the
+    // object in its own frame: the faces are the same, only the matrix differs).
+    struct LoadedObject {
+        SixFaceObject object;
+        ReliefObject::FacePyramids pyramids;
+    };
     // Item i, an object or a mesh: each file read once (the maps hold what was read).
-    void load_placed_item(size_t i, std::map<std::string, SixFaceObject>& objects,
+    void load_placed_item(size_t i, std::map<std::string, LoadedObject>& objects,
                           std::map<std::string, TriangleMesh>& meshes);
     // The meshes and the objects of a frame, after the polygons and before the relief quads.
     void draw_placed_items(Renderer& renderer, const Camera& cam, RenderMethod method, const PrewarpOptions& options,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace rtm {
 
@@ -11,12 +12,11 @@ ReliefTexture downsample(const ReliefTexture& t, const ReliefTexture& level0) {
     o.width = w;
     o.height = h;
     o.quant = t.quant;
-    o.geometry = t.geometry;
-    // Keep the covered area: w * |a_new| = level0.width * |a0|.
-    o.geometry.a = level0.geometry.a * (double(level0.width) / w);
-    o.geometry.b = level0.geometry.b * (double(level0.height) / h);
-    o.texels.assign(size_t(w) * size_t(h), ReliefTexel{});
-    o.displacement.assign(size_t(w) * size_t(h), 0.0f);
+    o.geometry = level_geometry(level0, w, h);
+    std::vector<ReliefTexel>& texels = o.texels.edit();
+    std::vector<float>& displ = o.displacement.edit();
+    texels.assign(size_t(w) * size_t(h), ReliefTexel{});
+    displ.assign(size_t(w) * size_t(h), 0.0f);
     for (int r = 0; r < h; ++r)
         for (int x = 0; x < w; ++x) {
             // Blocks align with the BOTTOM-left corner in (u, v): v-rows 2j, 2j+1 of the source. Storage rows
@@ -40,11 +40,37 @@ ReliefTexture downsample(const ReliefTexture& t, const ReliefTexture& level0) {
             const size_t i = size_t(r) * size_t(w) + size_t(x);
             if (n == 0) continue;
             const double d = sd / n;
-            o.displacement[i] = float(d);
-            o.texels[i] = {uint8_t(std::lround(sr / n)), uint8_t(std::lround(sg / n)), uint8_t(std::lround(sb / n)),
-                           o.quant.encode(d)};
+            displ[i] = float(d);
+            texels[i] = {uint8_t(std::lround(sr / n)), uint8_t(std::lround(sg / n)), uint8_t(std::lround(sb / n)),
+                         o.quant.encode(d)};
         }
     return o;
+}
+
+ReliefGeometry level_geometry(const ReliefTexture& level0, int w, int h) {
+    ReliefGeometry g = level0.geometry;
+    // Keep the covered area: w * |a_new| = level0.width * |a0|.
+    g.a = level0.geometry.a * (double(level0.width) / w);
+    g.b = level0.geometry.b * (double(level0.height) / h);
+    return g;
+}
+
+ReliefTexture SharedPyramid::level(const ReliefTexture& level0, int i) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (level0_.texels.empty()) level0_ = level0;
+    if (!level0.texels.shares_storage_with(level0_.texels) ||
+        !level0.displacement.shares_storage_with(level0_.displacement) || level0.quant.min != level0_.quant.min ||
+        level0.quant.max != level0_.quant.max)
+        throw std::logic_error("SharedPyramid::level: a relief whose texels are not those of the pyramid's level 0");
+    while (int(levels_.size()) < i) {
+        const ReliefTexture& prev = levels_.empty() ? level0_ : levels_.back();
+        if (prev.width == 1 && prev.height == 1) break;
+        levels_.push_back(downsample(prev, level0_));
+    }
+    if (levels_.empty()) return level0;  // a 1x1 relief is its only level
+    ReliefTexture t = levels_[size_t(std::min<int>(i, int(levels_.size()))) - 1];
+    t.geometry = level_geometry(level0, t.width, t.height);
+    return t;
 }
 
 ReliefPyramid::ReliefPyramid(ReliefTexture level0) {

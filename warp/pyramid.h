@@ -5,6 +5,8 @@
 // Displacement is re-quantized with the level-0 quantizer, so min and qs are shared by all levels.
 #pragma once
 
+#include <memory>
+#include <mutex>
 #include <vector>
 
 #include "relief_texture.h"
@@ -24,6 +26,26 @@ private:
 
 // One level from the level before it (2x2 blocks, with the averaging rule above).
 ReliefTexture downsample(const ReliefTexture& t, const ReliefTexture& level0);
+
+// The geometry of a w x h level of `level0`'s pyramid: level 0's origin, a and b grown to cover the same area.
+ReliefGeometry level_geometry(const ReliefTexture& level0, int w, int h);
+
+// Levels 1.. of one relief's pyramid, built on first use and shared by the relief quads that hold copies of that
+// relief differing only in geometry (a scene's placements of one file at one scale, objects/scene.cpp): their levels
+// hold the same texels, so the quads keep one copy of them (SharedArray) and each its own geometry. Safe to call
+// from several threads at once.
+class SharedPyramid {
+public:
+    // Level i >= 1 of level0's pyramid (clamped to the 1x1 level, as ReliefQuad::level), with level0's geometry
+    // (level_geometry). Every level0 asked must share its texels and displacements with the first one asked (a copy
+    // of it, or of what it was copied from): std::logic_error otherwise.
+    ReliefTexture level(const ReliefTexture& level0, int i);
+
+private:
+    std::mutex mutex_;
+    ReliefTexture level0_;               // the first level0 asked, its arrays shared
+    std::vector<ReliefTexture> levels_;  // levels 1.., level0_'s geometry
+};
 
 // The level whose texel density roughly matches the pixel density: with `texels` texels at level 0 covering
 // `pixels` pixels on screen, each level divides the texel count by 4, so level = floor(log2(texels/pixels) / 2),

@@ -92,8 +92,10 @@ ReliefTexture make_relief(const ImageRGBA8& color, const ImageF& displacement, d
     t.geometry = geometry;
     t.quant = Quantizer::from_range(range_min, range_max);
     const size_t n = color.pixels.size();
-    t.texels.resize(n);
-    t.displacement.resize(n);
+    std::vector<ReliefTexel>& texels = t.texels.edit();
+    std::vector<float>& displ = t.displacement.edit();
+    texels.resize(n);
+    displ.resize(n);
     for (size_t i = 0; i < n; ++i) {
         const Rgba8 c = color.pixels[i];
         const float d = displacement.pixels[i];
@@ -102,8 +104,8 @@ ReliefTexture make_relief(const ImageRGBA8& color, const ImageF& displacement, d
             throw std::invalid_argument("displacement at texel (" + std::to_string(x) + ", " + std::to_string(row) +
                                         ") is not finite");
         }
-        t.displacement[i] = d;
-        t.texels[i] = {c.r, c.g, c.b, c.a == 0 ? kEmptyIndex : t.quant.encode(d)};
+        displ[i] = d;
+        texels[i] = {c.r, c.g, c.b, c.a == 0 ? kEmptyIndex : t.quant.encode(d)};
     }
     return t;
 }
@@ -133,15 +135,16 @@ void mark_discontinuities(ReliefTexture& t, double threshold) {
     t.discontinuity_threshold = 0.0;
     if (!(threshold > 0.0) || !std::isfinite(threshold)) return;
     t.discontinuity_threshold = threshold;
-    t.breaks.assign(t.texels.size(), 0);
+    std::vector<uint8_t> breaks(t.texels.size(), 0);
     for (int r = 0; r < t.height; ++r)
         for (int x = 0; x < t.width; ++x) {
             uint8_t m = 0;
             const double d = t.displ(x, r);
             if (x + 1 < t.width && std::abs(t.displ(x + 1, r) - d) > threshold) m |= kBreakRight;
             if (r > 0 && std::abs(t.displ(x, r - 1) - d) > threshold) m |= kBreakUp;
-            t.breaks[size_t(r) * size_t(t.width) + size_t(x)] = m;
+            breaks[size_t(r) * size_t(t.width) + size_t(x)] = m;
         }
+    t.breaks = std::move(breaks);
 }
 
 }  // namespace rtm

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "image.h"
+#include "shared_array.h"
 
 namespace rtm {
 
@@ -62,12 +63,13 @@ struct ReliefTexture {
     int height = 0;
     ReliefGeometry geometry;
     Quantizer quant;
-    std::vector<ReliefTexel> texels;  // row-major, row 0 = top
-    std::vector<float> displacement;  // exact displacement in world units, same layout (undefined where empty)
+    // The arrays below are shared between copies of a ReliefTexture until one is changed (SharedArray).
+    SharedArray<ReliefTexel> texels;  // row-major, row 0 = top
+    SharedArray<float> displacement;  // exact displacement in world units, same layout (undefined where empty)
     // Surface discontinuities (paper section 4.1.1), filled by mark_discontinuities: bit kBreakRight means "not
     // connected to the texel on the right", kBreakUp "not connected to the texel above" (v + 1, storage row - 1).
     // Empty when no discontinuity handling is wanted.
-    std::vector<uint8_t> breaks;
+    SharedArray<uint8_t> breaks;
     double discontinuity_threshold = 0.0;  // world units; 0 = none
 
     const ReliefTexel& texel(int x, int row) const { return texels[size_t(row) * size_t(width) + size_t(x)]; }

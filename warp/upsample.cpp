@@ -46,8 +46,10 @@ ReliefTexture upsample(const ReliefTexture& src, int factor) {
     o.geometry = src.geometry;
     o.geometry.a = src.geometry.a / double(factor);
     o.geometry.b = src.geometry.b / double(factor);
-    o.texels.assign(size_t(fw) * size_t(fh), ReliefTexel{});
-    o.displacement.assign(size_t(fw) * size_t(fh), 0.0f);
+    std::vector<ReliefTexel>& texels = o.texels.edit();
+    std::vector<float>& displ = o.displacement.edit();
+    texels.assign(size_t(fw) * size_t(fh), ReliefTexel{});
+    displ.assign(size_t(fw) * size_t(fh), 0.0f);
     const int w = src.width, h = src.height;
     for (int J = 0; J < o.height; ++J) {  // fine v-rows, counted from the bottom like v
         int j0, j1, jn;
@@ -65,8 +67,8 @@ ReliefTexture upsample(const ReliefTexture& src, int factor) {
             const bool all_connected = connected(src, x0, r0, x1, r0) && connected(src, x0, r1, x1, r1) &&
                                        connected(src, x0, r0, x0, r1) && connected(src, x1, r0, x1, r1);
             if (!all_connected) {
-                o.texels[i] = src.texel(xn, rn);
-                o.displacement[i] = src.displ(xn, rn);
+                texels[i] = src.texel(xn, rn);
+                displ[i] = src.displ(xn, rn);
                 continue;
             }
             const int xs[4] = {x0, x1, x0, x1}, rs[4] = {r0, r0, r1, r1};
@@ -83,9 +85,9 @@ ReliefTexture upsample(const ReliefTexture& src, int factor) {
             }
             // sw > 0: the nearest texel is non-empty and has the largest weight (>= 1/4).
             const double d = sd / sw;
-            o.displacement[i] = float(d);
-            o.texels[i] = {uint8_t(std::lround(sr / sw)), uint8_t(std::lround(sg / sw)), uint8_t(std::lround(sb / sw)),
-                           o.quant.encode(d)};
+            displ[i] = float(d);
+            texels[i] = {uint8_t(std::lround(sr / sw)), uint8_t(std::lround(sg / sw)), uint8_t(std::lround(sb / sw)),
+                         o.quant.encode(d)};
         }
     }
     if (!src.breaks.empty()) mark_discontinuities(o, src.discontinuity_threshold);

@@ -118,8 +118,8 @@ TEST(FaceSwap, WarpAdjacentFacePutsEachTexelAtItsProjection) {
                         if (full.empty_at(x, r)) continue;
                         SCOPED_TRACE(exact ? "exact" : "quantized");
                         ReliefTexture one = full;
-                        for (ReliefTexel& t : one.texels) t.q = kEmptyIndex;
-                        one.texels[size_t(r) * size_t(one.width) + size_t(x)] = full.texel(x, r);
+                        for (ReliefTexel& t : one.texels.edit()) t.q = kEmptyIndex;
+                        one.texels.edit()[size_t(r) * size_t(one.width) + size_t(x)] = full.texel(x, r);
                         AdjacentWorkspace ws;
                         AdjacentBuffer buf;
                         buf.reset(ft.width, ft.height);

@@ -37,7 +37,7 @@ ReliefTexture facade() { return load_relief(std::string(RTM_SOURCE_DIR) + "/medi
 ReliefTexture bumps_with_holes() {
     ReliefTexture t = to_relief(make_bumps(45));
     for (auto [x, r] : {std::pair{3, 4}, {20, 17}, {44, 44}, {0, 30}})
-        t.texels[size_t(r) * 45 + size_t(x)].q = kEmptyIndex;
+        t.texels.edit()[size_t(r) * 45 + size_t(x)].q = kEmptyIndex;
     return t;
 }
 

@@ -114,6 +114,84 @@ TEST_F(TownTest, EachQuadDecidesItsSkipsAsItWouldAlone) {
     }
 }
 
+// The placements of one relief file at one scale share its texels and pyramid levels (a town of 1,000 placements
+// would otherwise keep 1,000 copies), another scale shares the texels (the quantized indices do not change) but not
+// the scaled displacements; and every quad's levels are exactly those it builds alone, so the pictures are too.
+TEST_F(TownTest, PlacementsOfOneFileShareTexelsAndLevels) {
+    const std::string scene_path = (std::filesystem::path(dir_->path()) / "placements.scene.json").string();
+    {
+        std::FILE* f = std::fopen(scene_path.c_str(), "w");
+        ASSERT_NE(f, nullptr);
+        std::fputs(R"({"camera": {"eye": [0, 1, 4], "look_at": [0, 0, 0]}, "items": [
+            {"type": "relief", "relief": "town_facade0.relief.json"},
+            {"type": "relief", "relief": "town_facade0.relief.json",
+             "transform": {"translate": [3, 0, 0], "rotate": [[0, 1, 0, 30]]}},
+            {"type": "relief", "relief": "town_facade0.relief.json", "transform": {"scale": 2}},
+            {"type": "relief", "relief": "town_roof.relief.json"}]})",
+                   f);
+        std::fclose(f);
+    }
+    Scene scene = Scene::load(scene_path);
+    std::vector<ReliefQuad>& q = scene.quads();
+    ASSERT_EQ(q.size(), 4u);
+    EXPECT_TRUE(q[1].relief().texels.shares_storage_with(q[0].relief().texels));
+    EXPECT_TRUE(q[1].relief().displacement.shares_storage_with(q[0].relief().displacement));
+    EXPECT_TRUE(q[2].relief().texels.shares_storage_with(q[0].relief().texels));
+    EXPECT_FALSE(q[2].relief().displacement.shares_storage_with(q[0].relief().displacement));
+    EXPECT_FALSE(q[3].relief().texels.shares_storage_with(q[0].relief().texels));
+    EXPECT_NE(q[1].relief().geometry.origin, q[0].relief().geometry.origin);
+    for (size_t k = 0; k < q.size(); ++k) {
+        ReliefQuad alone(q[k].relief());
+        ASSERT_EQ(q[k].levels(), alone.levels());
+        for (int i = 1; i < alone.levels(); ++i) {
+            SCOPED_TRACE("quad " + std::to_string(k) + ", level " + std::to_string(i));
+            const ReliefTexture &got = q[k].level(i), &want = alone.level(i);
+            EXPECT_EQ(got.width, want.width);
+            EXPECT_EQ(got.texels, want.texels);
+            EXPECT_EQ(got.displacement, want.displacement);
+            EXPECT_EQ(got.quant.max, want.quant.max);
+            EXPECT_EQ(got.geometry.origin, want.geometry.origin);
+            EXPECT_EQ(got.geometry.a, want.geometry.a);
+            EXPECT_EQ(got.geometry.b, want.geometry.b);
+            if (k == 1) EXPECT_TRUE(got.texels.shares_storage_with(q[0].level(i).texels));
+        }
+    }
+}
+
+// Two placements of one six-face object share each face's texels and pyramid levels (each keeps the object in its
+// own frame, so the faces are the same), and their levels are those each face builds alone.
+TEST(ScenePlacements, PlacementsOfOneObjectShareFacesAndLevels) {
+    TempDir dir;
+    const std::string media = std::string(RTM_SOURCE_DIR) + "/media/";
+    const std::string scene_path = (dir.path() / "objects.scene.json").string();
+    {
+        std::FILE* f = std::fopen(scene_path.c_str(), "w");
+        ASSERT_NE(f, nullptr);
+        std::fprintf(f, R"({"camera": {"eye": [0, 1, 6], "look_at": [0, 0, 0]}, "items": [
+            {"type": "object", "object": "%ssphere.object.json"},
+            {"type": "object", "object": "%ssphere.object.json",
+             "transform": {"translate": [2, 0, 0], "scale": 0.5}}]})",
+                     media.c_str(), media.c_str());
+        std::fclose(f);
+    }
+    Scene scene = Scene::load(scene_path);
+    ASSERT_EQ(scene.objects().size(), 2u);
+    for (int face = 0; face < kFaceCount; ++face) {
+        ReliefQuad& a = scene.objects()[0].object().face(face);
+        ReliefQuad& b = scene.objects()[1].object().face(face);
+        EXPECT_TRUE(a.relief().texels.shares_storage_with(b.relief().texels));
+        ReliefQuad alone(b.relief());
+        ASSERT_EQ(a.levels(), alone.levels());
+        for (int i = 1; i < alone.levels(); ++i) {
+            SCOPED_TRACE("face " + std::to_string(face) + ", level " + std::to_string(i));
+            EXPECT_TRUE(a.level(i).texels.shares_storage_with(b.level(i).texels));
+            EXPECT_EQ(b.level(i).texels, alone.level(i).texels);
+            EXPECT_EQ(b.level(i).displacement, alone.level(i).displacement);
+            EXPECT_EQ(b.level(i).geometry.a, alone.level(i).geometry.a);
+        }
+    }
+}
+
 TEST_F(TownTest, CameraPathCountsAreDeterministic) {
     auto ctx = GlContext::create_offscreen(160, 120);
     Renderer renderer;

@@ -161,7 +161,7 @@ TEST(ViewAnalysis, MovingFootprintHoldsEveryChange) {
         t.geometry.b = {0, 1.0 / h, 0};
         if (rng() % 3 == 0) mark_discontinuities(t, amp * 0.3);
         if (rng() % 4 == 0)
-            for (size_t k = 0; k < t.texels.size(); k += 5) t.texels[k].q = kEmptyIndex;
+            for (size_t k = 0; k < t.texels.size(); k += 5) t.texels.edit()[k].q = kEmptyIndex;
         PrewarpOptions o;
         o.method = rng() % 2 ? Reconstruction::two_pass : Reconstruction::pipelined;
         o.exact = rng() % 2;

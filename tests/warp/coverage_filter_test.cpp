@@ -132,7 +132,7 @@ TEST(CoverageFilter, OneColourStaysExact) {
             w, h, -amp, amp, [&](int x, int r) { return amp * std::sin(f1 * x) * std::cos(f2 * r); },
             test::random_geometry(rng));
         const Rgba8 c{uint8_t(rng()), uint8_t(rng()), uint8_t(rng()), 255};
-        for (ReliefTexel& tx : t.texels) tx.r = c.r, tx.g = c.g, tx.b = c.b;
+        for (ReliefTexel& tx : t.texels.edit()) tx.r = c.r, tx.g = c.g, tx.b = c.b;
         const glm::dvec3 centre = t.point(w / 2, h / 2);
         const glm::dvec3 eye = centre + glm::dvec3(U(rng), U(rng), U(rng)) * 20.0 + t.geometry.f() * 3.0;
         PrewarpOptions o;

@@ -114,10 +114,10 @@ Case random_case(std::mt19937_64& rng) {
     Case c{test::make_test_relief(w, h, lo, hi, displ, g), {}, {}, {}};
     const int empties = pick(4);
     if (empties == 1)
-        for (size_t i = 0; i < c.relief.texels.size(); i += 3) c.relief.texels[i].q = kEmptyIndex;
+        for (size_t i = 0; i < c.relief.texels.size(); i += 3) c.relief.texels.edit()[i].q = kEmptyIndex;
     if (empties == 2)
         for (size_t i = 0; i < c.relief.texels.size(); ++i)
-            if (hash01(int(i), 7, salt) < 0.3) c.relief.texels[i].q = kEmptyIndex;
+            if (hash01(int(i), 7, salt) < 0.3) c.relief.texels.edit()[i].q = kEmptyIndex;
 
     // The eye: epipole position in texels, distance along f.
     double eu = U(rng) * 3 * w - w, ev = U(rng) * 3 * h - h;
@@ -531,7 +531,7 @@ TEST_P(FastKernels, StillBlocksMatchTheReference) {
             g);
         if (empties)
             for (size_t j = 0; j < t.texels.size(); ++j)
-                if (hash01(int(j), 11, salt) < 0.01) t.texels[j].q = kEmptyIndex;
+                if (hash01(int(j), 11, salt) < 0.01) t.texels.edit()[j].q = kEmptyIndex;
         double eu = U(rng) * 3 * w - w, ev = U(rng) * 3 * h - h, dist = 0.05 + U(rng) * 2;
         std::string where = "anywhere";
         bool prime = false;  // first a view whose top part starts 8 rows lower, in the same workspace
@@ -822,7 +822,7 @@ TEST_P(PipelinedReverseFastKernels, FoldoversStillTexelsAndGapsMatchTheReference
             g);
         if (i % 3 == 1)
             for (size_t q = 0; q < t.texels.size(); ++q)
-                if (hash01(int(q), 3, salt) < 0.15) t.texels[q].q = kEmptyIndex;
+                if (hash01(int(q), 3, salt) < 0.15) t.texels.edit()[q].q = kEmptyIndex;
         // Grazing, near, and from above; epipole inside and outside.
         const double az = (U(rng) - 0.5) * 6.0, el = i % 2 ? 0.03 + U(rng) * 0.3 : 0.3 + U(rng) * 1.2;
         const double d = 0.4 + U(rng) * 2;
@@ -1127,7 +1127,8 @@ TEST_P(TwoPassReverseFastKernels, FoldoversEmptyRowsAndMarksMatchTheReference) {
             const bool holes = empty_rows == 1 ? r % 4 == 1 : empty_rows == 2 && hash01(r, 5, salt) < 0.2;
             if (!holes) continue;
             const int x0 = int(hash01(r, 9, salt) * w), n = 1 + int(hash01(r, 11, salt) * 4);
-            for (int x = x0; x < std::min(w, x0 + n); ++x) t.texels[size_t(r) * size_t(w) + size_t(x)].q = kEmptyIndex;
+            for (int x = x0; x < std::min(w, x0 + n); ++x)
+                t.texels.edit()[size_t(r) * size_t(w) + size_t(x)].q = kEmptyIndex;
         }
         double eu = U(rng) * w;
         switch (i % 5) {
@@ -1255,8 +1256,9 @@ void mark_randomly(ReliefTexture& t, std::mt19937_64& rng, int mode) {
         case 1:
         case 2: {
             const double p = U(rng) * 0.5;
-            t.breaks.assign(t.texels.size(), 0);
-            for (uint8_t& b : t.breaks) b = uint8_t((U(rng) < p ? kBreakRight : 0) | (U(rng) < p ? kBreakUp : 0));
+            t.breaks.edit().assign(t.texels.size(), 0);
+            for (uint8_t& b : t.breaks.edit())
+                b = uint8_t((U(rng) < p ? kBreakRight : 0) | (U(rng) < p ? kBreakUp : 0));
             t.discontinuity_threshold = mode == 2 ? threshold : 0.0;
             break;
         }
@@ -1404,7 +1406,7 @@ TEST(FastKernelCoverage, MarkedReliefsOnTheFastKernels) {
             EXPECT_EQ(prewarp(t, k, o, ws, out).isa, isa);
         }
     }
-    t.breaks.pop_back();
+    t.breaks.edit().pop_back();
     for (Isa isa : supported_isas())
         for (Reconstruction method : {Reconstruction::two_pass, Reconstruction::pipelined}) {
             o.method = method;

@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
 #include <glm/geometric.hpp>
 
 #include "test_util.h"
@@ -70,6 +74,42 @@ TEST(Pyramid, LevelForDensity) {
     EXPECT_EQ(level_for_density(256.0 * 256, 1.0, 8), 8);
     EXPECT_EQ(level_for_density(256.0 * 256, 0.0, 8), 8);
     EXPECT_EQ(level_for_density(16, 1e6, 8), 0);
+}
+
+// Placed copies of one relief (other origin, a and b; the same texels) read their levels from one SharedPyramid: each
+// level is exactly the level the copy's own downsampling gives (texels, displacements, quantizer, geometry), its
+// texels shared with the other copies'; a relief with other texels is refused.
+TEST(SharedPyramid, LevelsAreEachCopysOwnAndShareTexels) {
+    const ReliefTexture t = test::make_test_relief(37, 20, -0.2, 0.5,
+                                                   [](int x, int r) { return std::sin(x * 0.7) * 0.3 + r * 0.01; });
+    ReliefTexture placed[2] = {t, t};
+    placed[1].geometry.origin = {4.0, -2.0, 7.5};
+    placed[1].geometry.a = {0.0, 0.0, -1.5};
+    placed[1].geometry.b = {0.0, 1.5, 0.0};
+    SharedPyramid shared;
+    for (int i = 1; i <= 7; ++i) {  // 6 is the 1x1 level; 7 asks past it
+        ReliefTexture levels[2];
+        for (int k = 0; k < 2; ++k) {
+            SCOPED_TRACE("level " + std::to_string(i) + ", copy " + std::to_string(k));
+            const ReliefPyramid own(placed[k]);
+            const ReliefTexture& want = own.level(std::min(i, own.levels() - 1));
+            levels[k] = shared.level(placed[k], i);
+            EXPECT_EQ(levels[k].width, want.width);
+            EXPECT_EQ(levels[k].height, want.height);
+            EXPECT_EQ(levels[k].texels, want.texels);
+            EXPECT_EQ(levels[k].displacement, want.displacement);
+            EXPECT_EQ(levels[k].quant.min, want.quant.min);
+            EXPECT_EQ(levels[k].quant.max, want.quant.max);
+            EXPECT_EQ(levels[k].geometry.origin, want.geometry.origin);
+            EXPECT_EQ(levels[k].geometry.a, want.geometry.a);
+            EXPECT_EQ(levels[k].geometry.b, want.geometry.b);
+        }
+        EXPECT_TRUE(levels[0].texels.shares_storage_with(levels[1].texels));
+        EXPECT_TRUE(levels[0].displacement.shares_storage_with(levels[1].displacement));
+    }
+    ReliefTexture other = t;
+    other.texels.edit()[3].r ^= 1;
+    EXPECT_THROW(shared.level(other, 1), std::logic_error);
 }
 
 }  // namespace

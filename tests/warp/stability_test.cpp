@@ -121,7 +121,7 @@ Config random_config(std::mt19937_64& rng) {
                  w, h, lo, hi, [&](int x, int r) { return lo + (hi - lo) * (((x * 31 + r * 17) % 13) / 12.0); }, g),
              eye, s.str()};
     if (pick(3) == 0) {  // some empty texels
-        for (size_t i = 0; i < c.relief.texels.size(); i += 3) c.relief.texels[i].q = kEmptyIndex;
+        for (size_t i = 0; i < c.relief.texels.size(); i += 3) c.relief.texels.edit()[i].q = kEmptyIndex;
     }
     if (pick(4) == 0) mark_discontinuities(c.relief, (hi - lo) * 0.3);
     return c;

@@ -82,10 +82,10 @@ Case random_case(std::mt19937_64& rng) {
     Case c{test::make_test_relief(w, h, lo, hi, displ, g), {}, {}, false, {}};
     const int empties = pick(4);
     if (empties == 1)
-        for (size_t i = 0; i < c.relief.texels.size(); i += 7) c.relief.texels[i].q = kEmptyIndex;
+        for (size_t i = 0; i < c.relief.texels.size(); i += 7) c.relief.texels.edit()[i].q = kEmptyIndex;
     if (empties == 2)
         for (size_t i = 0; i < c.relief.texels.size(); ++i)
-            if (hash01(int(i), 3, salt) < 0.2) c.relief.texels[i].q = kEmptyIndex;
+            if (hash01(int(i), 3, salt) < 0.2) c.relief.texels.edit()[i].q = kEmptyIndex;
     const int marks = pick(3);
     if (marks > 0) mark_discontinuities(c.relief, amp * (marks == 1 ? 0.05 : 0.6));
 
@@ -237,7 +237,7 @@ TEST(StillRuns, CopyIsBitIdenticalToTheWarp) {
 TEST(StillRuns, AFlatReliefIsCopiedWhole) {
     // Zero displacement everywhere: every non-empty texel is copied, and the pre-warp is the identity.
     ReliefTexture t = test::make_test_relief(37, 23, 0.0, 0.1, [](int, int) { return 0.0; });
-    for (size_t i = 0; i < t.texels.size(); i += 5) t.texels[i].q = kEmptyIndex;
+    for (size_t i = 0; i < t.texels.size(); i += 5) t.texels.edit()[i].q = kEmptyIndex;
     long long nonempty = 0;
     for (const ReliefTexel& x : t.texels) nonempty += x.q != kEmptyIndex;
     EXPECT_EQ(count_still_texels(t, false), nonempty);

@@ -65,7 +65,7 @@ TEST(Upsample, PlanesStayPlanes) {
         const auto plane = [&](double u, double v) { return c0 + cu * u + cv * v; };
         ReliefTexture t = test::make_test_relief(w, h, -2.0, 3.0,
                                                  [&](int x, int r) { return plane(x + 0.5, h - 1 - r + 0.5); });
-        for (ReliefTexel& tx : t.texels) tx.r = tx.g = tx.b = 77;
+        for (ReliefTexel& tx : t.texels.edit()) tx.r = tx.g = tx.b = 77;
         const int factor = trial % 2 ? 2 : 4;
         const ReliefTexture o = upsample(t, factor);
         for (int r = 0; r < o.height; ++r)
@@ -87,7 +87,7 @@ TEST(Upsample, EmptyTexelsStayEmptyAndDoNotBleed) {
     for (int r = 0; r < 8; ++r)
         for (int x = 0; x < 8; ++x)
             if ((x - 4) * (x - 4) + (r - 3) * (r - 3) <= 4) {
-                t.texels[size_t(r) * 8 + size_t(x)].q = kEmptyIndex;
+                t.texels.edit()[size_t(r) * 8 + size_t(x)].q = kEmptyIndex;
                 ++n_empty;
             }
     for (int factor : {2, 4}) {
