@@ -34,14 +34,32 @@ CLI::Validator non_negative_threshold() {
         "T >= 0");
 }
 
+bool parse_whole_number(const std::string& text, int& out, int max) {
+    // Compared with the limit before any conversion to int (sscanf's %d wrapped 4294967297 to 1).
+    if (text.empty() || text.size() > 10 ||
+        !std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; }))
+        return false;
+    const long long v = std::stoll(text);
+    if (v > max) return false;
+    out = int(v);
+    return true;
+}
+
+CLI::Validator whole_number() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            int v = 0;
+            return parse_whole_number(text, v) ? ""
+                                               : "expected a whole number (decimal digits), found \"" + text + "\"";
+        },
+        "");
+}
+
 CLI::Validator frame_index() {
     return CLI::Validator(
         [](std::string& text) -> std::string {
-            const bool digits = !text.empty() && text.size() <= 10 &&
-                                std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
-            if (!digits || std::stoll(text) > std::numeric_limits<int>::max())
-                return "expected a frame number K >= 0, found \"" + text + "\"";
-            return "";
+            int v = 0;
+            return parse_whole_number(text, v) ? "" : "expected a frame number K >= 0, found \"" + text + "\"";
         },
         "K >= 0");
 }
@@ -56,6 +74,7 @@ CLI::Validator non_empty_list() {
 
 CLI::Option* add_threads_option(CLI::App& app, int& threads, const std::string& what) {
     return app.add_option("--threads", threads, what + " (0 = all; at most " + std::to_string(kMaxThreads) + ")")
+        ->check(whole_number())
         ->check(CLI::Range(0, kMaxThreads))
         ->capture_default_str();
 }
@@ -94,8 +113,7 @@ void check_coordinates(const glm::dvec3& v, const std::string& what) {
 int parse_level(const std::string& text) {
     if (text == "auto") return -1;
     int n = 0;
-    char extra = 0;
-    if (std::sscanf(text.c_str(), "%d%c", &n, &extra) != 1 || n < 0 || n > 30)
+    if (!parse_whole_number(text, n, 30))
         throw UsageError("--level: expected N (0..30) or auto, found \"" + text + "\"");
     return n;
 }
@@ -156,14 +174,9 @@ std::vector<std::string> parse_relief_names(const std::string& text, const std::
 }
 
 void parse_size(const std::string& text, const std::string& flag, int& w, int& h) {
-    // Digits only on each side of the 'x' (no sign, no space), read as a number of any length and compared with the
-    // limit before any conversion to int: sscanf's %d wrapped 4294967297 to 1.
+    // A whole number on each side of the 'x' (parse_whole_number: no sign, no space).
     const auto side = [](const std::string& digits, int& out) {
-        if (digits.empty() || digits.size() > 9 ||
-            !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
-            return false;
-        out = std::stoi(digits);
-        return out >= 1 && out <= 16384;
+        return parse_whole_number(digits, out, 16384) && out >= 1;
     };
     const size_t x = text.find_first_of("xX");
     int a = 0, b = 0;

@@ -56,6 +56,12 @@ CLI::Option* add_threads_option(CLI::App& app, int& threads, const std::string& 
 // (--camera-path K). The message names the value as typed.
 CLI::Validator non_negative_threshold();
 CLI::Validator frame_index();
+// Whole numbers, one rule for every flag that takes one (the options CLI11 converts, --size WxH, --level, bench's
+// lists): decimal digits only, no sign, space, exponent, fraction or 0x; "1e3", "+8", "0x10" and "2.0" are refused
+// alike. parse_whole_number reads one (false for anything else, or above `max`); whole_number() is the check for a
+// CLI11 integer option, to be added before any range check (whose own message would say "not in range").
+bool parse_whole_number(const std::string& text, int& out, int max = std::numeric_limits<int>::max());
+CLI::Validator whole_number();
 // A list option given empty ("--sizes ''") is refused rather than read as not given (the default set ran).
 CLI::Validator non_empty_list();
 

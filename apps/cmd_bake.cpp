@@ -139,7 +139,8 @@ void add_bake_command(CLI::App& app) {
     auto* texel = sub->add_option("--texel", a->texel, "World size of a height-map texel (default 1/width)");
     auto* size = sub->add_option("--size", a->size,
                                  "Texels along the longest side: the mesh box's (default 256), or the height map's "
-                                 "(resampled; default: the map's own size)");
+                                 "(resampled; default: the map's own size)")
+                     ->check(whole_number());
     sub->add_option("--out", a->out, "Output folder (created if missing)")->required();
     sub->callback([a, texel, size] {
         a->texel_given = texel->count() > 0;

@@ -35,9 +35,8 @@ std::vector<int> parse_ints(const std::string& text, const std::string& flag, in
     std::vector<int> v;
     std::stringstream ss(text);
     for (std::string item; std::getline(ss, item, ',');) {
-        char* end = nullptr;
-        const long x = std::strtol(item.c_str(), &end, 10);
-        if (item.empty() || *end || x < lo || x > hi)
+        int x = 0;
+        if (!parse_whole_number(item, x, hi) || x < lo)
             throw UsageError(flag + ": expected integers " + std::to_string(lo) + ".." + std::to_string(hi) +
                              " separated by commas, found \"" + text + "\"");
         v.push_back(int(x));

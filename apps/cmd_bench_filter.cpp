@@ -62,9 +62,11 @@ void add_bench_filter_command(CLI::App& app) {
     CLI::App* sub = app.add_subcommand("bench-filter", "Coverage (Fant-style) against point filtering: time and error");
     sub->add_option("--reliefs", a->reliefs, "Procedural reliefs, e.g. bricks,ridges (default: all four)")
         ->check(non_empty_list());
-    sub->add_option("--size", a->size, "Relief size in texels")->capture_default_str();
-    sub->add_option("--samples", a->samples, "Truth rays per pixel side")->capture_default_str();
-    sub->add_option("--repeat", a->repeat, "Timed pre-warps per measurement")->capture_default_str();
+    sub->add_option("--size", a->size, "Relief size in texels")->check(whole_number())->capture_default_str();
+    sub->add_option("--samples", a->samples, "Truth rays per pixel side")->check(whole_number())->capture_default_str();
+    sub->add_option("--repeat", a->repeat, "Timed pre-warps per measurement")
+        ->check(whole_number())
+        ->capture_default_str();
     add_threads_option(*sub, a->threads);
     sub->add_option("--json", a->json, "Write the figures as JSON");
     sub->add_option("--out", a->out, "Write the pre-warped textures and their truth into this directory");

@@ -115,7 +115,7 @@ void run(const Args& a) {
 void add_bench_skips_command(CLI::App& app) {
     auto a = std::make_shared<Args>();
     CLI::App* sub = app.add_subcommand("bench-skips", "Time saved and error added by each skip of a frame");
-    sub->add_option("--frames", a->frames, "Frames per scenario")->capture_default_str();
+    sub->add_option("--frames", a->frames, "Frames per scenario")->check(whole_number())->capture_default_str();
     sub->add_option("--json", a->json, "Write the figures as JSON");
     sub->add_option("--scene", a->scene,
                     "Scene whose camera path is timed without each skip (default media/town.scene.json, when present)")
@@ -126,8 +126,10 @@ void add_bench_skips_command(CLI::App& app) {
                   "The scene's variants one after another, each over the whole path (default: interleaved frame by "
                   "frame)");
     sub->add_option("--wall-size", a->wall_size, "Side of the brick wall timed on the fast kernels")
+        ->check(whole_number())
         ->capture_default_str();
     sub->add_option("--wall-rounds", a->wall_rounds, "Interleaved rounds of the brick wall's pre-warps")
+        ->check(whole_number())
         ->capture_default_str();
     sub->add_flag("--wall-only", a->wall_only, "Only the brick wall on the fast kernels (no GL, no scene)");
     sub->callback([a] { run(*a); });

@@ -129,12 +129,14 @@ void add_compare_command(CLI::App& app) {
                     "manifest's")
         ->check(non_negative_threshold());
     auto* texels = sub->add_option("--texels", a->mesh.texels, "With --mesh: bake texels along the box's longest side")
+                       ->check(whole_number())
                        ->capture_default_str();
     sub->add_flag("--no-images", a->mesh.no_images, "With --mesh: only the table");
     sub->add_option("--out", a->out, "Output folder")->required();
     sub->add_flag("--quick", a->quick, "3 views, 2 settings per method, 1 timed frame, 128x128 pixels");
     sub->add_option("--size", a->size, "Image size WxH (default 512x512; --quick 128x128)");
-    sub->add_option("--repeat", a->repeat, "Frames timed per method and view after a warm-up (default 3; --quick 1)");
+    sub->add_option("--repeat", a->repeat, "Frames timed per method and view after a warm-up (default 3; --quick 1)")
+        ->check(whole_number());
     add_threads_option(*sub, a->threads);
     sub->callback([a, texels] {
         a->mesh.texels_given = texels->count() > 0;

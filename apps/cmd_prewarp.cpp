@@ -129,8 +129,11 @@ void add_prewarp_command(CLI::App& app) {
     sub->add_option("--level", a->level, "Relief texture pyramid level N or auto")->capture_default_str();
     sub->add_option("--output-scale", a->output_scale,
                     "Pre-warp into a texture N times the relief's size in each direction (1 to 8; --relief only)")
+        ->check(whole_number())
         ->capture_default_str();
-    sub->add_option("--repeat", a->repeat, "Run N times after one warm-up, for timing")->capture_default_str();
+    sub->add_option("--repeat", a->repeat, "Run N times after one warm-up, for timing")
+        ->check(whole_number())
+        ->capture_default_str();
     add_threads_option(*sub, a->threads);
     sub->add_option("--isa", a->isa,
                     "SIMD target: auto, avx512, avx3, avx2, sse4, neon, sve or generic (the reference "

@@ -214,10 +214,13 @@ void add_render_command(CLI::App& app) {
     sub->add_option("--level", a->level, "Pyramid level N or auto (default 0, for --scene auto: per quad)");
     sub->add_option("--output-scale", a->output_scale,
                     "Pre-warp into a texture N times the relief's size in each direction (1 to 8; --relief only)")
+        ->check(whole_number())
         ->capture_default_str();
     sub->add_option("--out", a->out, "Output image");
     sub->add_option("--json", a->json, "Write stage times as JSON");
-    sub->add_option("--repeat", a->repeat, "Render N frames after one warm-up, for timing")->capture_default_str();
+    sub->add_option("--repeat", a->repeat, "Render N frames after one warm-up, for timing")
+        ->check(whole_number())
+        ->capture_default_str();
     add_threads_option(*sub, a->threads);
     sub->add_flag("--progress", a->progress, "Show progress of slow methods");
     sub->add_flag("--no-skips", a->no_skips, "Always pre-warp and upload everything (to measure what skips save)");

@@ -178,9 +178,11 @@ void add_view_command(CLI::App& app) {
     sub->add_option("--split", a->split, "Split view: the right half with METHOD, or 'truth' (error heat map)");
     sub->add_flag("--no-vsync", a->no_vsync, "Start with vsync off (scripted runs always run without it)");
     sub->add_option("--frames", a->frames, "Render N frames in a hidden window and exit (0 = until closed)")
+        ->check(whole_number())
         ->capture_default_str();
     sub->add_option("--timed-every", a->timed_every,
                     "Time the stages (each waiting for the GPU) in 1 frame of N; 1 = every frame")
+        ->check(whole_number())
         ->capture_default_str();
     sub->add_option("--panel-refresh-ms", a->panel_refresh_ms,
                     "Render the panel at least every T ms, else copy its last pixels; 0 = every frame")

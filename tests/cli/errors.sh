@@ -114,6 +114,26 @@ expect_fail 2 'size.*4294967297x1' -- render --relief "$R" --eye 0.5,0.5,3 --siz
 expect_fail 2 'threads.*100000' -- compare --relief "$R" --quick --threads 100000 --out "$T/a2"
 expect_fail 2 'threads.*-1' -- render --relief "$R" --eye 0.5,0.5,3 --threads -1 --out "$T/a3.png"
 expect_fail 2 'threads.*2147483647' -- prewarp --relief "$R" --eye 0.5,0.5,3 --threads 2147483647 --out "$T/a4.png"
+# Whole numbers take one rule in every flag (decimal digits only): CLI11 read "+2" and "0x2" and called "1e3"
+# "not in range", --size refused "+8x8" while bake --size took "+8", and bench --sizes took "+64".
+for v in 1e3 +2 0x2 2.0 " 2"; do
+    expect_fail 2 "threads: expected a whole number.*\"${v//+/\\+}\"" -- render --relief "$R" --eye 0.5,0.5,3 \
+        --threads "$v" --out "$T/wn.png"
+done
+expect_fail 2 'repeat: expected a whole number.*"\+1"' -- prewarp --relief "$R" --eye 0.5,0.5,3 --repeat +1 \
+    --out "$T/wn.png"
+expect_fail 2 'output-scale: expected a whole number.*"0x2"' -- render --relief "$R" --eye 0.5,0.5,3 \
+    --output-scale 0x2 --out "$T/wn.png"
+expect_fail 2 'size: expected a whole number.*"\+8"' -- bake --size +8 --out "$T/wn_bake" "$R"
+expect_fail 2 'level.*"\+1"' -- render --relief "$R" --eye 0.5,0.5,3 --level +1 \
+    --out "$T/wn.png"
+expect_fail 2 'sizes.*"\+64"' -- bench --sizes +64 --no-table1 --no-scene
+expect_fail 2 'wall-rounds: expected a whole number.*"1e1"' -- bench-skips --wall-only --wall-rounds 1e1
+expect_fail 2 'frames: expected a whole number.*"-0"' -- view --relief "$R" --frames -0
+if [ -e "$T/wn.png" ]; then
+    echo "FAIL: a refused whole number still wrote $T/wn.png"
+    fails=$((fails + 1))
+fi
 # A bad RTM_ISA is exit 2 before any work in every subcommand that pre-warps (compare left pictures behind).
 RTM_ISA=nonsense expect_fail 2 'RTM_ISA.*nonsense' -- render --relief "$R" --eye 0.5,0.5,3 --out "$T/a5.png"
 RTM_ISA=nonsense expect_fail 2 'RTM_ISA.*nonsense' -- compare --relief "$R" --quick --out "$T/a6"
