@@ -75,10 +75,10 @@ void find_cracks(const ImageRGBA8& img, const Image2D<uint8_t>* displ, int r0, i
 
 }  // namespace
 
-ReliefObject::ReliefObject(SixFaceObject object, const FacePyramids& pyramids)
+ReliefObject::ReliefObject(SixFaceObject object, const FaceShares& shared)
     : name_(std::move(object.name)), box_(object.box) {
     quads_.reserve(kFaceCount);
-    for (size_t k = 0; k < object.faces.size(); ++k) quads_.emplace_back(std::move(object.faces[k]), pyramids[k]);
+    for (size_t k = 0; k < object.faces.size(); ++k) quads_.emplace_back(std::move(object.faces[k]), shared[k]);
 }
 ReliefObject::~ReliefObject() = default;
 ReliefObject::ReliefObject(ReliefObject&&) noexcept = default;

@@ -85,10 +85,10 @@ struct ObjectReport {
 
 class ReliefObject {
 public:
-    // With `pyramids`, face k's pyramid levels come from pyramids[k] (shared with the other placements of the same
-    // object in a scene: SharedPyramid, warp/pyramid.h); null entries build their own.
-    using FacePyramids = std::array<std::shared_ptr<SharedPyramid>, kFaceCount>;
-    explicit ReliefObject(SixFaceObject object, const FacePyramids& pyramids = {});
+    // With `shared`, face k's pyramid levels and spreads come from shared[k] (shared with the other placements of the
+    // same object in a scene: objects/shared_relief.h); null entries make their own.
+    using FaceShares = std::array<std::shared_ptr<SharedRelief>, kFaceCount>;
+    explicit ReliefObject(SixFaceObject object, const FaceShares& shared = {});
     ~ReliefObject();
     ReliefObject(ReliefObject&&) noexcept;
 

@@ -11,6 +11,7 @@
 #include "objects/fast_displ.h"
 #include "objects/level_choice.h"
 #include "objects/micromesh_tiles.h"
+#include "objects/shared_relief.h"
 #include "truth/micromesh.h"
 #include "warp/timing.h"
 #include "objects/view_analysis.h"
@@ -36,8 +37,8 @@ void premultiply_alpha(ImageRGBA8& img) {
     }
 }
 
-ReliefQuad::ReliefQuad(ReliefTexture relief, std::shared_ptr<SharedPyramid> pyramid)
-    : relief_(std::move(relief)), shared_pyramid_(std::move(pyramid)) {}
+ReliefQuad::ReliefQuad(ReliefTexture relief, std::shared_ptr<SharedRelief> shared)
+    : relief_(std::move(relief)), shared_(std::move(shared)) {}
 ReliefQuad::~ReliefQuad() = default;
 ReliefQuad::ReliefQuad(ReliefQuad&&) noexcept = default;
 
@@ -88,8 +89,7 @@ const ReliefTexture& ReliefQuad::level_texture(int i) {
     while (int(pyramid_.size()) < i) {
         const ReliefTexture& prev = pyramid_.empty() ? relief_ : pyramid_.back();
         if (prev.width == 1 && prev.height == 1) break;
-        pyramid_.push_back(shared_pyramid_ ? shared_pyramid_->level(relief_, int(pyramid_.size()) + 1)
-                                           : downsample(prev, relief_));
+        pyramid_.push_back(shared_ ? shared_->level(relief_, int(pyramid_.size()) + 1) : downsample(prev, relief_));
     }
     return pyramid_[size_t(std::min<int>(i, int(pyramid_.size()))) - 1];
 }
@@ -115,6 +115,7 @@ int ReliefQuad::levels() { return pyramid_levels(relief_.width, relief_.height);
 int ReliefQuad::auto_level(const Camera& cam) { return rtm::auto_level(cam, relief_); }
 
 const std::vector<double>& ReliefQuad::spreads() {
+    if (shared_) return shared_->spreads(relief_);
     if (spreads_.empty()) spreads_ = level_displacement_spreads(relief_);
     return spreads_;
 }

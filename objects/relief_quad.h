@@ -21,7 +21,7 @@ namespace rtm {
 
 struct MicroMesh;
 struct MicroMeshTile;
-class SharedPyramid;
+class SharedRelief;
 
 struct StageTimes {
     double prewarp_ms = 0.0;      // pre-warping and resampling
@@ -45,9 +45,9 @@ struct DrawReport {
 
 class ReliefQuad {
 public:
-    // With `pyramid`, the pyramid levels come from it (shared with other quads holding copies of the same relief in
-    // other places: SharedPyramid, warp/pyramid.h); without, the quad builds its own.
-    explicit ReliefQuad(ReliefTexture relief, std::shared_ptr<SharedPyramid> pyramid = nullptr);
+    // With `shared`, the pyramid levels and their spreads come from it (shared with other quads holding copies of the
+    // same relief in other places: objects/shared_relief.h); without, the quad makes its own.
+    explicit ReliefQuad(ReliefTexture relief, std::shared_ptr<SharedRelief> shared = nullptr);
     ~ReliefQuad();
     ReliefQuad(ReliefQuad&&) noexcept;
 
@@ -102,8 +102,8 @@ public:
 
 private:
     ReliefTexture relief_;
-    std::vector<ReliefTexture> pyramid_;             // levels 1.. (level 0 is relief_), built on first use
-    std::shared_ptr<SharedPyramid> shared_pyramid_;  // where pyramid_'s texels come from; null: built here
+    std::vector<ReliefTexture> pyramid_;    // levels 1.. (level 0 is relief_), built on first use
+    std::shared_ptr<SharedRelief> shared_;  // where pyramid_'s texels and the spreads come from; null: made here
     PrewarpWorkspace workspace_;
     ImageRGBA8 prewarped_;
     long long prewarp_version_ = 0;  // counts the pre-warps into prewarped_

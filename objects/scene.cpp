@@ -14,7 +14,7 @@
 #include "formats/relief_manifest.h"
 #include "perpixel/perpixel_quad.h"
 #include "truth/micromesh.h"
-#include "warp/pyramid.h"
+#include "objects/shared_relief.h"
 #include "warp/timing.h"
 
 namespace rtm {
@@ -60,10 +60,10 @@ Scene Scene::load(const std::string& manifest_path) { return Scene(parse_scene_m
 
 Scene::Scene(SceneManifest manifest) : manifest_(std::move(manifest)) {
     // Each relief file read once; its displacements scaled once per scale its placements use, and the placements of
-    // one file at one scale share its texels and pyramid levels (each quad keeps its own geometry).
+    // one file at one scale share its texels, pyramid levels and spreads (each quad keeps its own geometry).
     struct Scaled {
         ReliefTexture relief;
-        std::shared_ptr<SharedPyramid> pyramid;
+        std::shared_ptr<SharedRelief> shared;
     };
     std::map<std::string, ReliefTexture> loaded;
     std::map<std::pair<std::string, double>, Scaled> scaled;
@@ -90,13 +90,13 @@ Scene::Scene(SceneManifest manifest) : manifest_(std::move(manifest)) {
             const double s = similarity_scale(m);
             auto sc = scaled.find({item.relief_path, s});
             if (sc == scaled.end()) {
-                Scaled fresh{it->second, std::make_shared<SharedPyramid>()};
+                Scaled fresh{it->second, std::make_shared<SharedRelief>()};
                 scale_relief_displacements(fresh.relief, s);
                 sc = scaled.emplace(std::pair{item.relief_path, s}, std::move(fresh)).first;
             }
             ReliefTexture placed = sc->second.relief;
             place_relief_geometry(placed, m);
-            quads_.emplace_back(std::move(placed), sc->second.pyramid);
+            quads_.emplace_back(std::move(placed), sc->second.shared);
         } catch (const std::invalid_argument& e) {
             throw IoError(manifest_.path + ": item " + std::to_string(i) + ": " + e.what());
         }
@@ -118,10 +118,10 @@ void Scene::load_placed_item(size_t i, std::map<std::string, LoadedObject>& obje
             auto it = objects.find(item.file_path);
             if (it == objects.end()) {
                 LoadedObject fresh{load_object(item.file_path), {}};
-                for (auto& p : fresh.pyramids) p = std::make_shared<SharedPyramid>();
+                for (auto& s : fresh.shared) s = std::make_shared<SharedRelief>();
                 it = objects.emplace(item.file_path, std::move(fresh)).first;
             }
-            objects_.emplace_back(it->second.object, item.transform.matrix(), it->second.pyramids);
+            objects_.emplace_back(it->second.object, item.transform.matrix(), it->second.shared);
         } else {
             auto it = meshes.find(item.file_path);
             if (it == meshes.end()) it = meshes.emplace(item.file_path, load_mesh(item.file_path)).first;

@@ -85,11 +85,11 @@ public:
               const DrawOptions& draw, SceneFrameReport& report, const QuadFrameOptions& frame = {});
 
 private:
-    // An object file as read, and its faces' pyramid levels, which its placements share (each placement keeps the
-    // object in its own frame: the faces are the same, only the matrix differs).
+    // An object file as read, and what its placements share of its faces (objects/shared_relief.h; each placement
+    // keeps the object in its own frame: the faces are the same, only the matrix differs).
     struct LoadedObject {
         SixFaceObject object;
-        ReliefObject::FacePyramids pyramids;
+        ReliefObject::FaceShares shared;
     };
     // Item i, an object or a mesh: each file read once (the maps hold what was read).
     void load_placed_item(size_t i, std::map<std::string, LoadedObject>& objects,

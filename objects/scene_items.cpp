@@ -50,9 +50,8 @@ SixFaceObject checked_placement(SixFaceObject object, const glm::dmat4& world_fr
 }  // namespace
 
 PlacedObject::PlacedObject(SixFaceObject object, const glm::dmat4& world_from_object,
-                           const ReliefObject::FacePyramids& pyramids)
-    : object_(checked_placement(std::move(object), world_from_object), pyramids),
-      world_from_object_(world_from_object) {}
+                           const ReliefObject::FaceShares& shared)
+    : object_(checked_placement(std::move(object), world_from_object), shared), world_from_object_(world_from_object) {}
 
 Bounds PlacedObject::bounds() const {
     const Bounds local = object_.bounds();

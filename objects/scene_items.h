@@ -32,9 +32,9 @@ Camera object_frame_camera(const Camera& cam, const glm::dmat4& world_from_objec
 class PlacedObject {
 public:
     // Throws std::invalid_argument when the transform is not a similarity.
-    // `pyramids`: as ReliefObject's (shared by the placements of one object file).
+    // `shared`: as ReliefObject's (shared by the placements of one object file).
     PlacedObject(SixFaceObject object, const glm::dmat4& world_from_object,
-                 const ReliefObject::FacePyramids& pyramids = {});
+                 const ReliefObject::FaceShares& shared = {});
     Bounds bounds() const;  // world bounds of the transformed box
     ReliefObject& object() { return object_; }
     // flat, two_pass or pipelined (ReliefObject::draw), micromesh (its faces' micro-polygon meshes).

@@ -55,12 +55,15 @@ ReliefGeometry level_geometry(const ReliefTexture& level0, int w, int h) {
     return g;
 }
 
+bool same_texels(const ReliefTexture& a, const ReliefTexture& b) {
+    return a.texels.shares_storage_with(b.texels) && a.displacement.shares_storage_with(b.displacement) &&
+           a.quant.min == b.quant.min && a.quant.max == b.quant.max;
+}
+
 ReliefTexture SharedPyramid::level(const ReliefTexture& level0, int i) {
     std::lock_guard<std::mutex> lock(mutex_);
     if (level0_.texels.empty()) level0_ = level0;
-    if (!level0.texels.shares_storage_with(level0_.texels) ||
-        !level0.displacement.shares_storage_with(level0_.displacement) || level0.quant.min != level0_.quant.min ||
-        level0.quant.max != level0_.quant.max)
+    if (!same_texels(level0, level0_))
         throw std::logic_error("SharedPyramid::level: a relief whose texels are not those of the pyramid's level 0");
     while (int(levels_.size()) < i) {
         const ReliefTexture& prev = levels_.empty() ? level0_ : levels_.back();

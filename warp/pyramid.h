@@ -30,6 +30,10 @@ ReliefTexture downsample(const ReliefTexture& t, const ReliefTexture& level0);
 // The geometry of a w x h level of `level0`'s pyramid: level 0's origin, a and b grown to cover the same area.
 ReliefGeometry level_geometry(const ReliefTexture& level0, int w, int h);
 
+// Whether a and b hold the same texels and displacements because they are copies of one relief (their arrays shared,
+// SharedArray) with the same quantizer: what may share one SharedPyramid.
+bool same_texels(const ReliefTexture& a, const ReliefTexture& b);
+
 // Levels 1.. of one relief's pyramid, built on first use and shared by the relief quads that hold copies of that
 // relief differing only in geometry (a scene's placements of one file at one scale, objects/scene.cpp): their levels
 // hold the same texels, so the quads keep one copy of them (SharedArray) and each its own geometry. Safe to call
@@ -37,8 +41,8 @@ ReliefGeometry level_geometry(const ReliefTexture& level0, int w, int h);
 class SharedPyramid {
 public:
     // Level i >= 1 of level0's pyramid (clamped to the 1x1 level, as ReliefQuad::level), with level0's geometry
-    // (level_geometry). Every level0 asked must share its texels and displacements with the first one asked (a copy
-    // of it, or of what it was copied from): std::logic_error otherwise.
+    // (level_geometry). Every level0 asked must hold the same texels as the first one asked (same_texels):
+    // std::logic_error otherwise.
     ReliefTexture level(const ReliefTexture& level0, int i);
 
 private:

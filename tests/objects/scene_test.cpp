@@ -15,6 +15,8 @@
 
 #include "common/temp_dir.h"
 #include "formats/relief_manifest.h"
+#include "objects/level_choice.h"
+#include "objects/shared_relief.h"
 #include "measure/image_diff.h"
 #include "procedural/procedural_media.h"
 #include "procedural/town.h"
@@ -140,7 +142,11 @@ TEST_F(TownTest, PlacementsOfOneFileShareTexelsAndLevels) {
     EXPECT_FALSE(q[2].relief().displacement.shares_storage_with(q[0].relief().displacement));
     EXPECT_FALSE(q[3].relief().texels.shares_storage_with(q[0].relief().texels));
     EXPECT_NE(q[1].relief().geometry.origin, q[0].relief().geometry.origin);
+    // The spreads `--level auto` reads: computed once for the quads of one file and scale, each quad's own.
+    EXPECT_EQ(&q[1].spreads(), &q[0].spreads());
+    EXPECT_NE(&q[2].spreads(), &q[0].spreads());
     for (size_t k = 0; k < q.size(); ++k) {
+        EXPECT_EQ(q[k].spreads(), level_displacement_spreads(q[k].relief())) << "quad " << k;
         ReliefQuad alone(q[k].relief());
         ASSERT_EQ(q[k].levels(), alone.levels());
         for (int i = 1; i < alone.levels(); ++i) {
@@ -156,6 +162,21 @@ TEST_F(TownTest, PlacementsOfOneFileShareTexelsAndLevels) {
             if (k == 1) EXPECT_TRUE(got.texels.shares_storage_with(q[0].level(i).texels));
         }
     }
+}
+
+// A SharedRelief serves the copies of one relief only: another relief's spreads or levels are a logic error, not a
+// wrong picture.
+TEST(ScenePlacements, SharedReliefRefusesAnotherRelief) {
+    const ReliefTexture t = to_relief(make_bumps(16));
+    ReliefTexture moved = t;
+    moved.geometry.origin = {1, 2, 3};
+    SharedRelief shared;
+    EXPECT_EQ(shared.spreads(t), level_displacement_spreads(t));
+    EXPECT_EQ(&shared.spreads(moved), &shared.spreads(t));
+    const ReliefTexture other = to_relief(make_bumps(16));  // the same values, read again: not the same arrays
+    EXPECT_THROW(shared.spreads(other), std::logic_error);
+    EXPECT_THROW(shared.level(other, 1), std::logic_error);
+    EXPECT_NO_THROW(shared.level(moved, 1));
 }
 
 // Two placements of one six-face object share each face's texels and pyramid levels (each keeps the object in its
