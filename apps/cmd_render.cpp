@@ -62,9 +62,15 @@ void run_render(const RenderArgs& a) {
         s.level = level;
         s.camera = a.camera;
         s.path_frame = a.path_frame;
+        s.filter = a.filter;
+        s.exact = a.exact;
         s.no_skips = a.no_skips;
         s.no_sidewalls = a.no_sidewalls;
         s.threads = a.threads;
+        s.repeat = a.repeat;
+        warn_unused({{a.depth_correction, "--depth-correction"}}, "is always on in a scene");
+        warn_unused({{a.discontinuity >= 0, "--discontinuity"}},
+                    "applies to --relief and --object; a scene's reliefs take theirs from their manifests");
         return run_render_scene(s);
     }
     if (!a.frames_dir.empty() || a.path_frame >= 0) throw UsageError("--frames and --camera-path need --scene");

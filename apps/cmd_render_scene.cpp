@@ -52,6 +52,18 @@ void run_render_scene(const SceneRenderArgs& a) {
     }();
     if (method == RenderMethod::raycast)
         throw UsageError("--method raycast traces one relief, not a scene: use micromesh as the scene's truth");
+    const Filter filter = parse_filter(a.filter, method == RenderMethod::pipelined ? Reconstruction::pipelined
+                                                                                   : Reconstruction::two_pass);
+    if (a.repeat < 1) throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
+    if (a.repeat > 1 && !a.frames_dir.empty())
+        throw UsageError("--repeat times one camera's frame; --frames renders each frame of the path once");
+    if (method != RenderMethod::two_pass && method != RenderMethod::pipelined)
+        for (const auto& [given, flag] : {std::pair{a.exact, "--exact"},
+                                          {filter != Filter::point, "--filter coverage"},
+                                          {a.no_sidewalls, "--no-sidewalls"}})
+            if (given)
+                std::fprintf(stderr, "rtm: warning: %s applies to the pre-warp, which --method %s does not do\n", flag,
+                             a.method.c_str());
     if (!a.frames_dir.empty() && (a.camera.has_eye() || a.path_frame >= 0))
         throw UsageError("--frames renders the scene's camera path: give no CAMERA and no --camera-path");
     if (a.camera.has_eye() && a.path_frame >= 0) throw UsageError("give either a CAMERA or --camera-path, not both");
@@ -108,6 +120,8 @@ void run_render_scene(const SceneRenderArgs& a) {
     PrewarpOptions opt;
     opt.keep_outliers = !a.no_sidewalls;
     opt.threads = a.threads;
+    opt.exact = a.exact;
+    opt.filter = filter;
     DrawOptions draw;
     draw.depth_correction = true;  // reliefs and polygons occlude each other where their perceived surfaces do
     draw.skips = !a.no_skips;
@@ -117,23 +131,29 @@ void run_render_scene(const SceneRenderArgs& a) {
     nlohmann::json frames = nlohmann::json::array();
     std::vector<double> t_pre, t_up, t_map, t_total;
     const bool progress = cams.size() > 1 && isatty(2);
-    for (size_t k = 0; k < cams.size(); ++k) {
+    // With --repeat N (one camera: --frames refuses it), one warm-up frame and then N timed ones, each in `frames`, as
+    // render --relief times them; --out holds the last.
+    const int warm = a.repeat > 1 ? 1 : 0;
+    const size_t total = cams.size() * size_t(a.repeat + warm);
+    for (size_t k = 0; k < total; ++k) {
+        const Camera& cam = cams[k % cams.size()];
         SceneFrameReport rep;
-        scene.draw(renderer, cams[k], method, opt, draw, rep);
+        scene.draw(renderer, cam, method, opt, draw, rep);
+        if (int(k) < warm) continue;
         t_pre.push_back(rep.times.prewarp_ms);
         t_up.push_back(rep.times.upload_ms);
         t_map.push_back(rep.times.texture_map_ms);
         t_total.push_back(rep.times.total_ms);
-        const ImageRGBA8 img = renderer.read_pixels(sized.width, sized.height);
         if (!a.frames_dir.empty()) {
             char name[32];
             std::snprintf(name, sizeof name, "frame_%04zu.png", k);
-            write_rgba8((std::filesystem::path(a.frames_dir) / name).string(), img);
-        } else if (!a.out.empty()) {
-            write_rgba8(a.out, img);
+            write_rgba8((std::filesystem::path(a.frames_dir) / name).string(),
+                        renderer.read_pixels(sized.width, sized.height));
+        } else if (!a.out.empty() && k + 1 == total) {
+            write_rgba8(a.out, renderer.read_pixels(sized.width, sized.height));
         }
         nlohmann::json f = report_json(rep);
-        f["eye"] = {cams[k].eye.x, cams[k].eye.y, cams[k].eye.z};
+        f["eye"] = {cam.eye.x, cam.eye.y, cam.eye.z};
         frames.push_back(f);
         if (progress) std::fprintf(stderr, "\rrender: frame %zu of %zu", k + 1, cams.size());
     }
@@ -144,11 +164,11 @@ void run_render_scene(const SceneRenderArgs& a) {
                             {"method", a.method},
                             {"size", {sized.width, sized.height}},
                             {"frames", frames}};
-        if (frames.size() == 1)  // a single frame's counts also at the top level
+        if (cams.size() == 1)  // one camera's counts also at the top level (its last frame's, with --repeat)
             for (const char* k : {"quads", "quads_drawn", "quads_prewarped", "quads_skipped", "texels_warped",
                                   "micromesh_triangles", "object_faces_drawn", "object_faces_prewarped",
                                   "object_faces_skipped", "object_texels_warped", "quads_by_level"})
-                j[k] = frames[0][k];
+                j[k] = frames.back()[k];
         // Stage times over the frames (min, median, ...), as rtm render writes them for a relief.
         j["prewarp_ms"] = timing_json(t_pre);
         j["upload_ms"] = timing_json(t_up);

@@ -12,9 +12,11 @@ struct SceneRenderArgs {
     std::string scene, out, json, method, frames_dir;
     std::string level = "0";  // --level N or auto (per quad, by its screen area)
     CameraArgs camera;
-    int path_frame = -1;  // --camera-path K
-    bool no_skips = false, no_sidewalls = false;
+    int path_frame = -1;           // --camera-path K
+    std::string filter = "point";  // --filter point|coverage
+    bool exact = false, no_skips = false, no_sidewalls = false;
     int threads = 0;
+    int repeat = 1;  // --repeat N: one camera's frame N times after one warm-up, for timing
 };
 
 void run_render_scene(const SceneRenderArgs& a);

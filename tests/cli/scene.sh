@@ -103,6 +103,31 @@ expect_fail 1 "nope.ply" -- render --scene "$T/nomesh.scene.json" --eye 0,0,3 --
 printf '{"items": [{"type": "mesh", "mesh": "m.ply"}, {"type": "teapot"}]}' >"$T/kind.scene.json"
 expect_fail 1 "kind.scene.json: item 1: .*type" -- render --scene "$T/kind.scene.json" --eye 0,0,3 --out "$T/x.png"
 
+# --repeat N times one camera's frame N times after a warm-up (it was ignored for scenes: one frame); --exact and
+# --filter coverage reach the scene's pre-warps (they were ignored: the same picture); what a scene does not take
+# gets a warning line each.
+expect_ok render --scene "$S" --size 96x64 --level 0 --repeat 3 --out "$T/rep.png" --json "$T/rep.json"
+expect_ok render --scene "$S" --size 96x64 --level 0 --exact --out "$T/exact.png"
+expect_ok render --scene "$S" --size 96x64 --level 0 --filter coverage --out "$T/coverage.png"
+if python3 - "$T/rep.json" <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1]))
+assert len(j["frames"]) == 3 and j["total_ms"]["count"] == 3, j["total_ms"]
+assert j["quads"] == 2 and j["quads_skipped"] == j["frames"][-1]["quads_skipped"], j
+PY
+then passes=$((passes + 1)); else echo "FAIL: scene --repeat JSON"; fails=$((fails + 1)); fi
+if ! cmp -s "$T/rep.png" "$T/default.png"; then echo "FAIL: --repeat's last frame differs from one frame"
+  fails=$((fails + 1)); else passes=$((passes + 1)); fi
+for f in exact coverage; do
+  if cmp -s "$T/$f.png" "$T/default.png"; then echo "FAIL: --$f left the scene's picture as it was"
+    fails=$((fails + 1)); else passes=$((passes + 1)); fi
+done
+expect_fail 2 "repeat.*frames" -- render --scene "$S" --frames "$T/f3" --repeat 2
+expect_fail 2 "filter coverage.*pipelined" -- render --scene "$S" --method pipelined --filter coverage --out "$T/x.png"
+"$RTM" render --scene "$S" --size 32x32 --out "$T/w.png" --depth-correction --discontinuity 0.1 2>"$T/warn.txt"
+if [ "$(grep -c 'warning: --depth-correction is always on' "$T/warn.txt")" = 1 ] &&
+  [ "$(grep -c 'warning: --discontinuity applies to --relief and --object' "$T/warn.txt")" = 1 ]; then
+  passes=$((passes + 1)); else echo "FAIL: scene warnings: $(cat "$T/warn.txt")"; fails=$((fails + 1)); fi
 expect_fail 2 "raycast" -- render --scene "$S" --method raycast --out "$T/x.png"
 expect_fail 2 "level" -- render --scene "$S" --level x --out "$T/x.png"
 expect_fail 2 "camera-path" -- render --scene "$S" --camera-path 3 --out "$T/x.png"
