@@ -128,6 +128,10 @@ expect_fail 2 "filter coverage.*pipelined" -- render --scene "$S" --method pipel
 if [ "$(grep -c 'warning: --depth-correction is always on' "$T/warn.txt")" = 1 ] &&
   [ "$(grep -c 'warning: --discontinuity applies to --relief and --object' "$T/warn.txt")" = 1 ]; then
   passes=$((passes + 1)); else echo "FAIL: scene warnings: $(cat "$T/warn.txt")"; fails=$((fails + 1)); fi
+# scripts/scene_memory.sh (docs/BENCHMARKS.md, "Scenes of many placements") runs and writes its row.
+row='^\| 3 \| [0-9]+ MiB \| [0-9.]+ s \| [0-9]+ ms \|$'
+if RTM=$RTM bash "$SRC/scripts/scene_memory.sh" 3 2>/dev/null | grep -Eq "$row"; then passes=$((passes + 1))
+else echo "FAIL: scripts/scene_memory.sh"; fails=$((fails + 1)); fi
 expect_fail 2 "raycast" -- render --scene "$S" --method raycast --out "$T/x.png"
 expect_fail 2 "level" -- render --scene "$S" --level x --out "$T/x.png"
 expect_fail 2 "camera-path" -- render --scene "$S" --camera-path 3 --out "$T/x.png"
