@@ -202,9 +202,15 @@ void CameraArgs::add_to(CLI::App& app, bool eye_required) {
     auto* o = app.add_option("--orbit", orbit, "AZ,EL,D: azimuth about +y, elevation (degrees), distance in radii");
     e->excludes(o);
     if (eye_required) e->required();
-    app.add_option("--look-at", look_at, "Point looked at X,Y,Z (default: centre of what is rendered)");
-    app.add_option("--up", up, "Up vector X,Y,Z")->capture_default_str();
-    app.add_option("--fov", fov, "Vertical field of view in degrees")->capture_default_str();
+    const auto typed = [this](const char* flag) {
+        return [this, flag](const std::string&) {
+            if (view_flag.empty()) view_flag = flag;
+        };
+    };
+    app.add_option("--look-at", look_at, "Point looked at X,Y,Z (default: centre of what is rendered)")
+        ->each(typed("--look-at"));
+    app.add_option("--up", up, "Up vector X,Y,Z")->capture_default_str()->each(typed("--up"));
+    app.add_option("--fov", fov, "Vertical field of view in degrees")->capture_default_str()->each(typed("--fov"));
     app.add_option("--size", size, "Output size WxH")->capture_default_str();
 }
 

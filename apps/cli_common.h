@@ -68,6 +68,7 @@ CLI::Validator non_empty_list();
 struct CameraArgs {
     std::string eye, orbit, look_at, up = "0,1,0", size = "512x512";
     double fov = 45.0;
+    std::string view_flag;  // the first of --look-at, --up and --fov typed ("" when none was)
     void add_to(CLI::App& app, bool eye_required = false);
     // Builds the camera for what is rendered (its bounds give the orbit centre and the clip planes).
     Camera resolve(const Bounds& bounds) const;

@@ -39,20 +39,84 @@ void warn_unused(std::initializer_list<std::pair<bool, const char*>> flags, cons
         if (given) std::fprintf(stderr, "rtm: warning: %s %s\n", flag, why.c_str());
 }
 
+// What each method reads of the relief options, for a relief, an object or a scene: every flag given that `method`
+// leaves unused gets a warning line (a scene's depth correction and discontinuities, and a mesh, are said by the
+// caller). The pre-warp's flags need two-pass or pipelined; --level a pyramid level of the relief texture, which
+// flat texture mapping draws too; --no-skips the skips of those three; --discontinuity a pre-warp or the
+// micro-polygons; --progress the ray caster.
+void warn_method_unused(const RenderArgs& a, RenderMethod method, Filter filter, bool scene) {
+    const bool prewarps = method == RenderMethod::two_pass || method == RenderMethod::pipelined;
+    const bool textured = prewarps || method == RenderMethod::flat;
+    const std::string m = "--method " + a.method;
+    if (!prewarps) {
+        warn_unused({{a.exact, "--exact"},
+                     {filter != Filter::point, "--filter coverage"},
+                     {a.no_sidewalls, "--no-sidewalls"},
+                     {a.output_scale != 1, "--output-scale"},
+                     {a.depth_correction && !scene, "--depth-correction"}},
+                    "applies to the pre-warp, which " + m + " does not do");
+    } else if (!a.object.empty()) {
+        warn_unused({{a.no_sidewalls, "--no-sidewalls"}},
+                    "applies to relief quads; a six-face object has no side polygons");
+    }
+    if (!textured) {
+        warn_unused({{!a.level.empty(), "--level"}},
+                    "picks a level of the relief texture, which " + m + " does not draw");
+        warn_unused({{a.no_skips, "--no-skips"}},
+                    "turns off relief texture mapping's skips, which " + m + " does not make");
+    }
+    if (!prewarps && method != RenderMethod::micromesh && !scene)
+        warn_unused({{a.discontinuity >= 0, "--discontinuity"}},
+                    "marks surface discontinuities, which " + m + " does not read");
+    if (method != RenderMethod::raycast || a.relief.empty())
+        warn_unused({{a.progress, "--progress"}}, "shows the ray caster's progress (--relief, --method raycast)");
+}
+
 void run_render(const RenderArgs& a) {
     check_isa_environment();
+    const int inputs = int(!a.relief.empty()) + int(!a.object.empty()) + int(!a.scene.empty()) + int(!a.mesh.empty());
+    if (inputs > 1) throw UsageError("render takes one of --relief M, --object O, --scene S and --mesh FILE");
+    if (inputs == 0) throw UsageError("render needs --relief M, --object O, --scene S or --mesh FILE");
     if (a.output_scale != 1 && a.relief.empty()) throw UsageError("--output-scale applies to --relief only");
+    if ((!a.frames_dir.empty() || a.path_frame >= 0) && a.scene.empty())
+        throw UsageError("--frames and --camera-path need --scene");
+    // A mesh is drawn conventionally (docs/BAKE.md): `flat` (plain texture mapping) is the only method it has.
+    if (!a.mesh.empty() && a.method_given && a.method != "flat")
+        throw UsageError("--method " + a.method + ": a mesh is drawn conventionally; --mesh takes only --method flat");
+    RenderMethod method;
+    try {
+        method = parse_render_method(a.method);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(std::string("--method: ") + e.what());
+    }
+    const Filter filter = parse_filter(a.filter, method == RenderMethod::pipelined ? Reconstruction::pipelined
+                                                                                   : Reconstruction::two_pass);
+    if (a.repeat < 1) throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
     // --level: 0 unless given, auto for a scene (each quad at the level its screen area asks for, no coarser than
     // its parallax allows: objects/level_choice.h; the town's margin over flat holds at auto, docs/SCENES.md).
     const std::string level = !a.level.empty() ? a.level : a.scene.empty() ? "0" : "auto";
+    const int level_n = parse_level(level);
+    if (!a.mesh.empty()) {
+        // What only a relief takes: said once each, not silently ignored.
+        warn_unused({{a.exact, "--exact"},
+                     {filter != Filter::point, "--filter coverage"},
+                     {a.no_sidewalls, "--no-sidewalls"},
+                     {a.depth_correction, "--depth-correction"},
+                     {a.discontinuity >= 0, "--discontinuity"},
+                     {!a.level.empty(), "--level"},
+                     {a.no_skips, "--no-skips"},
+                     {a.threads != 0, "--threads"},
+                     {a.progress, "--progress"}},
+                    "applies to reliefs; a mesh is drawn as it is");
+        run_render_mesh(a.mesh, a.camera, a.out, a.json, a.repeat);
+        return;
+    }
     if (!a.object.empty()) {
-        if (!a.relief.empty() || !a.scene.empty())
-            throw UsageError("render takes one of --relief, --object and --scene");
+        warn_method_unused(a, method, filter, false);
         return run_render_object({a.object, a.out, a.json, a.method, level, a.filter, a.camera, a.exact,
                                   a.depth_correction, a.no_skips, a.repeat, a.threads, a.discontinuity});
     }
     if (!a.scene.empty()) {
-        if (!a.relief.empty()) throw UsageError("give either --relief or --scene, not both");
         SceneRenderArgs s;
         s.scene = a.scene;
         s.out = a.out;
@@ -71,37 +135,9 @@ void run_render(const RenderArgs& a) {
         warn_unused({{a.depth_correction, "--depth-correction"}}, "is always on in a scene");
         warn_unused({{a.discontinuity >= 0, "--discontinuity"}},
                     "applies to --relief and --object; a scene's reliefs take theirs from their manifests");
+        warn_method_unused(a, method, filter, true);
         return run_render_scene(s);
     }
-    if (!a.frames_dir.empty() || a.path_frame >= 0) throw UsageError("--frames and --camera-path need --scene");
-    // A mesh is drawn conventionally (docs/BAKE.md): `flat` (plain texture mapping) is the only method it has.
-    if (!a.mesh.empty() && a.method_given && a.method != "flat")
-        throw UsageError("--method " + a.method + ": a mesh is drawn conventionally; --mesh takes only --method flat");
-    RenderMethod method;
-    try {
-        method = parse_render_method(a.method);
-    } catch (const std::invalid_argument& e) {
-        throw UsageError(std::string("--method: ") + e.what());
-    }
-    const Filter filter = parse_filter(a.filter, method == RenderMethod::pipelined ? Reconstruction::pipelined
-                                                                                   : Reconstruction::two_pass);
-    const int level_n = parse_level(level);
-    if (a.repeat < 1) throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
-    if (!a.mesh.empty()) {
-        if (!a.relief.empty()) throw UsageError("render takes one of --relief M and --mesh FILE, not both");
-        // What only a relief takes: said once each, not silently ignored.
-        warn_unused({{a.exact, "--exact"},
-                     {filter != Filter::point, "--filter coverage"},
-                     {a.no_sidewalls, "--no-sidewalls"},
-                     {a.depth_correction, "--depth-correction"},
-                     {a.discontinuity >= 0, "--discontinuity"},
-                     {!a.level.empty(), "--level"},
-                     {a.no_skips, "--no-skips"}},
-                    "applies to reliefs; a mesh is drawn as it is");
-        run_render_mesh(a.mesh, a.camera, a.out, a.json);
-        return;
-    }
-    if (a.relief.empty()) throw UsageError("render needs --relief M, --object O, --scene S or --mesh FILE");
     if (!a.camera.has_eye()) throw UsageError("render needs --eye X,Y,Z or --orbit AZ,EL,D");
     // Validate the camera's syntax before any file is read.
     (void)a.camera.resolve(Bounds{glm::dvec3(-1), glm::dvec3(1)});
@@ -110,16 +146,12 @@ void run_render(const RenderArgs& a) {
     if (!a.out.empty()) check_output_file(a.out, "--out");
     if (!a.json.empty()) check_output_file(a.json, "--json");
 
-    // Pre-warp options with a method that pre-warps nothing: said once each, not silently ignored.
-    if (method != RenderMethod::two_pass && method != RenderMethod::pipelined) {
-        warn_unused({{a.exact, "--exact"},
-                     {filter != Filter::point, "--filter coverage"},
-                     {a.no_sidewalls, "--no-sidewalls"}},
-                    "applies to the pre-warp, which --method " + a.method + " does not do");
-    }
+    warn_method_unused(a, method, filter, false);
     ReliefTexture relief = load_relief(a.relief);
     if (a.discontinuity >= 0) mark_discontinuities(relief, a.discontinuity);
-    relief = apply_output_scale(std::move(relief), a.output_scale, a.relief);
+    // --output-scale resamples the relief for the pre-warp's finer texture; the other methods draw it as it is.
+    if (method == RenderMethod::two_pass || method == RenderMethod::pipelined)
+        relief = apply_output_scale(std::move(relief), a.output_scale, a.relief);
     ReliefQuad quad(std::move(relief));
     const Camera cam = a.camera.resolve(relief_bounds(quad.relief()));
     PrewarpOptions opt;
@@ -181,7 +213,8 @@ void run_render(const RenderArgs& a) {
             {"total_ms", timing_json(t_total)},
             {"texels", (long long)quad.relief().width * quad.relief().height},
             {"level", used_level},
-            {"output_scale", a.output_scale},
+            {"output_scale",
+             method == RenderMethod::two_pass || method == RenderMethod::pipelined ? a.output_scale : 1},
             {"skips", skips},
             // zero-displacement-runs: texels of the level at zero displacement, and how many of them the reference
             // kernels copied (0 when the fast kernels ran: they copy without counting).

@@ -16,7 +16,7 @@
 namespace rtm::cli {
 
 void run_render_mesh(const std::string& mesh_path, const CameraArgs& camera, const std::string& out,
-                     const std::string& json) {
+                     const std::string& json, int repeat) {
     if (!camera.has_eye()) throw UsageError("render needs --eye X,Y,Z or --orbit AZ,EL,D");
     (void)camera.resolve(Bounds{glm::dvec3(-1), glm::dvec3(1)});  // the camera's syntax, before any file is read
     if (out.empty() && json.empty()) throw UsageError("render --mesh needs --out or --json");
@@ -30,19 +30,29 @@ void run_render_mesh(const std::string& mesh_path, const CameraArgs& camera, con
     const auto t0 = Clock::now();
     MeshRenderer renderer(mesh);
     const double up = ms_since(t0);
-    const auto t1 = Clock::now();
-    const ImageRGBA8 image = renderer.render(cam);
-    const double draw = ms_since(t1);
+    ImageRGBA8 image;
+    // Each timed frame's stages, as render --relief reports them: the upload is the first frame's, before the
+    // warm-up's when there is one (then no timed frame uploads).
+    std::vector<double> ups, draws, totals;
+    const int warm = repeat > 1 ? 1 : 0;
+    for (int i = 0; i < repeat + warm; ++i) {
+        const auto t1 = Clock::now();
+        image = renderer.render(cam);
+        if (i < warm) continue;
+        ups.push_back(i == 0 ? up : 0.0);
+        draws.push_back(ms_since(t1));
+        totals.push_back(ups.back() + draws.back());
+    }
     if (!out.empty()) write_rgba8(out, image);
     if (!json.empty()) {
         write_json(json, {{"command", "render"},
                           {"mesh", mesh_path},
                           {"method", "mesh"},
                           {"triangles", mesh.triangle_count()},
-                          {"prewarp_ms", timing_json({0.0})},
-                          {"upload_ms", timing_json({up})},
-                          {"texture_map_ms", timing_json({draw})},
-                          {"total_ms", timing_json({up + draw})},
+                          {"prewarp_ms", timing_json(std::vector<double>(draws.size(), 0.0))},
+                          {"upload_ms", timing_json(ups)},
+                          {"texture_map_ms", timing_json(draws)},
+                          {"total_ms", timing_json(totals)},
                           {"texels", 0},
                           {"level", 0},
                           {"skips", nlohmann::json::array()},

@@ -57,13 +57,13 @@ void run_render_scene(const SceneRenderArgs& a) {
     if (a.repeat < 1) throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
     if (a.repeat > 1 && !a.frames_dir.empty())
         throw UsageError("--repeat times one camera's frame; --frames renders each frame of the path once");
-    if (method != RenderMethod::two_pass && method != RenderMethod::pipelined)
-        for (const auto& [given, flag] : {std::pair{a.exact, "--exact"},
-                                          {filter != Filter::point, "--filter coverage"},
-                                          {a.no_sidewalls, "--no-sidewalls"}})
-            if (given)
-                std::fprintf(stderr, "rtm: warning: %s applies to the pre-warp, which --method %s does not do\n", flag,
-                             a.method.c_str());
+    if (!a.frames_dir.empty() && !a.out.empty())
+        throw UsageError("--out writes one image; --frames writes every frame of the path into its folder");
+    // The scene's camera or path gives eye, look-at, up and field of view; CAMERA flags other than --size need
+    // --eye or --orbit to take the place of all of them.
+    if (!a.camera.has_eye() && !a.camera.view_flag.empty())
+        throw UsageError(a.camera.view_flag + " needs --eye or --orbit with --scene: the scene's camera" +
+                         (a.path_frame >= 0 || !a.frames_dir.empty() ? " path" : "") + " gives the view");
     if (!a.frames_dir.empty() && (a.camera.has_eye() || a.path_frame >= 0))
         throw UsageError("--frames renders the scene's camera path: give no CAMERA and no --camera-path");
     if (a.camera.has_eye() && a.path_frame >= 0) throw UsageError("give either a CAMERA or --camera-path, not both");

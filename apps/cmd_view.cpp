@@ -18,8 +18,8 @@ namespace rtm::cli {
 namespace {
 
 struct ViewArgs {
-    std::string relief, object, scene, file, screenshot, json, camera_path, keys, method = "two-pass", level = "0",
-                                                                                  split, filter = "point";
+    std::string relief, object, scene, file, screenshot, json, camera_path, keys, method = "two-pass", level, split,
+                                                                                  filter = "point";
     CameraArgs camera;
     int frames = 0, threads = 0, timed_every = 16;
     double panel_refresh_ms = 100, content_scale = 0;
@@ -27,6 +27,35 @@ struct ViewArgs {
          no_skips = false, no_vsync = false;
     double discontinuity = -1;
 };
+
+// One warning line for each flag given that what is shown does not use at the start ("rtm: warning: FLAG WHY"); the
+// panel and the keys can change method and toggles later, so these are warnings, not errors.
+void warn_view_unused(const ViewArgs& a, const std::string& kind, RenderMethod method) {
+    auto warn = [](bool given, const char* flag, const std::string& why) {
+        if (given) std::fprintf(stderr, "rtm: warning: %s %s\n", flag, why.c_str());
+    };
+    if (kind == "scene") {
+        warn(a.depth_correction, "--depth-correction", "is always on in a scene");
+        warn(a.discontinuity >= 0, "--discontinuity",
+             "applies to reliefs and objects; a scene's reliefs take theirs from their manifests");
+        warn(method == RenderMethod::raycast, "--method raycast", "traces one relief, not a scene: nothing is drawn");
+    }
+    if (kind == "object") {
+        warn(a.no_sidewalls, "--no-sidewalls", "applies to relief quads; a six-face object has no side polygons");
+        warn(perpixel_method(method).has_value() || method == RenderMethod::raycast, ("--method " + a.method).c_str(),
+             "draws single reliefs; an object is drawn by flat, two-pass, pipelined or micromesh: nothing is drawn");
+    }
+    if (kind == "mesh")
+        for (const auto& [given, flag] : {std::pair{a.no_sidewalls, "--no-sidewalls"},
+                                          {a.depth_correction, "--depth-correction"},
+                                          {a.discontinuity >= 0, "--discontinuity"},
+                                          {!a.level.empty(), "--level"},
+                                          {a.no_skips, "--no-skips"},
+                                          {a.filter != "point", "--filter"}})
+            warn(given, flag, "applies to reliefs; a mesh is drawn as it is");
+    warn(!a.camera.orbit.empty() && !a.camera.look_at.empty(), "--look-at",
+         "with --orbit: the viewer orbits the centre of what is shown (give --eye for a free camera)");
+}
 
 void run_view(const ViewArgs& a) {
     check_isa_environment();
@@ -50,7 +79,8 @@ void run_view(const ViewArgs& a) {
     } catch (const std::invalid_argument& e) {
         throw UsageError(std::string("--method: ") + e.what());
     }
-    s.level = parse_level(a.level);
+    // --level: 0 unless given, auto for a scene (as rtm render --scene; set once the file's kind is known).
+    if (!a.level.empty()) s.level = parse_level(a.level);
     s.coverage = parse_filter(a.filter, s.method == RenderMethod::pipelined
                                             ? Reconstruction::pipelined
                                             : Reconstruction::two_pass) == Filter::coverage;
@@ -93,6 +123,9 @@ void run_view(const ViewArgs& a) {
     if (!a.scene.empty() && a.scene.find(".scene.json") == std::string::npos)
         throw IoError(a.scene + ": --scene expects NAME.scene.json");
     std::unique_ptr<viewer::Loaded> loaded = viewer::open_file(file);
+    const std::string kind = loaded->kind();
+    if (kind == "scene" && a.level.empty()) s.level = -1;
+    warn_view_unused(a, kind, s.method);
     o.camera = ca.resolve(loaded->bounds());
     // A scene without a CAMERA starts at its own camera, as rtm render --scene does.
     const std::optional<SceneCameraKey> own = loaded->own_camera();
@@ -162,7 +195,7 @@ void add_view_command(CLI::App& app) {
     a->camera.add_to(*sub);
     sub->add_option("--method", a->method, "flat, two-pass, pipelined, micromesh, raycast or a per-pixel method")
         ->capture_default_str();
-    sub->add_option("--level", a->level, "Relief texture pyramid level N or auto")->capture_default_str();
+    sub->add_option("--level", a->level, "Relief texture pyramid level N or auto (default 0; auto for a scene)");
     sub->add_option("--filter", a->filter, "Pre-warp resampling: point or coverage (two-pass only)")
         ->capture_default_str();
     add_threads_option(*sub, a->threads, "Pre-warp threads");

@@ -68,8 +68,9 @@ JSON
   fi
   step view-object-panel "${V[@]}" --object "$OUT/octahedron/octahedron.object.json" --camera-path "$OUT/spin.json" \
     --frames 300 --panel --insets --json "$OUT/view-object-panel.json"
+  # (--level 0: the viewer's default for a scene until session 42, when it became auto as render --scene's.)
   step view-town-panel "${V[@]}" --scene media/town.scene.json --camera-path media/town.scene.json --frames 120 \
-    --panel --insets --json "$OUT/view-town-panel.json"
+    --level 0 --panel --insets --json "$OUT/view-town-panel.json"
 fi
 step compare bash -c "/usr/bin/time -f '%e s wall, %U s user, %S s system' $R compare --relief \
 media/bricks.relief.json --out $OUT/compare --size 512x512 >/dev/null 2>$OUT/compare.time; tail -1 $OUT/compare.time"

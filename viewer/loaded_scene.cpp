@@ -11,9 +11,8 @@ namespace rtm::viewer {
 LoadedScene::LoadedScene(const std::string& manifest) : path_(manifest), scene_(Scene::load(manifest)) {}
 
 void LoadedScene::draw(Renderer& renderer, const Camera& cam, const ViewSettings& s, FrameReport& report) {
-    if (s.method != RenderMethod::flat && s.method != RenderMethod::two_pass && s.method != RenderMethod::pipelined &&
-        s.method != RenderMethod::micromesh) {
-        report.note = to_string(s.method) + " draws single reliefs; scenes: flat, two-pass, pipelined, micromesh";
+    if (s.method == RenderMethod::raycast) {  // as rtm render --scene refuses it
+        report.note = "raycast traces one relief, not a scene: use micromesh as the scene's truth";
         return;
     }
     RenderSettings rs = render_settings(s);

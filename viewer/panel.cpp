@@ -20,7 +20,7 @@ void section(const char* title) {
     ImGui::TextDisabled("%s", title);
 }
 
-// The methods in the panel's list: every render method, the per-pixel ones after the paper's (relief only).
+// The methods in the panel's list: every render method, the per-pixel ones after the paper's (reliefs and scenes).
 const std::vector<RenderMethod>& methods() {
     static const std::vector<RenderMethod> m = render_methods();
     return m;
@@ -90,7 +90,7 @@ glm::vec4 draw_panel(ViewSettings& s, PanelContext& c, KeyRequests& r) {
 
     section("method");
     method_combo("##method", s.method, true);
-    if (perpixel_method(s.method)) ImGui::TextDisabled("per-pixel method (reliefs), at its default settings");
+    if (perpixel_method(s.method)) ImGui::TextDisabled("per-pixel method (reliefs, scenes), at its default settings");
     bool auto_level = s.level < 0;
     if (ImGui::Checkbox("auto level", &auto_level)) s.level = auto_level ? -1 : 0;
     if (!auto_level) {

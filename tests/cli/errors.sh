@@ -234,4 +234,48 @@ else
   echo "FAIL: render --mesh --level: no warning ($(cat "$T/err"))"
   fails=$((fails + 1))
 fi
+# Every flag a method or an input leaves unused: a warning line each (they were silent), or exit 2 where the request
+# cannot be met (they were ignored): an audit's findings, each command as it found it.
+O=$2/media/sphere.object.json
+S=$2/media/room.scene.json
+warns() {  # warns N PATTERN -- ARGS...: rtm exits 0 with N warning lines on stderr, each matching PATTERN
+  local n=$1 pattern=$2
+  shift 3
+  if "$RTM" "$@" >/dev/null 2>"$T/err" && [ "$(grep -c '' "$T/err")" = "$n" ] &&
+    [ "$(grep -Ec "^rtm: warning: ($pattern)" "$T/err")" = "$n" ]; then
+    passes=$((passes + 1))
+  else
+    echo "FAIL: rtm $*: want $n warnings /$pattern/, got: $(cat "$T/err")"
+    fails=$((fails + 1))
+  fi
+}
+warns 1 '--level picks a level of the relief texture, which --method micromesh does not draw' -- render --relief "$R" \
+  --eye 0.5,0.5,3 --size 16x16 --method micromesh --level 3 --out "$T/u1.png"
+unused='--(output-scale|depth-correction) applies to the pre-warp|--no-skips turns off|--discontinuity marks'
+warns 6 "$unused|--progress shows|--level picks" -- render --relief "$R" --eye 0.5,0.5,3 --size 16x16 \
+  --method relief-mapping --output-scale 2 --depth-correction --no-skips --discontinuity 0.1 --progress --level 1 \
+  --out "$T/u2.png"
+warns 2 '--no-sidewalls applies to relief quads; a six-face object|--progress shows' -- render --object "$O" \
+  --orbit 30,20,2.5 --size 16x16 --no-sidewalls --progress --out "$T/u3.png"
+warns 2 '--(threads|progress) applies to reliefs; a mesh' -- render --mesh "$2/media/room.ply" --orbit 30,20,2.5 \
+  --size 16x16 --threads 2 --progress --out "$T/u4.png"
+warns 1 '--no-skips turns off' -- render --scene "$S" --size 16x16 --method micromesh --no-skips --out "$T/u5.png"
+expect_fail 2 'frames and --camera-path need --scene' -- render --object "$O" --orbit 30,20,2.5 --frames "$T/uf"
+expect_fail 2 'one of --relief M, --object O, --scene S and --mesh FILE' -- render --object "$O" --mesh \
+  "$2/media/room.ply" --orbit 30,20,2.5 --out "$T/u6.png"
+expect_fail 2 'one of --relief M, --object O, --scene S and --mesh FILE' -- render --scene "$S" --mesh \
+  "$2/media/room.ply" --out "$T/u6.png"
+expect_fail 2 '--out writes one image; --frames' -- render --scene "$S" --size 16x16 --frames "$T/uf" --out "$T/u6.png"
+expect_fail 2 '--fov needs --eye or --orbit with --scene' -- render --scene "$S" --size 16x16 --fov 20 --out "$T/u6.png"
+expect_fail 2 '--look-at needs --eye or --orbit with --scene: the scene.s camera path' -- render --scene "$S" \
+  --size 16x16 --camera-path 3 --look-at 0,0,0 --out "$T/u6.png"
+[ -e "$T/u6.png" ] || [ -e "$T/uf" ] && { echo "FAIL: a refused render wrote its output"; fails=$((fails + 1)); }
+# --output-scale with a method that does not pre-warp changes nothing (it resampled the relief); --repeat times a mesh.
+expect_ok render --relief "$R" --eye 0.5,0.5,3 --size 16x16 --method flat --out "$T/u7.png"
+expect_ok render --relief "$R" --eye 0.5,0.5,3 --size 16x16 --method flat --output-scale 2 --out "$T/u8.png"
+cmp -s "$T/u7.png" "$T/u8.png" && passes=$((passes + 1)) ||
+  { echo "FAIL: --output-scale changed a flat render"; fails=$((fails + 1)); }
+expect_ok render --mesh "$2/media/room.ply" --orbit 30,20,2.5 --size 16x16 --repeat 3 --json "$T/u9.json"
+python3 -c 'import json, sys; d = json.load(open(sys.argv[1])); assert d["total_ms"]["count"] == 3, d' "$T/u9.json" &&
+  passes=$((passes + 1)) || { echo "FAIL: render --mesh --repeat 3"; fails=$((fails + 1)); }
 finish

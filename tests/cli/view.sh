@@ -115,18 +115,33 @@ tw=$(python3 -c "import json,sys; t=json.load(open(sys.argv[1]))['texels_warped'
 if [ "$tw" = "0.0 True" ] || [ "$tw" = "0 True" ]; then passes=$((passes + 1))
 else echo "FAIL: a still object's texels warped (median, max > 0): $tw, expected 0 True"; fails=$((fails + 1)); fi
 
-# The town scene: its own camera, an orbit, and its camera path frame by frame (--camera-path given the scene); the
-# viewer's level 0 (render's default for a scene is auto).
+# The town scene: its own camera, an orbit, and its camera path frame by frame (--camera-path given the scene), at
+# the default level of both (auto for a scene: the viewer's was 0) and at level 0.
 TOWN=$SRC/media/town.scene.json
 view vs_own --scene "$TOWN" --size $S
-expect_ok render --scene "$TOWN" --size $S --level 0 --out "$T/rs_own.png"
+expect_ok render --scene "$TOWN" --size $S --out "$T/rs_own.png"
 same rs_own vs_own
-view vs_orbit "$TOWN" --orbit 20,35,1.6 --size $S
+view vs_orbit "$TOWN" --orbit 20,35,1.6 --size $S --level 0
 expect_ok render --scene "$TOWN" --orbit 20,35,1.6 --size $S --level 0 --out "$T/rs_orbit.png"
 same rs_orbit vs_orbit
 FRAMES=41 view vs_path --scene "$TOWN" --size $S --camera-path "$TOWN"
-expect_ok render --scene "$TOWN" --size $S --camera-path 40 --level 0 --out "$T/rs_path.png"
+expect_ok render --scene "$TOWN" --size $S --camera-path 40 --out "$T/rs_path.png"
 same rs_path vs_path
+# A per-pixel method draws a scene as rtm render --scene draws it (the viewer drew nothing).
+view vs_rm --scene "$TOWN" --size $S --method relief-mapping
+expect_ok render --scene "$TOWN" --size $S --method relief-mapping --out "$T/rs_rm.png"
+same rs_rm vs_rm
+# What a scene, an object or an orbit does not use at the start: a warning line each.
+"$RTM" view --scene "$TOWN" --size 64x48 --frames 1 --depth-correction --discontinuity 0 2>"$T/w1"
+"$RTM" view --object "$SRC/media/sphere.object.json" --size 64x48 --frames 1 --no-sidewalls --method parallax \
+  --orbit 30,20,2 --look-at 0,0,0 2>"$T/w2"
+want='warning: --depth-correction is always on in a scene
+warning: --discontinuity applies to reliefs and objects
+warning: --no-sidewalls applies to relief quads
+warning: --method parallax draws single reliefs
+warning: --look-at with --orbit'
+if [ "$(cat "$T/w1" "$T/w2" | grep -c -F "$want")" = 5 ] && [ "$(cat "$T/w1" "$T/w2" | grep -c '')" = 5 ]; then
+  passes=$((passes + 1)); else echo "FAIL: view warnings: $(cat "$T/w1" "$T/w2")"; fails=$((fails + 1)); fi
 
 # A mesh (a box with a pyramid on top, written here) is baked on the fly: the same pixels as rtm bake then
 # rtm render --object of the result.
