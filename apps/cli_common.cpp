@@ -55,6 +55,12 @@ CLI::Validator whole_number() {
         "");
 }
 
+std::string first_given(const CLI::App& app, std::initializer_list<const char*> flags) {
+    for (const char* f : flags)
+        if (app.count(f) > 0) return f;
+    return "";
+}
+
 CLI::Validator frame_index() {
     return CLI::Validator(
         [](std::string& text) -> std::string {

@@ -62,6 +62,9 @@ CLI::Validator frame_index();
 // CLI11 integer option, to be added before any range check (whose own message would say "not in range").
 bool parse_whole_number(const std::string& text, int& out, int max = std::numeric_limits<int>::max());
 CLI::Validator whole_number();
+// The first of `flags` typed on `app`'s command line ("" when none was): for a flag that a section the other flags
+// leave out would silently ignore.
+std::string first_given(const CLI::App& app, std::initializer_list<const char*> flags);
 // A list option given empty ("--sizes ''") is refused rather than read as not given (the default set ran).
 CLI::Validator non_empty_list();
 

@@ -29,6 +29,8 @@ struct BenchArgs {
     bool min_time_given = false;
     double discontinuity = 0;
     bool discontinuity_given = false;
+    // Typed flags (first_given) of the sections the others may leave out: "" when none was.
+    std::string prewarp_flag, scene_flag, objects_flag;
 };
 
 std::vector<int> parse_ints(const std::string& text, const std::string& flag, int lo, int hi) {
@@ -104,6 +106,22 @@ void run_bench_command(const BenchArgs& a) {
     const bool with_scene = !a.no_scene &&
                             (a.scene_given || a.scene_only || (!a.no_table1 && std::filesystem::exists(a.scene)));
     if (a.scene_only && !with_scene) throw IoError(a.scene + ": no such scene (give --scene FILE)");
+    // What a section the others leave out would ignore: exit 2, not silence.
+    if (a.scene_only && !a.prewarp_flag.empty())
+        throw UsageError(a.prewarp_flag + " applies to the pre-warp sections, which --scene-only leaves out");
+    if (!with_scene && !a.scene_flag.empty())
+        throw UsageError(a.scene_flag + " applies to the scene's path, which does not run (" +
+                         (a.no_scene    ? "--no-scene"
+                          : a.no_table1 ? "--no-table1 without --scene"
+                                        : "no scene at hand") +
+                         ")");
+    if (!a.objects_flag.empty() && (a.no_table1 || a.no_objects))
+        throw UsageError(a.objects_flag + " applies to the six-face objects' frames, which " +
+                         (a.no_table1 ? "--no-table1" : "--no-objects") + " leaves out");
+    // The generic kernels are measured as the reference rows (one thread), not among the fast rows' targets.
+    if (a.no_reference && std::find(c.isas.begin(), c.isas.end(), Isa::generic) != c.isas.end())
+        throw UsageError(
+            "--isa generic: the generic kernels run as the reference rows, which --no-reference leaves out");
     const BenchResult r = a.scene_only ? BenchResult{} : run_bench(c);
     nlohmann::json j = a.scene_only ? nlohmann::json::object() : bench_json(r);
     std::string md = a.scene_only ? std::string() : bench_markdown(r);
@@ -169,7 +187,14 @@ void add_bench_command(CLI::App& app) {
     sub->add_flag("--scene-sequential", a->scene_sequential,
                   "The scene's variants one after another, each over the whole path (default: interleaved frame by "
                   "frame)");
-    sub->callback([a] { run_bench_command(*a); });
+    sub->callback([a, sub] {
+        a->prewarp_flag = first_given(*sub, {"--full", "--sizes", "--reliefs", "--methods", "--threads", "--isa",
+                                             "--min-time", "--discontinuity", "--no-exact", "--no-reference",
+                                             "--no-table1", "--no-objects", "--adjacent-whole"});
+        a->scene_flag = first_given(*sub, {"--scene-variants", "--scene-sequential"});
+        a->objects_flag = first_given(*sub, {"--adjacent-whole"});
+        run_bench_command(*a);
+    });
 }
 
 }  // namespace rtm::cli

@@ -21,6 +21,7 @@ struct Args {
     bool scene_given = false, no_scene = false, scene_only = false, scene_sequential = false;
     int wall_size = 1024, wall_rounds = 15;
     bool wall_only = false;
+    std::string frames_flag, wall_flag, sequential_flag;  // typed (first_given), "" when not
 };
 
 void run(const Args& a) {
@@ -36,6 +37,16 @@ void run(const Args& a) {
         throw UsageError("--wall-size: expected 16 to 8192 texels, found " + std::to_string(a.wall_size));
     if (a.wall_rounds < 1) throw UsageError("--wall-rounds: expected N >= 1, found " + std::to_string(a.wall_rounds));
     if (a.scene_only && !with_scene) throw IoError(a.scene + ": no such scene (give --scene FILE)");
+    // What a section the others leave out would ignore: exit 2, not silence.
+    if (!a.frames_flag.empty() && (a.wall_only || a.scene_only))
+        throw UsageError("--frames sets the skips' scenarios, which " +
+                         std::string(a.wall_only ? "--wall-only" : "--scene-only") + " leaves out");
+    if (!a.wall_flag.empty() && a.scene_only)
+        throw UsageError(a.wall_flag + " applies to the brick wall, which --scene-only leaves out");
+    if (!a.sequential_flag.empty() && (a.wall_only || !with_scene))
+        throw UsageError("--scene-sequential applies to the scene's path, which " +
+                         std::string(a.wall_only ? "--wall-only leaves out"
+                                                 : "does not run (--no-scene, or no scene)"));
     auto progress = [](const std::string& s) { std::fprintf(stderr, "%s\n", s.c_str()); };
     const bool skips = !a.scene_only && !a.wall_only;
     const auto rows = skips ? measure_skips(a.frames, progress) : std::vector<SkipMeasurement>{};
@@ -132,7 +143,12 @@ void add_bench_skips_command(CLI::App& app) {
         ->check(whole_number())
         ->capture_default_str();
     sub->add_flag("--wall-only", a->wall_only, "Only the brick wall on the fast kernels (no GL, no scene)");
-    sub->callback([a] { run(*a); });
+    sub->callback([a, sub] {
+        a->frames_flag = first_given(*sub, {"--frames"});
+        a->wall_flag = first_given(*sub, {"--wall-size", "--wall-rounds"});
+        a->sequential_flag = first_given(*sub, {"--scene-sequential"});
+        run(*a);
+    });
 }
 
 }  // namespace rtm::cli

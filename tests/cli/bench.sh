@@ -158,6 +158,20 @@ expect_fail 1 'json.*folder' -- bench --json "$T"
 expect_fail 1 'nowhere/f\.json' -- bench-filter --json "$T/nowhere/f.json"
 expect_fail 1 'nowhere/s\.json' -- bench-skips --json "$T/nowhere/s.json"
 expect_fail 2 'no-scene' -- bench --no-scene --scene-only
+# A flag of a section the others leave out is exit 2 (it was ignored: --scene-only ran the scene alone whatever
+# --sizes said, and a wrong --scene-variants went unnoticed without the scene).
+expect_fail 2 '--sizes applies to the pre-warp sections, which --scene-only' -- bench --scene-only --sizes 8
+expect_fail 2 '--scene-variants applies to the scene.s path, which does not run \(--no-scene\)' -- bench --no-scene \
+  --scene-variants bogus --sizes 16
+expect_fail 2 '--adjacent-whole applies to the six-face objects. frames, which --no-table1' -- bench --no-table1 \
+  --adjacent-whole --no-scene --sizes 16
+expect_fail 2 '--isa generic: the generic kernels run as the reference rows, which --no-reference' -- bench \
+  --isa generic --no-reference --no-scene --sizes 16
+expect_fail 2 '--frames sets the skips. scenarios, which --wall-only' -- bench-skips --wall-only --frames 7
+expect_fail 2 '--wall-rounds applies to the brick wall, which --scene-only' -- bench-skips --scene-only \
+  --scene "$T/s.scene.json" --wall-rounds 3
+expect_fail 2 '--scene-sequential applies to the scene.s path, which --wall-only' -- bench-skips --wall-only \
+  --scene-sequential
 expect_fail 1 'missing\.scene\.json' -- bench-skips --scene-only --scene "$T/missing.scene.json"
 expect_fail 2 'wall-size.*8' -- bench-skips --wall-only --wall-size 8
 expect_fail 2 'wall-rounds.*0' -- bench-skips --wall-only --wall-rounds 0

@@ -270,6 +270,9 @@ expect_fail 2 '--fov needs --eye or --orbit with --scene' -- render --scene "$S"
 expect_fail 2 '--look-at needs --eye or --orbit with --scene: the scene.s camera path' -- render --scene "$S" \
   --size 16x16 --camera-path 3 --look-at 0,0,0 --out "$T/u6.png"
 [ -e "$T/u6.png" ] || [ -e "$T/uf" ] && { echo "FAIL: a refused render wrote its output"; fails=$((fails + 1)); }
+# A target asked for by name that the pre-warp could not run on: a warning (the JSON said "generic" alone).
+warns 1 '--isa sse4: this pre-warp ran on the generic kernels \(--exact runs' -- prewarp --relief "$R" --eye 0.5,0.5,3 \
+  --exact --isa sse4 --out "$T/u10.png"
 # --output-scale with a method that does not pre-warp changes nothing (it resampled the relief); --repeat times a mesh.
 expect_ok render --relief "$R" --eye 0.5,0.5,3 --size 16x16 --method flat --out "$T/u7.png"
 expect_ok render --relief "$R" --eye 0.5,0.5,3 --size 16x16 --method flat --output-scale 2 --out "$T/u8.png"
