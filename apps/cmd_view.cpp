@@ -30,7 +30,7 @@ struct ViewArgs {
 
 // One warning line for each flag given that what is shown does not use at the start ("rtm: warning: FLAG WHY"); the
 // panel and the keys can change method and toggles later, so these are warnings, not errors.
-void warn_view_unused(const ViewArgs& a, const std::string& kind, RenderMethod method) {
+void warn_view_unused(const ViewArgs& a, const std::string& kind, RenderMethod method, bool own_camera) {
     auto warn = [](bool given, const char* flag, const std::string& why) {
         if (given) std::fprintf(stderr, "rtm: warning: %s %s\n", flag, why.c_str());
     };
@@ -39,6 +39,8 @@ void warn_view_unused(const ViewArgs& a, const std::string& kind, RenderMethod m
         warn(a.discontinuity >= 0, "--discontinuity",
              "applies to reliefs and objects; a scene's reliefs take theirs from their manifests");
         warn(method == RenderMethod::raycast, "--method raycast", "traces one relief, not a scene: nothing is drawn");
+        warn(own_camera && !a.camera.has_eye() && !a.camera.view_flag.empty(), a.camera.view_flag.c_str(),
+             "without --eye or --orbit: a scene starts at its own camera, which gives the view");
     }
     if (kind == "object") {
         warn(a.no_sidewalls, "--no-sidewalls", "applies to relief quads; a six-face object has no side polygons");
@@ -125,7 +127,7 @@ void run_view(const ViewArgs& a) {
     std::unique_ptr<viewer::Loaded> loaded = viewer::open_file(file);
     const std::string kind = loaded->kind();
     if (kind == "scene" && a.level.empty()) s.level = -1;
-    warn_view_unused(a, kind, s.method);
+    warn_view_unused(a, kind, s.method, loaded->own_camera().has_value());
     o.camera = ca.resolve(loaded->bounds());
     // A scene without a CAMERA starts at its own camera, as rtm render --scene does.
     const std::optional<SceneCameraKey> own = loaded->own_camera();

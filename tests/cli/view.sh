@@ -132,15 +132,16 @@ view vs_rm --scene "$TOWN" --size $S --method relief-mapping
 expect_ok render --scene "$TOWN" --size $S --method relief-mapping --out "$T/rs_rm.png"
 same rs_rm vs_rm
 # What a scene, an object or an orbit does not use at the start: a warning line each.
-"$RTM" view --scene "$TOWN" --size 64x48 --frames 1 --depth-correction --discontinuity 0 2>"$T/w1"
+"$RTM" view --scene "$TOWN" --size 64x48 --frames 1 --depth-correction --discontinuity 0 --fov 30 2>"$T/w1"
 "$RTM" view --object "$SRC/media/sphere.object.json" --size 64x48 --frames 1 --no-sidewalls --method parallax \
   --orbit 30,20,2 --look-at 0,0,0 2>"$T/w2"
 want='warning: --depth-correction is always on in a scene
 warning: --discontinuity applies to reliefs and objects
 warning: --no-sidewalls applies to relief quads
 warning: --method parallax draws single reliefs
-warning: --look-at with --orbit'
-if [ "$(cat "$T/w1" "$T/w2" | grep -c -F "$want")" = 5 ] && [ "$(cat "$T/w1" "$T/w2" | grep -c '')" = 5 ]; then
+warning: --look-at with --orbit
+warning: --fov without --eye or --orbit: a scene starts at its own camera'
+if [ "$(cat "$T/w1" "$T/w2" | grep -c -F "$want")" = 6 ] && [ "$(cat "$T/w1" "$T/w2" | grep -c '')" = 6 ]; then
   passes=$((passes + 1)); else echo "FAIL: view warnings: $(cat "$T/w1" "$T/w2")"; fails=$((fails + 1)); fi
 
 # A mesh (a box with a pyramid on top, written here) is baked on the fly: the same pixels as rtm bake then
