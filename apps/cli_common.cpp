@@ -145,6 +145,15 @@ void check_isa_environment() {
     }
 }
 
+void warn_isa_not_run(const std::string& asked, Isa ran, const PrewarpOptions& options) {
+    if (asked == "auto" || ran == options.isa) return;
+    std::fprintf(stderr, "rtm: warning: --isa %s: this pre-warp ran on the %s kernels (%s)\n", asked.c_str(),
+                 isa_name(ran),
+                 options.exact                     ? "--exact runs on the generic kernels"
+                 : options.filter != Filter::point ? "the coverage filter runs on the generic kernels"
+                                                   : "the fast kernels do not take this relief and view");
+}
+
 std::vector<Isa> parse_isa_list(const std::string& text, const std::string& flag) {
     std::vector<Isa> v;
     std::stringstream ss(text);

@@ -38,6 +38,10 @@ Isa parse_isa_arg(const std::string& text, const std::string& flag);
 // Throws UsageError when RTM_ISA names no target or one this CPU or build lacks: called first by every subcommand
 // that pre-warps, so that a bad variable is exit 2 before any work (not exit 1 at the first pre-warp).
 void check_isa_environment();
+// A target asked for by name (`asked`, --isa's text; "auto" asks for none) that the pre-warp did not run on (`ran`):
+// one warning line naming the kernels that did and why (the fast kernels take neither --exact nor the coverage
+// filter, nor outputs past their size limit: fast_prewarp_covers, warp/simd/schedule.h).
+void warn_isa_not_run(const std::string& asked, Isa ran, const PrewarpOptions& options);
 // --isa LIST: comma-separated targets, each as parse_isa_arg.
 std::vector<Isa> parse_isa_list(const std::string& text, const std::string& flag);
 void parse_size(const std::string& text, const std::string& flag, int& w, int& h);

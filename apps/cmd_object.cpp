@@ -147,6 +147,7 @@ void run_prewarp_object(const ObjectPrewarpArgs& a) {
     std::vector<std::pair<std::string, ImageRGBA8>> outputs;
     std::vector<double> totals(size_t(a.repeat), 0.0);  // per repeat, over the visible faces
     int first_level = -1;
+    Isa ran = Isa::automatic;  // the target the first visible face's pre-warp ran on
     // auto: per face, the level `render --object --level auto` draws from this eye at its default camera (512x512,
     // 45 degrees, towards the box's centre): the relief quad's parallax-bounded choice on the face's texture
     // (objects/level_choice.h, as plan_object_face makes it).
@@ -163,7 +164,7 @@ void run_prewarp_object(const ObjectPrewarpArgs& a) {
             times.push_back(w.prewarp_ms);
             totals[size_t(i)] += w.prewarp_ms;
         }
-        if (first_level < 0) first_level = w.level;
+        if (first_level < 0) first_level = w.level, ran = w.isa;
         const std::string path = face_output_path(a.out, kFaceKeys[size_t(f)]);
         faces.push_back({{"face", kFaceKeys[size_t(f)]},
                          {"out", path},
@@ -174,9 +175,11 @@ void run_prewarp_object(const ObjectPrewarpArgs& a) {
                          {"adjacent_pixels", w.adjacent_pixels},
                          {"crack_pixels", w.crack_pixels},
                          {"texels", w.texels},
+                         {"isa", isa_name(w.isa)},
                          {"prewarp_ms", timing_json(times)}});
         outputs.emplace_back(path, std::move(w.image));
     }
+    if (ran != Isa::automatic) warn_isa_not_run(a.isa, ran, opt);  // the faces' pre-warps run alike
     for (const auto& [path, img] : outputs) write_rgba8(path, img);
     if (!a.json.empty()) {
         std::vector<int> back;
@@ -188,6 +191,7 @@ void run_prewarp_object(const ObjectPrewarpArgs& a) {
             {"method", a.method},
             {"exact", a.exact},
             {"filter", a.filter},
+            {"isa", ran == Isa::automatic ? "" : isa_name(ran)},
             {"eye", {eye.x, eye.y, eye.z}},
             {"region", region.index()},
             {"faces", faces},

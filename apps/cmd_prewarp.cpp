@@ -77,14 +77,7 @@ void run_prewarp(const PrewarpArgs& a) {
         stats = prewarp(relief, k, opt, ws, out);
         times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     }
-    // A target asked for by name that did not run: said, not left to the JSON (the fast kernels take neither
-    // --exact nor the coverage filter, nor outputs past their size limit: fast_prewarp_covers, warp/simd/schedule.h).
-    if (a.isa != "auto" && stats.isa != opt.isa)
-        std::fprintf(stderr, "rtm: warning: --isa %s: this pre-warp ran on the %s kernels (%s)\n", a.isa.c_str(),
-                     isa_name(stats.isa),
-                     opt.exact                     ? "--exact runs on the generic kernels"
-                     : opt.filter != Filter::point ? "the coverage filter runs on the generic kernels"
-                                                   : "the fast kernels do not take this relief and view");
+    warn_isa_not_run(a.isa, stats.isa, opt);
     write_rgba8(a.out, out);
     if (!a.json.empty()) {
         // Texels at zero displacement do not move and are copied without the warp arithmetic: the skip

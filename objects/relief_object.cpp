@@ -112,7 +112,7 @@ void ReliefObject::prewarp_face(int face, const glm::dvec3& eye, int level, cons
     // The face itself (its own samples win wherever it has any) ...
     PrewarpOptions o = options;
     o.keep_outliers = false;
-    prewarp(ft, k, o, workspace_, out.image, with_displ ? &own_displ_ : nullptr);
+    out.isa = prewarp(ft, k, o, workspace_, out.image, with_displ ? &own_displ_ : nullptr).isa;
     // ... and the adjacent faces onto F's plane, z-tested among themselves, where F left holes (or whole).
     const auto t_adjacent = Clock::now();
     const AdjacentNeed* need = nullptr;

@@ -58,6 +58,7 @@ struct ObjectFacePrewarp {
     Image2D<uint8_t> displ;     // with depth correction: depth along F's normal, quantized by depth_quant (255 none)
     Quantizer depth_quant;
     PrewarpCoefficients k;
+    Isa isa = Isa::generic;         // the target the face's own pre-warp ran on (PrewarpStats::isa)
     double prewarp_ms = 0.0;        // adjacent faces and the face itself
     double adjacent_ms = 0.0;       // of which the adjacent faces
     long long texels = 0;           // source texels visited (the face and its adjacent faces)

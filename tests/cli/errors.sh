@@ -273,6 +273,11 @@ expect_fail 2 '--look-at needs --eye or --orbit with --scene: the scene.s camera
 # A target asked for by name that the pre-warp could not run on: a warning (the JSON said "generic" alone).
 warns 1 '--isa sse4: this pre-warp ran on the generic kernels \(--exact runs' -- prewarp --relief "$R" --eye 0.5,0.5,3 \
   --exact --isa sse4 --out "$T/u10.png"
+warns 1 '--isa sse4: this pre-warp ran on the generic kernels \(--exact runs' -- prewarp --object "$O" --eye 2,1.5,3 \
+  --exact --isa sse4 --out "$T/u11.png" --json "$T/u11.json"
+python3 -c 'import json, sys; d = json.load(open(sys.argv[1])); assert d["isa"] == "generic" and all(
+    f["isa"] == "generic" for f in d["faces"]), d' "$T/u11.json" && passes=$((passes + 1)) ||
+  { echo "FAIL: prewarp --object --json isa"; fails=$((fails + 1)); }
 # --output-scale with a method that does not pre-warp changes nothing (it resampled the relief); --repeat times a mesh.
 expect_ok render --relief "$R" --eye 0.5,0.5,3 --size 16x16 --method flat --out "$T/u7.png"
 expect_ok render --relief "$R" --eye 0.5,0.5,3 --size 16x16 --method flat --output-scale 2 --out "$T/u8.png"
