@@ -45,10 +45,10 @@ void warn_unused(std::initializer_list<std::pair<bool, const char*>> flags, cons
 // flat texture mapping draws too; --no-skips the skips of those three; --discontinuity a pre-warp or the
 // micro-polygons; --progress the ray caster.
 void warn_method_unused(const RenderArgs& a, RenderMethod method, Filter filter, bool scene) {
-    const bool prewarps = method == RenderMethod::two_pass || method == RenderMethod::pipelined;
-    const bool textured = prewarps || method == RenderMethod::flat;
+    const bool warps = prewarps(method);
+    const bool textured = warps || method == RenderMethod::flat;
     const std::string m = "--method " + a.method;
-    if (!prewarps) {
+    if (!warps) {
         warn_unused({{a.exact, "--exact"},
                      {filter != Filter::point, "--filter coverage"},
                      {a.no_sidewalls, "--no-sidewalls"},
@@ -65,7 +65,7 @@ void warn_method_unused(const RenderArgs& a, RenderMethod method, Filter filter,
         warn_unused({{a.no_skips, "--no-skips"}},
                     "turns off relief texture mapping's skips, which " + m + " does not make");
     }
-    if (!prewarps && method != RenderMethod::micromesh && !scene)
+    if (!warps && method != RenderMethod::micromesh && !scene)
         warn_unused({{a.discontinuity >= 0, "--discontinuity"}},
                     "marks surface discontinuities, which " + m + " does not read");
     if (method != RenderMethod::raycast || a.relief.empty())
@@ -150,8 +150,7 @@ void run_render(const RenderArgs& a) {
     ReliefTexture relief = load_relief(a.relief);
     if (a.discontinuity >= 0) mark_discontinuities(relief, a.discontinuity);
     // --output-scale resamples the relief for the pre-warp's finer texture; the other methods draw it as it is.
-    if (method == RenderMethod::two_pass || method == RenderMethod::pipelined)
-        relief = apply_output_scale(std::move(relief), a.output_scale, a.relief);
+    if (prewarps(method)) relief = apply_output_scale(std::move(relief), a.output_scale, a.relief);
     ReliefQuad quad(std::move(relief));
     const Camera cam = a.camera.resolve(relief_bounds(quad.relief()));
     PrewarpOptions opt;
@@ -213,8 +212,7 @@ void run_render(const RenderArgs& a) {
             {"total_ms", timing_json(t_total)},
             {"texels", (long long)quad.relief().width * quad.relief().height},
             {"level", used_level},
-            {"output_scale",
-             method == RenderMethod::two_pass || method == RenderMethod::pipelined ? a.output_scale : 1},
+            {"output_scale", prewarps(method) ? a.output_scale : 1},
             {"skips", skips},
             // zero-displacement-runs: texels of the level at zero displacement, and how many of them the reference
             // kernels copied (0 when the fast kernels ran: they copy without counting).

@@ -54,7 +54,6 @@ void run_render_scene(const SceneRenderArgs& a) {
         throw UsageError("--method raycast traces one relief, not a scene: use micromesh as the scene's truth");
     const Filter filter = parse_filter(a.filter, method == RenderMethod::pipelined ? Reconstruction::pipelined
                                                                                    : Reconstruction::two_pass);
-    if (a.repeat < 1) throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
     if (a.repeat > 1 && !a.frames_dir.empty())
         throw UsageError("--repeat times one camera's frame; --frames renders each frame of the path once");
     if (!a.frames_dir.empty() && !a.out.empty())

@@ -16,7 +16,7 @@ struct SceneRenderArgs {
     std::string filter = "point";  // --filter point|coverage
     bool exact = false, no_skips = false, no_sidewalls = false;
     int threads = 0;
-    int repeat = 1;  // --repeat N: one camera's frame N times after one warm-up, for timing
+    int repeat = 1;  // --repeat N >= 1 (checked by run_render): one camera's frame N times after one warm-up
 };
 
 void run_render_scene(const SceneRenderArgs& a);

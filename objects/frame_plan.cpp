@@ -81,7 +81,7 @@ PrewarpExtent fit_texture_size(const PrewarpExtent& e, int width, int height, in
 FramePlan plan_frame(const Camera& cam, RenderMethod method, const PrewarpOptions& options, const DrawOptions& d,
                      const ReliefTexture& relief, const LevelSource& level, const LastPrewarp& last,
                      const std::vector<double>* spreads) {
-    const bool warp_method = method == RenderMethod::two_pass || method == RenderMethod::pipelined;
+    const bool warp_method = prewarps(method);
     if (!warp_method && method != RenderMethod::flat)
         throw std::invalid_argument("plan_frame: method " + to_string(method) + " is not a texture method");
     FramePlan p;

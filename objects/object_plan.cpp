@@ -27,7 +27,7 @@ ObjectFacePlan plan_object_face(const Camera& cam, RenderMethod method, const Pr
                                 const DrawOptions& d, const ObjectRegion& region, int face, const ReliefTexture& relief,
                                 const LevelSource& level, double depth, const LastFacePrewarp& last,
                                 const std::vector<double>* spreads) {
-    const bool warp_method = method == RenderMethod::two_pass || method == RenderMethod::pipelined;
+    const bool warp_method = prewarps(method);
     if (!warp_method && method != RenderMethod::flat)
         throw std::invalid_argument("plan_object_face: method " + to_string(method) + " is not a texture method");
     ObjectFacePlan p;

@@ -232,7 +232,7 @@ void ReliefObject::draw(Renderer& renderer, const Camera& cam, RenderMethod meth
         times.total_ms += ms_since(t_start);
         if (report) *report = std::move(rep);
     };
-    const bool warp_method = method == RenderMethod::two_pass || method == RenderMethod::pipelined;
+    const bool warp_method = prewarps(method);
     if (!warp_method && method != RenderMethod::flat)
         throw std::invalid_argument("ReliefObject::draw: method " + to_string(method) + " is not a texture method");
     if (rep.region.inside()) {  // the eye inside the box: nothing can be pre-warped for it

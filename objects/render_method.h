@@ -32,6 +32,8 @@ RenderMethod parse_render_method(const std::string& s);  // throws std::invalid_
 std::string to_string(RenderMethod m);
 std::vector<RenderMethod> render_methods();                     // all of them, in the order of the table
 std::optional<PerPixelMethod> perpixel_method(RenderMethod m);  // nullopt for the other methods
+// Whether m pre-warps the relief (two-pass or pipelined: relief texture mapping), as the other methods do not.
+inline bool prewarps(RenderMethod m) { return m == RenderMethod::two_pass || m == RenderMethod::pipelined; }
 
 // "two-pass" or "pipelined" (to_string(Reconstruction)); throws std::invalid_argument naming s and the known ones.
 Reconstruction parse_reconstruction(const std::string& s);

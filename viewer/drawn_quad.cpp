@@ -9,8 +9,7 @@
 namespace rtm::viewer {
 
 bool maps_prewarp(RenderMethod method, const std::vector<std::string>& skips) {
-    return (method == RenderMethod::two_pass || method == RenderMethod::pipelined) &&
-           std::find(skips.begin(), skips.end(), kSkipSubpixelParallax) == skips.end();
+    return prewarps(method) && std::find(skips.begin(), skips.end(), kSkipSubpixelParallax) == skips.end();
 }
 
 DrawnQuad fill_drawn_quad(ReliefQuad& quad, const std::string& name, const Camera& cam, int level,

@@ -159,7 +159,9 @@ TEST_F(TownTest, PlacementsOfOneFileShareTexelsAndLevels) {
             EXPECT_EQ(got.geometry.origin, want.geometry.origin);
             EXPECT_EQ(got.geometry.a, want.geometry.a);
             EXPECT_EQ(got.geometry.b, want.geometry.b);
-            if (k == 1) EXPECT_TRUE(got.texels.shares_storage_with(q[0].level(i).texels));
+            if (k == 1) {
+                EXPECT_TRUE(got.texels.shares_storage_with(q[0].level(i).texels));
+            }
         }
     }
 }
