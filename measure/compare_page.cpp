@@ -164,7 +164,10 @@ std::string plot_blocks(const CompareResults& r, bool curved) {
         if (rows.empty()) continue;
         if (curved)
             for (SummaryRow& x : rows)
-                if (x.family != "truth") x.family = x.setting.rfind("no-quadric-", 0) == 0 ? "no quadrics" : "quadrics";
+                if (x.family != "truth")
+                    x.family = x.setting.rfind("no-quadric-", 0) == 0 ? "no quadrics"
+                               : x.setting.rfind("exact-", 0) == 0    ? "exact distance"
+                                                                      : "quadrics";
         const TimeErrorPlot plot = time_error_plot(rows, (curved ? "curved-plot-" : "plot-") + std::to_string(n++));
         s += "<div class=\"plot-block\" data-source=\"" + esc(key) + "\"" + (curved ? " data-base=\"curved\"" : "") +
              "><h3>" + esc(heading) + "</h3>\n" + plot.svg;
@@ -292,7 +295,11 @@ std::string curved_section(const CompareResults& r) {
         "measured against the mesh: how far the two truths agree. Beside each setting, the same shader without the "
         "quadrics "
         "(quadric-silhouettes:no-quadric-...): the original relief mapping on the curved mesh, whose silhouette is "
-        "the mesh's. Same views, timing and error measures as above.</p>\n";
+        "the mesh's. And the paper's exact ray-quadric distance (quadric-silhouettes:exact-..., its equation 6) "
+        "beside the approximate one it uses (equation 7): equation 6 measures along the direction perpendicular to "
+        "the ray, which on a flat base is the depth divided by the sine of the ray's angle from the normal, so it "
+        "draws the relief too shallow and loses rays that equation 7 takes to the bottom. Same views, timing and "
+        "error measures as above.</p>\n";
     const std::vector<std::string> ids = ids_of(r, true);
     bool any = false;
     for (const ResultRow& row : r.rows) any |= row.curved();

@@ -320,6 +320,29 @@ std::string curved_sentence(const CompareResults& r) {
         }
         if (!at.empty()) s += " At the most grazing view, " + v.grazing->name + ", the IoU: " + join(at) + ".";
     }
+    // The paper's exact distance (equation 6) against the approximate one (equation 7) at the same steps.
+    std::vector<std::string> exact;
+    for (const ResultMethod& m : r.methods) {
+        if (!is_curved_base(m.base) || m.setting.rfind("exact-", 0) != 0) continue;
+        for (const ResultMethod& b : r.methods) {
+            if (!is_curved_base(b.base) || b.method != m.method || b.setting != m.setting.substr(6)) continue;
+            const double ie = mean_of(m.id, &ResultRow::iou, ""), ia = mean_of(b.id, &ResultRow::iou, "");
+            const double re = mean_of(m.id, &ResultRow::rmse, ""), ra = mean_of(b.id, &ResultRow::rmse, "");
+            if (!std::isfinite(ie) || !std::isfinite(ia)) continue;
+            std::string part = m.id + " IoU " + fixed(ie, 4) + " against " + fixed(ia, 4) + " (" + b.id + ")";
+            if (std::isfinite(re) && std::isfinite(ra)) part += ", RMSE " + fixed(re, 2) + " against " + fixed(ra, 2);
+            const double te = median_ms(m.id), ta = median_ms(b.id);
+            if (te > 0 && ta > 0) part += ", " + fixed(te / ta, 2) + " times the frame time";
+            exact.push_back(part);
+        }
+    }
+    if (!exact.empty())
+        s += " The paper's exact ray-quadric distance (its equation 6) against the approximate one it uses (equation "
+             "7): " +
+             join(exact) +
+             " (the paper reports the approximation twice as fast; equation 6 measures along the direction "
+             "perpendicular to the ray, the depth divided by the sine of the ray's angle from the normal on a flat "
+             "base, so it draws the relief too shallow: docs/PERPIXEL.md).";
     return s;
 }
 

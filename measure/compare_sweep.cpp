@@ -167,6 +167,21 @@ std::vector<CompareEntry> compare_sweep(bool quick) {
             e.render.perpixel.quadric_silhouettes.quadric = quadric;
             out.push_back(e);
         }
+    // The paper's exact ray-quadric distance (equation 6, perpixel/quadric_distance.h) at the default steps, beside
+    // the approximate one it uses (equation 7): its Figure 11 and its claim of twice the speed for the approximation.
+    {
+        const QuadricSilhouettesSettings d;
+        CompareEntry e = entry(RenderMethod::quadric_silhouettes,
+                               "exact-" + steps("l", d.linear_search_steps, "b", d.binary_search_steps), "per-pixel",
+                               {{"linear_search_steps", d.linear_search_steps},
+                                {"binary_search_steps", d.binary_search_steps},
+                                {"quadric", true},
+                                {"exact_distance", true},
+                                {"patch", patch}});
+        e.base = "curved";
+        e.render.perpixel.quadric_silhouettes.exact_distance = true;
+        out.push_back(e);
+    }
     // Its truths: the curved micro-polygon mesh (the reference of the curved rows) and a CPU ray caster of the same
     // bent relief (measure/curved_raycast.h), a row measured against the mesh: how far the two truths agree.
     for (RenderMethod m : {RenderMethod::micromesh, RenderMethod::raycast}) {

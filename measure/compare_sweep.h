@@ -32,8 +32,9 @@ struct CompareEntry {
 // the parallax pair, which has no steps), then the truths micromesh and raycast. `quick`: 2 settings per method
 // (the cheapest and the default). Then the curved base: relief mapping with quadric silhouettes at relief mapping's
 // steps, the same shader without the quadrics (the original relief mapping on the curved mesh) at the same steps,
-// and its truths curved-micromesh and curved-raycast; the curved entries render the relief bent over a cylinder patch,
-// so their errors are measured against the curved mesh, never against the flat truths.
+// the paper's exact distance (equation 6) at the default steps, and its truths curved-micromesh and curved-raycast; the
+// curved entries render the relief bent over a cylinder patch, so their errors are measured against the curved mesh,
+// never against the flat truths.
 std::vector<CompareEntry> compare_sweep(bool quick);
 
 }  // namespace rtm

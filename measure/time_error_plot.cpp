@@ -13,9 +13,11 @@ std::string family_colour(const std::string& family) {
     if (family == "per-pixel") return "#3182bd";
     if (family == "conventional") return "#636363";
     if (family == "truth") return "#31a354";
-    // The curved base's plot (measure/compare_page.cpp) colours quadric silhouettes by whether the quadrics are on.
+    // The curved base's plot (measure/compare_page.cpp) colours quadric silhouettes by whether the quadrics are on,
+    // and the paper's exact distance apart.
     if (family == "quadrics") return "#9467bd";
     if (family == "no quadrics") return "#8c564b";
+    if (family == "exact distance") return "#e377c2";
     return "#9467bd";
 }
 

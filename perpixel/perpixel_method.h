@@ -96,6 +96,10 @@ struct ProtrudedDisplacementSettings {
 struct QuadricSilhouettesSettings {
     int linear_search_steps = 32;
     int binary_search_steps = 8;
+    // The ray-quadric distance: false, the paper's faster approximate one (its equation 7, section 3.2, which it
+    // uses); true, its exact one (equation 6, section 3.1, along the unit vector perpendicular to the ray), with
+    // equation 7 where equation 6 has no root and the search range from equation 5 (perpixel/quadric_distance.h).
+    bool exact_distance = false;
     double angle = 1.2;
     int segments = 32;
     int rows = 4;

@@ -35,18 +35,21 @@ PerPixelQuad::~PerPixelQuad() {
     if (quadric_vao_) glDeleteVertexArrays(1, &quadric_vao_);
 }
 
-unsigned PerPixelQuad::program(PerPixelMethod m, const PerPixelCommon& c) {
+unsigned PerPixelQuad::program(PerPixelMethod m, const PerPixelCommon& c, bool quadric_exact) {
+    quadric_exact = quadric_exact && m == PerPixelMethod::quadric_silhouettes;
     const auto key = std::make_tuple(int(m), c.depth_correction, c.shading, c.shading && c.self_shadowing,
-                                     c.iteration_counts, c.float_textures);
+                                     c.iteration_counts, c.float_textures, quadric_exact);
     auto it = programs_.find(key);
     if (it != programs_.end()) return it->second;
     const char* vs = m == PerPixelMethod::quadric_silhouettes ? kQuadricVertexShader : kPerPixelVertexShader;
-    const GLuint p = link_program(vs, perpixel_fragment_shader(m, c), to_string(m));
+    const GLuint p = link_program(vs, perpixel_fragment_shader(m, c, quadric_exact), to_string(m));
     programs_[key] = p;
     return p;
 }
 
-void PerPixelQuad::prepare(PerPixelMethod m, const PerPixelCommon& common) { (void)program(m, common); }
+void PerPixelQuad::prepare(PerPixelMethod m, const PerPixelCommon& common, bool quadric_exact) {
+    (void)program(m, common, quadric_exact);
+}
 
 void PerPixelQuad::draw(Renderer& renderer, const Camera& cam, const ReliefTexture& t, PerPixelMethod m,
                         const PerPixelSettings& s) {
@@ -77,7 +80,7 @@ void PerPixelQuad::draw(Renderer& renderer, const Camera& cam, const ReliefTextu
         glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, 5 * sizeof(float), reinterpret_cast<void*>(3 * sizeof(float)));
         glBindVertexArray(0);
     }
-    const GLuint prog = program(m, s.common);
+    const GLuint prog = program(m, s.common, s.quadric_silhouettes.exact_distance);
     if (m == PerPixelMethod::quadric_silhouettes) return draw_quadric(cam, t, s, prog);
 
     const ReliefGeometry& g = t.geometry;

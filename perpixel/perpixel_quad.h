@@ -27,16 +27,17 @@ public:
     // `t` is uploaded on the first draw: pass the same relief every time.
     void draw(Renderer& renderer, const Camera& cam, const ReliefTexture& t, PerPixelMethod m,
               const PerPixelSettings& s);
-    // Compiles and links the program of `m` with `common`'s switches (what draw() does on first use).
-    void prepare(PerPixelMethod m, const PerPixelCommon& common);
+    // Compiles and links the program of `m` with `common`'s switches (what draw() does on first use);
+    // quadric_exact: quadric silhouettes' exact distance.
+    void prepare(PerPixelMethod m, const PerPixelCommon& common, bool quadric_exact = false);
 
 private:
     std::unique_ptr<GlTexture> color_, color_float_, relief_map_, depth_map_;
     unsigned vao_ = 0, vbo_ = 0;
     unsigned quadric_vao_ = 0, quadric_vbo_ = 0, quadric_ebo_ = 0;
-    // Programs by (method, depth correction, shading, shadows, iteration counts, float textures).
-    std::map<std::tuple<int, bool, bool, bool, bool, bool>, unsigned> programs_;
-    unsigned program(PerPixelMethod m, const PerPixelCommon& c);
+    // Programs by (method, depth correction, shading, shadows, iteration counts, float textures, quadric exact).
+    std::map<std::tuple<int, bool, bool, bool, bool, bool, bool>, unsigned> programs_;
+    unsigned program(PerPixelMethod m, const PerPixelCommon& c, bool quadric_exact);
     void draw_quadric(const Camera& cam, const ReliefTexture& t, const PerPixelSettings& s, unsigned prog);
 };
 

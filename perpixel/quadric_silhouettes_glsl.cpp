@@ -3,9 +3,11 @@
 // interpolated over the triangles. A fragment's eye ray, in texture space (equation 9: V_t = (V.T / s_x, V.B / s_y,
 // V.N / s_z)), goes deeper into the relief's shell by D(t) = -V_t.z t - (alpha V_t.x^2 + beta V_t.y^2) t^2 below the
 // quadric (equation 7, the paper's faster approximate distance, with alpha = a s_x^2 / s_z and beta = b s_y^2 / s_z,
-// equation 8). The search runs over [0, t_max] (section 3.3: where D reaches 1, or returns to 0), linear then
-// binary as in relief mapping; a ray that returns to depth 0 without meeting the relief is a silhouette and is
-// discarded.
+// equation 8), or, with RTM_QUADRIC_EXACT, by the exact distance of equation 6 (along the unit vector perpendicular
+// to the ray in the plane of the ray and the normal), falling back to equation 7 where it has no root. The search
+// runs over [0, t_max] (section 3.3: where D reaches 1, or returns to 0), linear then binary as in relief mapping; a
+// ray that returns to depth 0 without meeting the relief is a silhouette and is discarded. perpixel/quadric_distance.h
+// is the reference of both distances and of the range: the functions below are its steps in float.
 namespace rtm {
 
 extern const char* const kQuadricVertexShader;
@@ -46,6 +48,52 @@ layout(location = 0) out vec4 o_color;
 
 const int kMaxLoop = 1024;
 
+// The roots of a x^2 + b x + c = 0 in the stable form; false when there is none (quadric_distance.cpp's roots()).
+bool roots(float a, float b, float c, out float r1, out float r2) {
+    if (a == 0.0) {
+        if (b == 0.0) return false;
+        r1 = r2 = -c / b;
+        return true;
+    }
+    float disc = b * b - 4.0 * a * c;
+    if (disc < 0.0) return false;
+    float q = -0.5 * (b + (b >= 0.0 ? 1.0 : -1.0) * sqrt(disc));
+    r1 = q / a;
+    r2 = q != 0.0 ? c / q : r1;
+    return true;
+}
+
+// Equation 6 at P = v t, or equation 7's depth C where it has no root of the right sign (exact = false): see
+// quadric_depth_exact().
+float depth_exact(vec3 v, vec3 U, float alpha, float beta, float t, out bool exact) {
+    vec3 P = v * t;
+    float C = alpha * P.x * P.x + beta * P.y * P.y - P.z;
+    exact = false;
+    if (!(U.z > 0.0)) return C;
+    exact = true;
+    if (C == 0.0) return 0.0;
+    float A = alpha * U.x * U.x + beta * U.y * U.y;
+    float B = 2.0 * (alpha * P.x * U.x + beta * P.y * U.y) - U.z;
+    float r1, r2;
+    float best = 0.0;
+    if (roots(A, B, C, r1, r2)) {
+        if ((C > 0.0 ? r1 > 0.0 : r1 < 0.0)) best = r1;
+        if ((C > 0.0 ? r2 > 0.0 : r2 < 0.0) && (best == 0.0 || abs(r2) < abs(best))) best = r2;
+    }
+    exact = best != 0.0;
+    return exact ? best : C;
+}
+
+// The ray's depth under the quadric at t: equation 6 or equation 7.
+float depth(vec3 v, vec3 U, float alpha, float beta, float c1, float k, float t) {
+#if RTM_QUADRIC_EXACT
+    bool exact;
+    return depth_exact(v, U, alpha, beta, t, exact);
+#else
+    return c1 * t - k * t * t;
+#endif
+}
+
 float depth_at(vec2 st) {
 #if RTM_FLOAT_DEPTH
     return textureLod(u_depth, vec2(st.x, 1.0 - st.y), 0.0).r;
@@ -62,15 +110,49 @@ void main() {
     if (c1 <= 1e-9) discard;  // seen from behind
     float alpha = v_quadric.x * u_size.x * u_size.x / u_size.z;
     float beta = v_quadric.y * u_size.y * u_size.y / u_size.z;
-    float k = -(alpha * Vt.x * Vt.x + beta * Vt.y * Vt.y);  // D(t) = c1 t - k t^2
-    float disc = c1 * c1 - 4.0 * k;
-    bool leaves = disc < 0.0;  // k > 0 and D never reaches 1: the ray comes back out at D = 0
-    float t_max = leaves ? c1 / k : 2.0 / (c1 + sqrt(disc));
+    float k = -(alpha * Vt.x * Vt.x + beta * Vt.y * Vt.y);  // equation 7: D(t) = c1 t - k t^2
+    // The search range (quadric_search_range()): back at depth 0 at t_leave (k > 0), at the bottom at t_bottom.
+    float t_leave = k > 0.0 ? c1 / k : -1.0;
+    float disc7 = c1 * c1 - 4.0 * k;  // equation 7 at depth 1; none when the ray comes back out first
+    float t7 = disc7 >= 0.0 ? 2.0 / (c1 + sqrt(disc7)) : -1.0;
+    float t_bottom = t7;
+#if RTM_QUADRIC_EXACT
+    // U: perpendicular to the ray in the plane of the ray and the normal (0, 0, 1), outwards; none along the normal.
+    vec3 vn = normalize(Vt);
+    vec3 w = vec3(0.0, 0.0, 1.0) - vn.z * vn;
+    float sin_angle = length(w);
+    vec3 U = sin_angle < 1e-6 ? vec3(0.0) : w / sin_angle;
+    if (U.z > 0.0) {
+        // The first t where s = 1 solves equation 5 with P inside and 1 the nearest root of its side (the other is
+        // C / A), or equation 7's bottom where equation 7 stands in for equation 6.
+        float A = alpha * U.x * U.x + beta * U.y * U.y;
+        t_bottom = -1.0;
+        float r[2];
+        if (roots(-k, 2.0 * (alpha * Vt.x * U.x + beta * Vt.y * U.y) - Vt.z, A - U.z, r[0], r[1]))
+            for (int i = 0; i < 2; ++i) {
+                float t = r[i];
+                vec3 P = Vt * t;
+                float C = alpha * P.x * P.x + beta * P.y * P.y - P.z;
+                bool nearest = !(A != 0.0 && C / A > 0.0 && C / A < 1.0);
+                if (t > 0.0 && C > 0.0 && nearest && (t_bottom < 0.0 || t < t_bottom)) t_bottom = t;
+            }
+        bool exact7;
+        if (t7 > 0.0) {
+            float d7 = depth_exact(Vt, U, alpha, beta, t7, exact7);
+            if (!exact7 && (t_bottom < 0.0 || t7 < t_bottom)) t_bottom = t7;
+        }
+        if (t_bottom < 0.0 && t_leave < 0.0) t_bottom = t7;  // neither found: equation 7's range
+    }
+#else
+    vec3 U = vec3(0.0);
+#endif
+    bool leaves = t_leave > 0.0 && (t_bottom < 0.0 || t_leave < t_bottom);
+    float t_max = leaves ? t_leave : t_bottom;
     int n = clamp(u_linear_search_steps, 1, kMaxLoop);
     float t_in = -1.0, t_out = 0.0;
     for (int i = 0; i <= n; ++i) {  // from the entry point itself (i = 0), as in relief_mapping_glsl.cpp
         float t = t_max * float(i) / float(n);
-        float D = c1 * t - k * t * t;
+        float D = depth(Vt, U, alpha, beta, c1, k, t);
         // The last sample of a ray that does not leave is at depth 1, the bottom: inside whatever rounding says.
         if (D >= depth_at(v_st + Vt.xy * t) || (i == n && !leaves)) { t_in = t; break; }
         t_out = t;
@@ -78,7 +160,7 @@ void main() {
     if (t_in < 0.0) discard;  // the ray left the surface: silhouette
     for (int i = 0; i < min(u_binary_search_steps, kMaxLoop); ++i) {
         float t = 0.5 * (t_in + t_out);
-        float D = c1 * t - k * t * t;
+        float D = depth(Vt, U, alpha, beta, c1, k, t);
         if (D >= depth_at(v_st + Vt.xy * t)) t_in = t; else t_out = t;
     }
     vec2 st = v_st + Vt.xy * t_in;

@@ -129,12 +129,13 @@ void main() {
 
 extern const char* const kQuadricFragmentShader;
 
-std::string perpixel_fragment_shader(PerPixelMethod m, const PerPixelCommon& c) {
+std::string perpixel_fragment_shader(PerPixelMethod m, const PerPixelCommon& c, bool quadric_exact) {
     std::string s = "#version 330 core\n";
     s += "#define RTM_FLOAT_DEPTH " + std::to_string(c.float_textures ? 1 : 0) + "\n";
     if (m == PerPixelMethod::quadric_silhouettes) {
         s += "#define RTM_DEPTH " + std::to_string(c.depth_correction ? 1 : 0) + "\n";
         s += "#define RTM_ITERATIONS " + std::to_string(c.iteration_counts ? 1 : 0) + "\n";
+        s += "#define RTM_QUADRIC_EXACT " + std::to_string(quadric_exact ? 1 : 0) + "\n";
         return s + kQuadricFragmentShader;
     }
     s += "#define RTM_DEPTH " + std::to_string(c.depth_correction ? 1 : 0) + "\n";

@@ -17,6 +17,7 @@ extern const char* const kPerPixelVertexShader;
 // The method's function, by method (perpixel/<method>_glsl.cpp).
 const char* perpixel_trace_glsl(PerPixelMethod m);
 // The complete fragment shader: #version, the switches of `common` as #defines, the frame and the method.
-std::string perpixel_fragment_shader(PerPixelMethod m, const PerPixelCommon& common);
+// quadric_exact: quadric silhouettes' exact distance (QuadricSilhouettesSettings::exact_distance).
+std::string perpixel_fragment_shader(PerPixelMethod m, const PerPixelCommon& common, bool quadric_exact = false);
 
 }  // namespace rtm

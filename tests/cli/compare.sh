@@ -34,17 +34,18 @@ else:
     want = {"flat", "two-pass", "pipelined", "micromesh"}
 if have != want:
     errors.append("methods %s, expected %s" % (sorted(have), sorted(want)))
-def variant(m):  # quadric silhouettes with and without the quadrics sweep the same steps
-    return (m["method"], m["params"].get("quadric"))
+def variant(m):  # quadric silhouettes with and without the quadrics sweep the same steps; the exact distance one
+    return (m["method"], m["params"].get("quadric"), m["params"].get("exact_distance"))
 for m in j["methods"]:  # --quick: at most 2 settings per method
     if sum(1 for x in j["methods"] if variant(x) == variant(m)) > 2:
         errors.append("more than 2 settings of %s" % (variant(m),))
     want_base = "curved" if m["method"] in ("quadric-silhouettes", "curved-micromesh", "curved-raycast") else "flat"
     if m["base"] != want_base:
         errors.append("%s has base %s, not %s" % (m["id"], m["base"], want_base))
-if kind == "relief":  # the curved base: each quadric setting beside the same steps without the quadrics
+if kind == "relief":  # the curved base: each quadric setting beside the same steps without the quadrics, and the
+    # paper's exact distance at the default steps
     q = sorted(m["setting"] for m in j["methods"] if m["method"] == "quadric-silhouettes")
-    if q != sorted(["l8-b2", "l32-b8", "no-quadric-l8-b2", "no-quadric-l32-b8"]):
+    if q != sorted(["l8-b2", "l32-b8", "no-quadric-l8-b2", "no-quadric-l32-b8", "exact-l32-b8"]):
         errors.append("quadric-silhouettes settings %s" % q)
 rows = j["rows"]
 if len(rows) != len(sources) * len(ids) * len(views):
@@ -106,6 +107,10 @@ for x in c:
 for f in ["index.html", "compare.md"]:
     if not os.path.isfile(os.path.join(d, f)):
         errors.append("no " + f)
+if kind == "relief":  # the reading names the exact distance against the approximate one
+    page = open(os.path.join(d, "index.html")).read()
+    if "quadric-silhouettes:exact-l32-b8 IoU" not in page or "(quadric-silhouettes:l32-b8)" not in page:
+        errors.append("index.html: no reading of the exact distance against the approximate one")
 for e in errors[:10]:
     print("FAIL:", e)
 sys.exit(1 if errors else 0)

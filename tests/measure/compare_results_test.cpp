@@ -103,7 +103,7 @@ TEST(CompareResults, SummaryParetoAndCsv) {
 // the quadrics, and its truths, the curved mesh and the curved ray caster; --quick keeps 2 steps of each.
 TEST(CompareSweep, TheCurvedBasePairsEachQuadricSettingWithTheSameStepsWithout) {
     for (bool quick : {false, true}) {
-        std::vector<std::string> with, without, truths, relief_mapping;
+        std::vector<std::string> with, without, truths, relief_mapping, exact;
         for (const CompareEntry& e : compare_sweep(quick)) {
             if (e.method == "relief-mapping") relief_mapping.push_back(e.setting);
             if (!e.curved()) continue;
@@ -117,7 +117,8 @@ TEST(CompareSweep, TheCurvedBasePairsEachQuadricSettingWithTheSameStepsWithout) 
                 EXPECT_EQ(q.quadric, e.params.at("quadric").get<bool>()) << e.id;
                 EXPECT_EQ(q.linear_search_steps, e.params.at("linear_search_steps").get<int>()) << e.id;
                 EXPECT_EQ(q.binary_search_steps, e.params.at("binary_search_steps").get<int>()) << e.id;
-                (q.quadric ? with : without).push_back(e.setting);
+                EXPECT_EQ(q.exact_distance, e.params.value("exact_distance", false)) << e.id;
+                (q.exact_distance ? exact : q.quadric ? with : without).push_back(e.setting);
             }
         }
         EXPECT_EQ(truths, (std::vector<std::string>{"curved-micromesh", "curved-raycast"}));
@@ -125,6 +126,9 @@ TEST(CompareSweep, TheCurvedBasePairsEachQuadricSettingWithTheSameStepsWithout) 
         ASSERT_EQ(without.size(), with.size());
         for (size_t i = 0; i < with.size(); ++i) EXPECT_EQ(without[i], "no-quadric-" + with[i]);
         EXPECT_EQ(with.size(), quick ? 2u : 4u);
+        // The paper's exact distance at the default steps, beside the approximate one at the same steps.
+        EXPECT_EQ(exact, (std::vector<std::string>{"exact-l32-b8"}));
+        EXPECT_NE(std::find(with.begin(), with.end(), "l32-b8"), with.end());
     }
 }
 
