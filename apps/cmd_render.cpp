@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <initializer_list>
 #include <memory>
+#include <optional>
 
 #include <unistd.h>
 
@@ -17,6 +18,7 @@
 #include "render_mesh.h"
 #include "formats/relief_manifest.h"
 #include "objects/relief_quad.h"
+#include "perpixel/curved_patch.h"
 #include "texmap/gl_context.h"
 #include "formats/image_io.h"
 
@@ -26,6 +28,7 @@ namespace {
 
 struct RenderArgs {
     std::string relief, object, scene, mesh, frames_dir, out, json, method = "two-pass", level, filter = "point";
+    std::string curved_base, quadric_distance;  // quadric silhouettes' base and distance; empty: not given
     CameraArgs camera;
     bool exact = false, progress = false, no_sidewalls = false, depth_correction = false, no_skips = false;
     bool method_given = false;
@@ -70,6 +73,27 @@ void warn_method_unused(const RenderArgs& a, RenderMethod method, Filter filter,
                     "marks surface discontinuities, which " + m + " does not read");
     if (method != RenderMethod::raycast || a.relief.empty())
         warn_unused({{a.progress, "--progress"}}, "shows the ray caster's progress (--relief, --method raycast)");
+    if (method != RenderMethod::quadric_silhouettes || a.relief.empty())
+        warn_unused({{!a.curved_base.empty(), "--curved-base"}, {!a.quadric_distance.empty(), "--quadric-distance"}},
+                    "applies to --relief with --method quadric-silhouettes");
+}
+
+// Quadric silhouettes' settings from --curved-base and --quadric-distance (exit 2 for a value it does not know).
+QuadricSilhouettesSettings quadric_settings(const RenderArgs& a) {
+    QuadricSilhouettesSettings q;
+    if (!a.curved_base.empty()) {
+        const std::optional<CurvedShape> shape = parse_curved_shape(a.curved_base);
+        if (!shape) throw UsageError("--curved-base: expected cylinder or sphere, found \"" + a.curved_base + "\"");
+        q.base = *shape;
+        // The sphere curves along b too: as many rows as segments (the cylinder's 4 rows are straight lines).
+        if (q.base == CurvedShape::sphere) q.rows = q.segments;
+    }
+    if (!a.quadric_distance.empty()) {
+        if (a.quadric_distance != "approximate" && a.quadric_distance != "exact")
+            throw UsageError("--quadric-distance: expected approximate or exact, found \"" + a.quadric_distance + "\"");
+        q.exact_distance = a.quadric_distance == "exact";
+    }
+    return q;
 }
 
 void run_render(const RenderArgs& a) {
@@ -92,6 +116,7 @@ void run_render(const RenderArgs& a) {
     const Filter filter = parse_filter(a.filter, method == RenderMethod::pipelined ? Reconstruction::pipelined
                                                                                    : Reconstruction::two_pass);
     if (a.repeat < 1) throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
+    const QuadricSilhouettesSettings quadric = quadric_settings(a);
     // --level: 0 unless given, auto for a scene (each quad at the level its screen area asks for, no coarser than
     // its parallax allows: objects/level_choice.h; the town's margin over flat holds at auto, docs/SCENES.md).
     const std::string level = !a.level.empty() ? a.level : a.scene.empty() ? "0" : "auto";
@@ -170,6 +195,7 @@ void run_render(const RenderArgs& a) {
     rs.draw.depth_correction = a.depth_correction;
     rs.draw.skips = !a.no_skips;
     rs.draw.level = level_n;
+    rs.perpixel.quadric_silhouettes = quadric;
     if (a.progress || isatty(2))
         rs.progress = [](double f) { std::fprintf(stderr, "\r%s %5.1f%%", "raycast", 100 * f); };
     std::unique_ptr<GlContext> ctx;
@@ -221,6 +247,10 @@ void run_render(const RenderArgs& a) {
             {"eye", {cam.eye.x, cam.eye.y, cam.eye.z}},
             {"size", {cam.width, cam.height}},
         };
+        if (method == RenderMethod::quadric_silhouettes) {
+            j["curved_base"] = to_string(quadric.base);
+            j["quadric_distance"] = quadric.exact_distance ? "exact" : "approximate";
+        }
         write_json(a.json, j);
     }
 }
@@ -243,8 +273,13 @@ void add_render_command(CLI::App& app) {
                "--method", a->method,
                "flat, two-pass, pipelined, micromesh, raycast, or a per-pixel method: parallax, "
                "parallax-offset-limiting, steep-parallax, parallax-occlusion, relief-mapping, interval-mapping, "
-               "protruded-displacement, quadric-silhouettes (on a cylinder patch); --mesh: flat only")
+               "protruded-displacement, quadric-silhouettes (on a curved patch: --curved-base); --mesh: flat only")
             ->capture_default_str();
+    sub->add_option("--curved-base", a->curved_base,
+                    "quadric-silhouettes: the relief bent over a cylinder (default) or a sphere patch");
+    sub->add_option("--quadric-distance", a->quadric_distance,
+                    "quadric-silhouettes: the paper's approximate ray-quadric distance (equation 7, default) or its "
+                    "exact one (equation 6)");
     sub->add_flag("--exact", a->exact, "Pre-warp with unquantized displacement and double-precision coordinates");
     sub->add_option("--filter", a->filter, "Pre-warp resampling: point or coverage (Fant-style, two-pass only)")
         ->capture_default_str();

@@ -289,7 +289,7 @@ std::string curved_section(const CompareResults& r) {
     std::string s =
         "<section id=\"curved\"><h2>The curved base: quadric silhouettes</h2>\n<p>Relief mapping with quadric "
         "silhouettes (Oliveira and Policarpo 2005) draws the relief bent over a cylinder patch "
-        "(perpixel/cylinder_patch.h), so every row here is measured against the truth of that same curved surface, "
+        "(perpixel/curved_patch.h), so every row here is measured against the truth of that same curved surface, "
         "the curved micro-polygon mesh (curved-micromesh), never against the flat truths above; its points are kept "
         "out of the flat plot. A second truth, curved-raycast (the same bent relief cast on the CPU), is a row "
         "measured against the mesh: how far the two truths agree. Beside each setting, the same shader without the "

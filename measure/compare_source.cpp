@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "measure/curved_raycast.h"
-#include "perpixel/cylinder_patch.h"
+#include "perpixel/curved_patch.h"
 
 namespace rtm {
 
@@ -43,7 +43,8 @@ public:
                                    int threads, StageTimes& times) override {
         if (method == RenderMethod::raycast) {
             const auto t0 = Clock::now();
-            ImageRGBA8 img = raycast_curved_relief(quad_.relief(), cylinder_patch_for(quad_.relief(), angle), cam,
+            ImageRGBA8 img = raycast_curved_relief(quad_.relief(),
+                                                   curved_patch_for(quad_.relief(), CurvedShape::cylinder, angle), cam,
                                                    threads);
             times.total_ms += ms_since(t0);
             return img;
@@ -51,8 +52,8 @@ public:
         CurvedMesh& m = curved_[angle];
         if (m.vertices.empty()) {
             m.origin = quad_.relief().geometry.origin;  // positions relative to it: far from 0 they keep their digits
-            curved_micromesh(quad_.relief(), cylinder_patch_for(quad_.relief(), angle), m.vertices, m.indices,
-                             m.origin);
+            curved_micromesh(quad_.relief(), curved_patch_for(quad_.relief(), CurvedShape::cylinder, angle), m.vertices,
+                             m.indices, m.origin);
         }
         const auto t0 = Clock::now();
         renderer.begin_frame(cam);

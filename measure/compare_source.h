@@ -33,7 +33,7 @@ public:
     virtual ImageRGBA8 render(Renderer& renderer, const Camera& cam, const RenderSettings& s, int output_scale,
                               StageTimes& times) = 0;
     // A truth of the curved base, the relief displaced over the cylinder patch bent through `angle` radians:
-    // `method` micromesh draws it as micro-polygons (perpixel/cylinder_patch.h, curved_micromesh), raycast casts it
+    // `method` micromesh draws it as micro-polygons (perpixel/curved_patch.h, curved_micromesh), raycast casts it
     // on the CPU with `threads` (measure/curved_raycast.h); one frame, `times` accumulates its time. Reliefs only
     // (renders() is false for the curved entries elsewhere): throws std::logic_error otherwise.
     virtual ImageRGBA8 render_curved_truth(Renderer& renderer, const Camera& cam, RenderMethod method, double angle,

@@ -18,7 +18,7 @@ struct CompareEntry {
     std::string setting;  // "" when the method has one setting
     std::string family;   // "pre-warp", "per-pixel", "conventional" (flat) or "truth" (micromesh, raycast)
     // "flat": the relief on its quad, measured against raycast (micromesh for an object or a scene); "curved": the
-    // relief bent over the cylinder patch of quadric silhouettes (perpixel/cylinder_patch.h), measured against the
+    // relief bent over the cylinder patch of quadric silhouettes (perpixel/curved_patch.h), measured against the
     // curved micro-polygon mesh of the same bent relief (reliefs only).
     std::string base = "flat";
     nlohmann::json params;  // the setting's values by name (the papers' names for the per-pixel methods)

@@ -17,17 +17,21 @@ namespace {
 
 struct Curved {
     const ReliefTexture& t;
-    const CylinderPatch& p;
+    const CurvedPatch& p;
     double range;
 
-    // The patch coordinates of a world point: s (azimuth), t (along b), d (depth: 0 at the top of the range).
+    bool sphere() const { return p.shape == CurvedShape::sphere; }
+
+    // The patch coordinates of a world point: s (azimuth), t (along b; on the sphere the latitude), d (depth: 0 at
+    // the top of the range).
     void coords(const glm::dvec3& x, double& s, double& tt, double& d) const {
         const glm::dvec3 rel = x - p.centre;
-        const double u = glm::dot(rel, p.a_hat), w = glm::dot(rel, p.f);
+        const double u = glm::dot(rel, p.a_hat), w = glm::dot(rel, p.f), v = glm::dot(rel, p.b_hat);
         s = std::atan2(u, w) / p.angle + 0.5;
-        tt = glm::dot(rel, p.b_hat) / p.height + 0.5;
-        // A relief without a displacement range lies on the cylinder: depth is then the distance inwards.
-        d = (p.radius - std::sqrt(u * u + w * w)) / (p.depth > 0 ? p.depth : 1.0);
+        const double r = sphere() ? std::sqrt(u * u + v * v + w * w) : std::sqrt(u * u + w * w);
+        tt = sphere() ? std::atan2(v, std::sqrt(u * u + w * w)) / p.angle_b + 0.5 : v / p.height + 0.5;
+        // A relief without a displacement range lies on the surface: depth is then the distance inwards.
+        d = (p.radius - r) / (p.depth > 0 ? p.depth : 1.0);
     }
 
     // Texel-centre coordinates of (s, t): column i0 + fx, row r0 + fy (row 0 is t = 1, as curved_micromesh puts it).
@@ -70,12 +74,15 @@ struct Curved {
     }
 
     Rgba8 cast(const glm::dvec3& o, const glm::dvec3& dir) const {
-        // The shell: inside the outer cylinder (radius, axis along b through the centre) and the axial slab.
+        // The shell: inside the outer cylinder (radius, axis along b through the centre) and the axial slab; or
+        // inside the outer sphere. `far2` is the squared distance from the axis (the centre) without the radius.
         const glm::dvec3 rel = o - p.centre;
         const double ou = glm::dot(rel, p.a_hat), ow = glm::dot(rel, p.f), ov = glm::dot(rel, p.b_hat);
         const double du = glm::dot(dir, p.a_hat), dw = glm::dot(dir, p.f), dv = glm::dot(dir, p.b_hat);
         double t0 = 0, t1 = INFINITY;
-        const double A = du * du + dw * dw, B = ou * du + ow * dw, C = ou * ou + ow * ow - p.radius * p.radius;
+        const double sv = sphere() ? 1.0 : 0.0;  // the sphere counts the b components too
+        const double A = du * du + dw * dw + sv * dv * dv, B = ou * du + ow * dw + sv * ov * dv;
+        const double far2 = ou * ou + ow * ow + sv * ov * ov, C = far2 - p.radius * p.radius;
         if (A > 0) {
             const double disc = B * B - A * C;
             if (disc < 0) return {0, 0, 0, 255};
@@ -85,8 +92,10 @@ struct Curved {
         } else if (C > 0) {
             return {0, 0, 0, 255};
         }
-        const double half = 0.5 * p.height;
-        if (dv != 0) {
+        const double half = sphere() ? INFINITY : 0.5 * p.height;
+        if (sphere()) {
+            // No slab: the footprint test of g() leaves out what lies beyond the patch's latitudes.
+        } else if (dv != 0) {
             const double a = (-half - ov) / dv, b = (half - ov) / dv;
             t0 = std::max(t0, std::min(a, b));
             t1 = std::min(t1, std::max(a, b));
@@ -103,7 +112,7 @@ struct Curved {
         double ti0 = INFINITY, ti1 = -INFINITY;
         const double inner = p.radius - 1.001 * p.depth;
         if (A > 0 && inner > 0 && p.depth > 0) {
-            const double disc = B * B - A * (ou * ou + ow * ow - inner * inner);
+            const double disc = B * B - A * (far2 - inner * inner);
             if (disc > 0) {
                 ti0 = (-B - std::sqrt(disc)) / A;
                 ti1 = (-B + std::sqrt(disc)) / A;
@@ -149,7 +158,7 @@ struct Curved {
 
 }  // namespace
 
-ImageRGBA8 raycast_curved_relief(const ReliefTexture& t, const CylinderPatch& p, const Camera& cam, int threads) {
+ImageRGBA8 raycast_curved_relief(const ReliefTexture& t, const CurvedPatch& p, const Camera& cam, int threads) {
     if (std::string why = cam.validate(); !why.empty()) throw std::invalid_argument("curved raycast: camera: " + why);
     ImageRGBA8 img(cam.width, cam.height, Rgba8{0, 0, 0, 255});
     if (t.width < 2 || t.height < 2) return img;

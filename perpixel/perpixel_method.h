@@ -88,9 +88,14 @@ struct ProtrudedDisplacementSettings {
     int binary_search_steps = 8;
 };
 
-// Relief mapping with quadric silhouettes: the relief on a cylinder patch (perpixel/cylinder_patch.h) bent through
-// `angle` radians, `segments` x `rows` quads with per-vertex quadric coefficients; the search is relief mapping's
-// (linear, then binary) over the part of the ray inside the quadric shell; rays that leave it are silhouettes.
+// The curved base of quadric silhouettes (perpixel/curved_patch.h): a cylinder (one principal curvature, the
+// paper's Figure 7 (c)) or a sphere (two, a paraboloid locally: Figure 7 (a)).
+enum class CurvedShape { cylinder, sphere };
+
+// Relief mapping with quadric silhouettes: the relief on a cylinder or sphere patch (perpixel/curved_patch.h) bent
+// through `angle` radians along a, `segments` x `rows` quads with per-vertex quadric coefficients; the search is
+// relief mapping's (linear, then binary) over the part of the ray inside the quadric shell; rays that leave it are
+// silhouettes.
 // Shading and self-shadowing are not implemented for it (the colour is unlit); iteration counts write the binary
 // steps.
 struct QuadricSilhouettesSettings {
@@ -100,9 +105,10 @@ struct QuadricSilhouettesSettings {
     // uses); true, its exact one (equation 6, section 3.1, along the unit vector perpendicular to the ray), with
     // equation 7 where equation 6 has no root and the search range from equation 5 (perpixel/quadric_distance.h).
     bool exact_distance = false;
+    CurvedShape base = CurvedShape::cylinder;
     double angle = 1.2;
     int segments = 32;
-    int rows = 4;
+    int rows = 4;  // the sphere needs more than the cylinder's 4 (it curves along b too): 32 x 32 is a fine mesh
     // false: the quadric coefficients are zero, the original relief mapping on the curved mesh (the paper's
     // Figure 9, left): no ray leaves, the silhouette is the mesh's.
     bool quadric = true;

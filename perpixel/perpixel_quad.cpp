@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "perpixel/cylinder_patch.h"
+#include "perpixel/curved_patch.h"
 #include "perpixel/relief_map.h"
 #include "perpixel/shader_common.h"
 #include "texmap/gl_context.h"
@@ -190,11 +190,11 @@ void PerPixelQuad::draw(Renderer& renderer, const Camera& cam, const ReliefTextu
 
 void PerPixelQuad::draw_quadric(const Camera& cam, const ReliefTexture& t, const PerPixelSettings& s, unsigned prog) {
     const QuadricSilhouettesSettings& q = s.quadric_silhouettes;
-    const CylinderPatch patch = cylinder_patch_for(t, q.angle);
+    const CurvedPatch patch = curved_patch_for(t, q.base, q.angle);
     std::vector<QuadricVertex> vertices;
     std::vector<uint32_t> indices;
     const glm::dvec3 E = cam.eye;
-    cylinder_base_mesh(patch, q.segments, q.rows, vertices, indices, E);  // eye-relative positions
+    curved_base_mesh(patch, q.segments, q.rows, vertices, indices, E);  // eye-relative positions
     if (!q.quadric)
         for (QuadricVertex& v : vertices) v.quadric = glm::vec2(0.0f);
     if (!quadric_vao_) {
@@ -205,11 +205,12 @@ void PerPixelQuad::draw_quadric(const Camera& cam, const ReliefTexture& t, const
         glBindBuffer(GL_ARRAY_BUFFER, quadric_vbo_);
         glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, quadric_ebo_);
         const GLsizei stride = sizeof(QuadricVertex);
-        const size_t offsets[6] = {offsetof(QuadricVertex, position), offsetof(QuadricVertex, normal),
+        const size_t offsets[7] = {offsetof(QuadricVertex, position), offsetof(QuadricVertex, normal),
                                    offsetof(QuadricVertex, tangent),  offsetof(QuadricVertex, binormal),
-                                   offsetof(QuadricVertex, st),       offsetof(QuadricVertex, quadric)};
-        const GLint sizes[6] = {3, 3, 3, 3, 2, 2};
-        for (GLuint i = 0; i < 6; ++i) {
+                                   offsetof(QuadricVertex, st),       offsetof(QuadricVertex, quadric),
+                                   offsetof(QuadricVertex, tile)};
+        const GLint sizes[7] = {3, 3, 3, 3, 2, 2, 2};
+        for (GLuint i = 0; i < 7; ++i) {
             glEnableVertexAttribArray(i);
             glVertexAttribPointer(i, sizes[i], GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(offsets[i]));
         }
@@ -226,7 +227,7 @@ void PerPixelQuad::draw_quadric(const Camera& cam, const ReliefTexture& t, const
     glUniform1i(loc("u_color"), 0);
     glUniform1i(loc("u_relief"), 1);
     glUniform1i(loc("u_depth"), 2);
-    glUniform3f(loc("u_size"), float(patch.width), float(patch.height), float(depth));
+    glUniform1f(loc("u_depth_range"), float(depth));
     glUniform2f(loc("u_half_texel"), float(0.5 / t.width), float(0.5 / t.height));
     glUniform3f(loc("u_forward"), float(forward.x), float(forward.y), float(forward.z));
     glUniform2f(loc("u_ndc"), float(-proj[2][2]), float(proj[3][2]));

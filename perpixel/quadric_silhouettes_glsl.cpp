@@ -18,10 +18,12 @@ layout(location = 2) in vec3 a_tangent;
 layout(location = 3) in vec3 a_binormal;
 layout(location = 4) in vec2 a_st;
 layout(location = 5) in vec2 a_quadric;
+layout(location = 6) in vec2 a_tile;
 uniform mat4 u_mvp_rel;
 out vec3 v_rel, v_normal, v_tangent, v_binormal;
-out vec2 v_st, v_quadric;
+out vec2 v_st, v_quadric, v_tile;
 void main() {
+    v_tile = a_tile;
     v_rel = a_rel;
     v_normal = a_normal;
     v_tangent = a_tangent;
@@ -35,11 +37,11 @@ void main() {
 extern const char* const kQuadricFragmentShader;
 const char* const kQuadricFragmentShader = R"(
 in vec3 v_rel, v_normal, v_tangent, v_binormal;
-in vec2 v_st, v_quadric;
+in vec2 v_st, v_quadric, v_tile;
 uniform sampler2D u_color;
 uniform sampler2D u_relief;
 uniform sampler2D u_depth;
-uniform vec3 u_size;  // (s_x, s_y, s_z): the texture tile's width and height on the surface, the relief's depth
+uniform float u_depth_range;  // s_z: the relief's depth (the tile's width and height s_x, s_y come per vertex)
 uniform vec2 u_half_texel;
 uniform vec3 u_forward;
 uniform vec2 u_ndc;
@@ -105,11 +107,12 @@ float depth_at(vec2 st) {
 void main() {
     vec3 V = normalize(v_rel);
     vec3 N = normalize(v_normal), T = normalize(v_tangent), B = normalize(v_binormal);
-    vec3 Vt = vec3(dot(V, T) / u_size.x, dot(V, B) / u_size.y, dot(V, N) / u_size.z);
+    vec3 size = vec3(v_tile, u_depth_range);  // (s_x, s_y, s_z), section 3.4
+    vec3 Vt = vec3(dot(V, T) / size.x, dot(V, B) / size.y, dot(V, N) / size.z);
     float c1 = -Vt.z;
     if (c1 <= 1e-9) discard;  // seen from behind
-    float alpha = v_quadric.x * u_size.x * u_size.x / u_size.z;
-    float beta = v_quadric.y * u_size.y * u_size.y / u_size.z;
+    float alpha = v_quadric.x * size.x * size.x / size.z;
+    float beta = v_quadric.y * size.y * size.y / size.z;
     float k = -(alpha * Vt.x * Vt.x + beta * Vt.y * Vt.y);  // equation 7: D(t) = c1 t - k t^2
     // The search range (quadric_search_range()): back at depth 0 at t_leave (k > 0), at the bottom at t_bottom.
     float t_leave = k > 0.0 ? c1 / k : -1.0;

@@ -17,6 +17,32 @@ for m in parallax parallax-offset-limiting steep-parallax parallax-occlusion rel
   if awk -v x="$iou" -v min="$min" 'BEGIN { exit !(x > min) }'; then passes=$((passes + 1)); else
     echo "FAIL: $m: iou $iou against the ray caster"; fails=$((fails + 1)); fi
 done
+# Quadric silhouettes on a sphere patch and with the exact distance: the JSON names both; each differs from the
+# default picture; an unknown value is exit 2 naming it; the flags on another method warn.
+expect_ok render --relief "$R" --orbit 30,35,2.0 --size 96x96 --method quadric-silhouettes --curved-base sphere \
+  --quadric-distance exact --out "$T/sphere.png" --json "$T/sphere.json"
+if python3 -c 'import json, sys; j = json.load(open(sys.argv[1])); d = json.load(open(sys.argv[2]))
+sys.exit(not (j["curved_base"] == "sphere" and j["quadric_distance"] == "exact" and d["curved_base"] == "cylinder"
+              and d["quadric_distance"] == "approximate"))' "$T/sphere.json" "$T/quadric-silhouettes.json"; then
+  passes=$((passes + 1))
+else
+  echo "FAIL: render --curved-base sphere --quadric-distance exact: JSON $(cat "$T/sphere.json")"
+  fails=$((fails + 1))
+fi
+expect_ok diff "$T/quadric-silhouettes.png" "$T/sphere.png"
+if awk '$1 == "iou" { exit !($2 < 0.99) }' "$T/stdout"; then passes=$((passes + 1)); else
+  echo "FAIL: the sphere patch drew the cylinder's picture: $(cat "$T/stdout")"; fails=$((fails + 1)); fi
+expect_fail 2 'curved-base.*"cone"' -- render --relief "$R" --eye 0,0,3 --method quadric-silhouettes \
+  --curved-base cone --out "$T/bad.png"
+expect_fail 2 'quadric-distance.*"exactly"' -- render --relief "$R" --eye 0,0,3 --method quadric-silhouettes \
+  --quadric-distance exactly --out "$T/bad.png"
+if "$RTM" render --relief "$R" --eye 0,0,3 --size 32x32 --method relief-mapping --curved-base sphere \
+  --out "$T/rm.png" 2>"$T/err" &&
+  grep -q '^rtm: warning: --curved-base applies to --relief with --method quadric-silhouettes$' "$T/err"; then
+  passes=$((passes + 1))
+else
+  echo "FAIL: render --method relief-mapping --curved-base: no warning ($(cat "$T/err"))"; fails=$((fails + 1))
+fi
 expect_fail 2 'method.*relief-maping.*relief-mapping' -- render --relief "$R" --eye 0,0,1 --method relief-maping \
   --out "$T/bad.png"
 [ -e "$T/bad.png" ] && { echo "FAIL: an output file after a usage error"; fails=$((fails + 1)); }

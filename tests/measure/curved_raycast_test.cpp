@@ -29,7 +29,7 @@ Camera narrow_camera(const glm::dvec3& eye, const glm::dvec3& at, const glm::dve
 
 TEST(CurvedRaycast, ARayDownTheNormalOntoATexelCentreReturnsItsColour) {
     const ReliefTexture t = to_relief(make_step(64));
-    const CylinderPatch p = cylinder_patch_for(t);
+    const CurvedPatch p = curved_patch_for(t);
     const double range = t.quant.max - t.quant.min;
     ASSERT_GT(range, 0);
     // On the block (depth 0; texel 20 is the block's first column, next to the wall), on the ground (depth 1) in
@@ -59,7 +59,7 @@ TEST(CurvedRaycast, ARayDownTheNormalOntoATexelCentreReturnsItsColour) {
 
 TEST(CurvedRaycast, TheImageDoesNotDependOnTheThreadCount) {
     const ReliefTexture t = to_relief(make_bumps(64));
-    const CylinderPatch p = cylinder_patch_for(t);
+    const CurvedPatch p = curved_patch_for(t);
     const Bounds b = relief_bounds(t);
     const Camera cam = orbit_camera(b.centre(), b.radius(), {40, 20, 2.2}, 64, 48);
     const ImageRGBA8 one = raycast_curved_relief(t, p, cam, 1), two = raycast_curved_relief(t, p, cam, 2);

@@ -1,4 +1,4 @@
-#include "perpixel/cylinder_patch.h"
+#include "perpixel/curved_patch.h"
 
 #include <glm/geometric.hpp>
 
@@ -7,23 +7,45 @@
 
 namespace rtm {
 
-glm::dvec3 CylinderPatch::normal(double s) const {
-    const double th = (s - 0.5) * angle;
-    return std::sin(th) * a_hat + std::cos(th) * f;
+namespace {
+double azimuth(const CurvedPatch& p, double s) { return (s - 0.5) * p.angle; }
+double latitude(const CurvedPatch& p, double t) {
+    return p.shape == CurvedPatch::Shape::sphere ? (t - 0.5) * p.angle_b : 0.0;
+}
+}  // namespace
+
+glm::dvec3 CurvedPatch::normal(double s, double t) const {
+    const double th = azimuth(*this, s), ph = latitude(*this, t);
+    return std::cos(ph) * (std::sin(th) * a_hat + std::cos(th) * f) + std::sin(ph) * b_hat;
 }
 
-glm::dvec3 CylinderPatch::tangent(double s) const {
-    const double th = (s - 0.5) * angle;
+glm::dvec3 CurvedPatch::tangent(double s, double t) const {
+    (void)t;
+    const double th = azimuth(*this, s);
     return std::cos(th) * a_hat - std::sin(th) * f;
 }
 
-glm::dvec3 CylinderPatch::point(double s, double t, double d) const {
-    return centre + b_hat * ((t - 0.5) * height) + normal(s) * (radius - d * depth);
+glm::dvec3 CurvedPatch::binormal(double s, double t) const {
+    if (shape == Shape::cylinder) return b_hat;
+    const double th = azimuth(*this, s), ph = latitude(*this, t);
+    return std::cos(ph) * b_hat - std::sin(ph) * (std::sin(th) * a_hat + std::cos(th) * f);
 }
 
-CylinderPatch cylinder_patch_for(const ReliefTexture& t, double angle) {
+glm::dvec2 CurvedPatch::tile(double s, double t) const {
+    (void)s;
+    return {width * std::cos(latitude(*this, t)), height};
+}
+
+glm::dvec3 CurvedPatch::point(double s, double t, double d) const {
+    const double r = radius - d * depth;
+    if (shape == Shape::sphere) return centre + normal(s, t) * r;
+    return centre + b_hat * ((t - 0.5) * height) + normal(s, t) * r;
+}
+
+CurvedPatch curved_patch_for(const ReliefTexture& t, CurvedPatch::Shape shape, double angle) {
     const ReliefGeometry& g = t.geometry;
-    CylinderPatch p;
+    CurvedPatch p;
+    p.shape = shape;
     p.f = g.f();
     p.a_hat = glm::normalize(g.a);
     p.b_hat = glm::normalize(glm::cross(p.f, p.a_hat));
@@ -31,14 +53,23 @@ CylinderPatch cylinder_patch_for(const ReliefTexture& t, double angle) {
     p.height = glm::length(g.b) * t.height;  // a and b orthogonal (the reliefs here)
     p.angle = angle;
     p.radius = p.width / angle;
+    p.angle_b = p.height / p.radius;
     p.depth = t.quant.max - t.quant.min;
     const glm::dvec3 mid = g.origin + 0.5 * (g.a * double(t.width) + g.b * double(t.height)) + p.f * t.quant.max;
     p.centre = mid - p.f * p.radius;
     return p;
 }
 
-void cylinder_base_mesh(const CylinderPatch& p, int segments, int rows, std::vector<QuadricVertex>& vertices,
-                        std::vector<uint32_t>& indices, const glm::dvec3& origin) {
+std::optional<CurvedPatch::Shape> parse_curved_shape(const std::string& name) {
+    if (name == "cylinder") return CurvedPatch::Shape::cylinder;
+    if (name == "sphere") return CurvedPatch::Shape::sphere;
+    return std::nullopt;
+}
+
+std::string to_string(CurvedPatch::Shape shape) { return shape == CurvedPatch::Shape::sphere ? "sphere" : "cylinder"; }
+
+void curved_base_mesh(const CurvedPatch& p, int segments, int rows, std::vector<QuadricVertex>& vertices,
+                      std::vector<uint32_t>& indices, const glm::dvec3& origin) {
     vertices.clear();
     indices.clear();
     const int nx = segments + 1, ny = rows + 1;
@@ -48,10 +79,11 @@ void cylinder_base_mesh(const CylinderPatch& p, int segments, int rows, std::vec
             const double s = double(i) / segments, t = double(j) / rows;
             QuadricVertex v;
             v.position = glm::vec3(p.point(s, t) - origin);
-            v.normal = glm::vec3(p.normal(s));
-            v.tangent = glm::vec3(p.tangent(s));
-            v.binormal = glm::vec3(p.b_hat);
+            v.normal = glm::vec3(p.normal(s, t));
+            v.tangent = glm::vec3(p.tangent(s, t));
+            v.binormal = glm::vec3(p.binormal(s, t));
             v.st = glm::vec2(float(s), float(t));
+            v.tile = glm::vec2(p.tile(s, t));
             vertices.push_back(v);
         }
     for (int j = 0; j < rows; ++j)
@@ -67,7 +99,7 @@ void cylinder_base_mesh(const CylinderPatch& p, int segments, int rows, std::vec
             for (int o = 0; o < 3; ++o) ring[indices[k + size_t(e)]].insert(indices[k + size_t(o)]);
     for (size_t k = 0; k < vertices.size(); ++k) {
         const double s = vertices[k].st.x, t = vertices[k].st.y;
-        const glm::dvec3 o = p.point(s, t), T = p.tangent(s), N = p.normal(s), B = p.b_hat;
+        const glm::dvec3 o = p.point(s, t), T = p.tangent(s, t), N = p.normal(s, t), B = p.binormal(s, t);
         double xx = 0, xy = 0, yy = 0, xz = 0, yz = 0;  // A^T A and A^T b with rows (x^2, y^2)
         for (uint32_t n : ring[k]) {
             if (n == k) continue;
@@ -91,7 +123,7 @@ void cylinder_base_mesh(const CylinderPatch& p, int segments, int rows, std::vec
     }
 }
 
-void curved_micromesh(const ReliefTexture& t, const CylinderPatch& p, std::vector<MeshVertex>& vertices,
+void curved_micromesh(const ReliefTexture& t, const CurvedPatch& p, std::vector<MeshVertex>& vertices,
                       std::vector<uint32_t>& indices, const glm::dvec3& origin) {
     vertices.clear();
     indices.clear();
