@@ -9,6 +9,9 @@
 // parallel; the output does not depend on the thread count.
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
 #include "perpixel/curved_patch.h"
 #include "texmap/camera.h"
 #include "warp/image.h"
@@ -18,5 +21,11 @@ namespace rtm {
 
 // threads: 0 = all available. Throws std::invalid_argument when the camera is unusable.
 ImageRGBA8 raycast_curved_relief(const ReliefTexture& t, const CurvedPatch& p, const Camera& cam, int threads = 0);
+
+// The relief's shadows on itself, per pixel (row 0 the top of the view): 0 where the ray meets nothing, 1 where the
+// point seen is lit, 2 where it is in shadow: the ray from it towards `light` (world direction towards the light)
+// meets the surface, or starts under it (the point faces away). The truth of quadric silhouettes' self-shadowing.
+std::vector<uint8_t> curved_relief_shadows(const ReliefTexture& t, const CurvedPatch& p, const Camera& cam,
+                                           const glm::dvec3& light, int threads = 0);
 
 }  // namespace rtm

@@ -96,8 +96,8 @@ enum class CurvedShape { cylinder, sphere };
 // through `angle` radians along a, `segments` x `rows` quads with per-vertex quadric coefficients; the search is
 // relief mapping's (linear, then binary) over the part of the ray inside the quadric shell; rays that leave it are
 // silhouettes.
-// Shading and self-shadowing are not implemented for it (the colour is unlit); iteration counts write the binary
-// steps.
+// Shading uses the relief map's normal in the fragment's frame; self-shadowing tests the light ray inside the quadric
+// shell (docs/PERPIXEL.md); iteration counts write the binary steps.
 struct QuadricSilhouettesSettings {
     int linear_search_steps = 32;
     int binary_search_steps = 8;

@@ -233,6 +233,10 @@ void PerPixelQuad::draw_quadric(const Camera& cam, const ReliefTexture& t, const
     glUniform2f(loc("u_ndc"), float(-proj[2][2]), float(proj[3][2]));
     glUniform1i(loc("u_linear_search_steps"), q.linear_search_steps);
     glUniform1i(loc("u_binary_search_steps"), q.binary_search_steps);
+    const glm::vec3 light(glm::normalize(s.common.light_dir));
+    glUniform3f(loc("u_light"), light.x, light.y, light.z);
+    glUniform1f(loc("u_ambient"), s.common.ambient);
+    glUniform1i(loc("u_shadow_steps"), s.common.shadow_steps);
     glActiveTexture(GL_TEXTURE2);
     glBindTexture(GL_TEXTURE_2D, depth_map_->id());
     glActiveTexture(GL_TEXTURE1);

@@ -46,6 +46,9 @@ uniform vec2 u_half_texel;
 uniform vec3 u_forward;
 uniform vec2 u_ndc;
 uniform int u_linear_search_steps, u_binary_search_steps;
+uniform vec3 u_light;  // world direction towards the light, unit
+uniform float u_ambient;
+uniform int u_shadow_steps;
 layout(location = 0) out vec4 o_color;
 
 const int kMaxLoop = 1024;
@@ -171,10 +174,52 @@ void main() {
     vec2 tc = vec2(st.x, 1.0 - st.y);
     vec4 c = textureLod(u_color, tc, 0.0);
     if (c.a < 0.5) discard;
+    vec3 rgb = c.rgb / c.a;
+#if RTM_SHADING
+    {
+        // The relief map's normal (in the relief's (a, b, f) frame) in the fragment's frame on the curved surface.
+        vec3 nm = textureLod(u_relief, tc, 0.0).rgb * 2.0 - 1.0;
+        vec3 Nw = normalize(nm.x * T + nm.y * B + nm.z * N);
+        float lit = max(dot(Nw, u_light), 0.0);
+#if RTM_SHADOWS
+        // Relief mapping's shadow test on the curved shell: from the point found, H = Vt t_in in the fragment's
+        // texture space, towards the light (L_t, texture space as the view ray) until the light ray leaves the
+        // quadric shell (its depth, equation 7 at any point, back at 0): shadowed where the surface stands above it.
+        vec3 Lt = vec3(dot(u_light, T) / size.x, dot(u_light, B) / size.y, dot(u_light, N) / size.z);
+        vec3 H = Vt * t_in;
+        float dH = alpha * H.x * H.x + beta * H.y * H.y - H.z;
+        if (Lt.z <= 0.0) {
+            lit = 0.0;  // the light is below the base surface here
+        } else if (dH > 0.0) {
+            // depth(u) = qa u^2 + qb u + dH along P = H + Lt u: its first zero after 0 (none: the shell's bottom,
+            // depth 1, ends the test instead).
+            float qa = alpha * Lt.x * Lt.x + beta * Lt.y * Lt.y;
+            float qb = 2.0 * (alpha * H.x * Lt.x + beta * H.y * Lt.y) - Lt.z;
+            float u_exit = -1.0, r1, r2;
+            if (roots(qa, qb, dH, r1, r2)) {
+                if (r1 > 0.0) u_exit = r1;
+                if (r2 > 0.0 && (u_exit < 0.0 || r2 < u_exit)) u_exit = r2;
+            }
+            if (u_exit > 0.0) {
+                int n_steps = clamp(u_shadow_steps, 1, kMaxLoop);
+                for (int i = 1; i < n_steps; ++i) {
+                    float u = u_exit * float(n_steps - i) / float(n_steps);  // from the exit towards H
+                    vec3 P = H + Lt * u;
+                    float d = alpha * P.x * P.x + beta * P.y * P.y - P.z;
+                    vec2 sp = v_st + P.xy;
+                    bool inside = all(greaterThanEqual(sp, u_half_texel)) && all(lessThanEqual(sp, 1.0 - u_half_texel));
+                    if (inside && depth_at(sp) < d - 0.5 / 254.0) { lit = 0.0; break; }
+                }
+            }
+        }
+#endif
+        rgb *= u_ambient + (1.0 - u_ambient) * lit;
+    }
+#endif
 #if RTM_ITERATIONS
     o_color = vec4(vec3(float(u_binary_search_steps) / 255.0), 1.0);
 #else
-    o_color = vec4(c.rgb / c.a, 1.0);
+    o_color = vec4(rgb, 1.0);
 #endif
 #if RTM_DEPTH
     vec3 p = v_rel + V * t_in;  // t is the distance along the unit view direction

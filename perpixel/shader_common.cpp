@@ -136,6 +136,8 @@ std::string perpixel_fragment_shader(PerPixelMethod m, const PerPixelCommon& c, 
         s += "#define RTM_DEPTH " + std::to_string(c.depth_correction ? 1 : 0) + "\n";
         s += "#define RTM_ITERATIONS " + std::to_string(c.iteration_counts ? 1 : 0) + "\n";
         s += "#define RTM_QUADRIC_EXACT " + std::to_string(quadric_exact ? 1 : 0) + "\n";
+        s += "#define RTM_SHADING " + std::to_string(c.shading ? 1 : 0) + "\n";
+        s += "#define RTM_SHADOWS " + std::to_string(c.shading && c.self_shadowing ? 1 : 0) + "\n";
         return s + kQuadricFragmentShader;
     }
     s += "#define RTM_DEPTH " + std::to_string(c.depth_correction ? 1 : 0) + "\n";
