@@ -1,5 +1,7 @@
 #include "cli_common.h"
 
+#include "perpixel/curved_patch.h"
+
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
@@ -186,6 +188,22 @@ std::vector<std::string> parse_relief_names(const std::string& text, const std::
     }
     if (out.empty()) throw UsageError(flag + ": expected at least one relief name");
     return out;
+}
+
+QuadricSilhouettesSettings parse_quadric_flags(const std::string& curved_base, const std::string& quadric_distance) {
+    QuadricSilhouettesSettings q;
+    if (!curved_base.empty()) {
+        const std::optional<CurvedShape> shape = parse_curved_shape(curved_base);
+        if (!shape) throw UsageError("--curved-base: expected cylinder or sphere, found \"" + curved_base + "\"");
+        q.base = *shape;
+        if (q.base == CurvedShape::sphere) q.rows = q.segments;
+    }
+    if (!quadric_distance.empty()) {
+        if (quadric_distance != "approximate" && quadric_distance != "exact")
+            throw UsageError("--quadric-distance: expected approximate or exact, found \"" + quadric_distance + "\"");
+        q.exact_distance = quadric_distance == "exact";
+    }
+    return q;
 }
 
 void parse_size(const std::string& text, const std::string& flag, int& w, int& h) {

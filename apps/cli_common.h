@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "objects/bounds.h"
+#include "perpixel/perpixel_method.h"
 #include "texmap/camera.h"
 #include "warp/prewarp.h"
 
@@ -45,6 +46,10 @@ void warn_isa_not_run(const std::string& asked, Isa ran, const PrewarpOptions& o
 // --isa LIST: comma-separated targets, each as parse_isa_arg.
 std::vector<Isa> parse_isa_list(const std::string& text, const std::string& flag);
 void parse_size(const std::string& text, const std::string& flag, int& w, int& h);
+// Quadric silhouettes' settings from --curved-base (cylinder, sphere; empty: the default cylinder) and
+// --quadric-distance (approximate, exact; empty: approximate), as render and view take them; another value is a
+// UsageError naming it. The sphere gets as many rows as segments (the cylinder's 4 rows are straight lines).
+QuadricSilhouettesSettings parse_quadric_flags(const std::string& curved_base, const std::string& quadric_distance);
 // --output-scale N (1 to 8): the relief resampled onto a grid N times finer (warp/upsample.h) so that the pre-warp
 // writes a texture N times the source's size in each direction. Throws UsageError naming N when out of range and
 // std::runtime_error naming the relief file `path` when the result would be too large.

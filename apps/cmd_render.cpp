@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <initializer_list>
 #include <memory>
-#include <optional>
 
 #include <unistd.h>
 
@@ -78,24 +77,6 @@ void warn_method_unused(const RenderArgs& a, RenderMethod method, Filter filter,
                     "applies to --relief with --method quadric-silhouettes");
 }
 
-// Quadric silhouettes' settings from --curved-base and --quadric-distance (exit 2 for a value it does not know).
-QuadricSilhouettesSettings quadric_settings(const RenderArgs& a) {
-    QuadricSilhouettesSettings q;
-    if (!a.curved_base.empty()) {
-        const std::optional<CurvedShape> shape = parse_curved_shape(a.curved_base);
-        if (!shape) throw UsageError("--curved-base: expected cylinder or sphere, found \"" + a.curved_base + "\"");
-        q.base = *shape;
-        // The sphere curves along b too: as many rows as segments (the cylinder's 4 rows are straight lines).
-        if (q.base == CurvedShape::sphere) q.rows = q.segments;
-    }
-    if (!a.quadric_distance.empty()) {
-        if (a.quadric_distance != "approximate" && a.quadric_distance != "exact")
-            throw UsageError("--quadric-distance: expected approximate or exact, found \"" + a.quadric_distance + "\"");
-        q.exact_distance = a.quadric_distance == "exact";
-    }
-    return q;
-}
-
 void run_render(const RenderArgs& a) {
     check_isa_environment();
     const int inputs = int(!a.relief.empty()) + int(!a.object.empty()) + int(!a.scene.empty()) + int(!a.mesh.empty());
@@ -116,7 +97,7 @@ void run_render(const RenderArgs& a) {
     const Filter filter = parse_filter(a.filter, method == RenderMethod::pipelined ? Reconstruction::pipelined
                                                                                    : Reconstruction::two_pass);
     if (a.repeat < 1) throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
-    const QuadricSilhouettesSettings quadric = quadric_settings(a);
+    const QuadricSilhouettesSettings quadric = parse_quadric_flags(a.curved_base, a.quadric_distance);
     // --level: 0 unless given, auto for a scene (each quad at the level its screen area asks for, no coarser than
     // its parallax allows: objects/level_choice.h; the town's margin over flat holds at auto, docs/SCENES.md).
     const std::string level = !a.level.empty() ? a.level : a.scene.empty() ? "0" : "auto";

@@ -20,6 +20,7 @@ namespace {
 struct ViewArgs {
     std::string relief, object, scene, file, screenshot, json, camera_path, keys, method = "two-pass", level, split,
                                                                                   filter = "point";
+    std::string curved_base, quadric_distance;  // quadric silhouettes' base and distance; empty: not given
     CameraArgs camera;
     int frames = 0, threads = 0, timed_every = 16;
     double panel_refresh_ms = 100, content_scale = 0;
@@ -55,6 +56,10 @@ void warn_view_unused(const ViewArgs& a, const std::string& kind, RenderMethod m
                                           {a.no_skips, "--no-skips"},
                                           {a.filter != "point", "--filter"}})
             warn(given, flag, "applies to reliefs; a mesh is drawn as it is");
+    for (const auto& [given, flag] :
+         {std::pair{!a.curved_base.empty(), "--curved-base"}, {!a.quadric_distance.empty(), "--quadric-distance"}})
+        warn(given && (kind != "relief" || method != RenderMethod::quadric_silhouettes), flag,
+             "applies to a relief with --method quadric-silhouettes");
     warn(!a.camera.orbit.empty() && !a.camera.look_at.empty(), "--look-at",
          "with --orbit: the viewer orbits the centre of what is shown (give --eye for a free camera)");
 }
@@ -98,6 +103,7 @@ void run_view(const ViewArgs& a) {
     } catch (const std::invalid_argument& e) {
         throw UsageError(std::string("--keys: ") + e.what());
     }
+    s.perpixel.quadric_silhouettes = parse_quadric_flags(a.curved_base, a.quadric_distance);
     s.threads = a.threads;
     s.discontinuity = a.discontinuity;
     s.panel = a.panel;
@@ -198,6 +204,10 @@ void add_view_command(CLI::App& app) {
     sub->add_option("--method", a->method, "flat, two-pass, pipelined, micromesh, raycast or a per-pixel method")
         ->capture_default_str();
     sub->add_option("--level", a->level, "Relief texture pyramid level N or auto (default 0; auto for a scene)");
+    sub->add_option("--curved-base", a->curved_base,
+                    "quadric-silhouettes: the relief bent over a cylinder (default) or a sphere patch");
+    sub->add_option("--quadric-distance", a->quadric_distance,
+                    "quadric-silhouettes: approximate (equation 7, default) or exact (equation 6)");
     sub->add_option("--filter", a->filter, "Pre-warp resampling: point or coverage (two-pass only)")
         ->capture_default_str();
     add_threads_option(*sub, a->threads, "Pre-warp threads");

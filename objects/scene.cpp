@@ -176,7 +176,8 @@ Bounds Scene::bounds() const {
 }
 
 void Scene::draw(Renderer& renderer, const Camera& cam, RenderMethod method, const PrewarpOptions& options,
-                 const DrawOptions& draw, SceneFrameReport& report, const QuadFrameOptions& frame) {
+                 const DrawOptions& draw, SceneFrameReport& report, const QuadFrameOptions& frame,
+                 const PerPixelSettings& perpixel) {
     if (method == RenderMethod::raycast)
         throw std::invalid_argument("method raycast traces one relief, not a scene: use micromesh as the truth");
     const auto t0 = Clock::now();
@@ -202,10 +203,10 @@ void Scene::draw(Renderer& renderer, const Camera& cam, RenderMethod method, con
         report.times.total_ms += ms_since(t0);
         return;
     }
-    if (const auto pp = perpixel_method(method)) {  // the comparison's per-pixel methods, at their defaults
+    if (const auto pp = perpixel_method(method)) {  // the comparison's per-pixel methods
         const auto tm = Clock::now();
         for (ReliefQuad& quad : quads_) {
-            quad.perpixel().draw(renderer, cam, quad.relief(), *pp, PerPixelSettings{});
+            quad.perpixel().draw(renderer, cam, quad.relief(), *pp, perpixel);
             ++report.drawn;
         }
         renderer.finish();

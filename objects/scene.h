@@ -77,12 +77,14 @@ public:
 
     // One frame into the current framebuffer (begin_frame included). `method`: flat, two_pass, pipelined,
     // micromesh (every relief replaced by its micro-polygon mesh: the ground truth) or a per-pixel method (each
-    // relief quad drawn by it at its default settings; six-face objects by two_pass). raycast is refused
+    // relief quad drawn by it with `perpixel`, the defaults unless given; six-face objects by two_pass). raycast is
+    // refused
     // (std::invalid_argument): the ray caster traces one height field, not a scene.
     // The relief quads are drawn by draw_quad_frame (objects/quad_frame.h): plans first, the pre-warps concurrently,
     // one finish per frame; `frame` chooses serial pre-warps or a finish per quad (to measure).
     void draw(Renderer& renderer, const Camera& cam, RenderMethod method, const PrewarpOptions& options,
-              const DrawOptions& draw, SceneFrameReport& report, const QuadFrameOptions& frame = {});
+              const DrawOptions& draw, SceneFrameReport& report, const QuadFrameOptions& frame = {},
+              const PerPixelSettings& perpixel = PerPixelSettings{});
 
 private:
     // An object file as read, and what its placements share of its faces (objects/shared_relief.h; each placement

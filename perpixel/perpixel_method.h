@@ -39,6 +39,7 @@ std::vector<PerPixelMethod> all_perpixel_methods();
 struct ParallaxSettings {
     float scale = 1.0f;
     float bias = 0.0f;
+    bool operator==(const ParallaxSettings&) const = default;
 };
 
 // Steep parallax mapping: a linear search from the top, n steps with n going from max_steps at grazing views
@@ -47,6 +48,7 @@ struct ParallaxSettings {
 struct SteepParallaxSettings {
     int min_steps = 10;
     int max_steps = 60;
+    bool operator==(const SteepParallaxSettings&) const = default;
 };
 
 // Parallax occlusion mapping: the same linear search with nMinSamples..nMaxSamples (mixed by N.V as above,
@@ -55,6 +57,7 @@ struct SteepParallaxSettings {
 struct ParallaxOcclusionSettings {
     int nMinSamples = 8;
     int nMaxSamples = 50;
+    bool operator==(const ParallaxOcclusionSettings&) const = default;
 };
 
 // Relief mapping: a linear search of linear_search_steps equal steps from depth 0 to 1 ("no more than 32"),
@@ -66,6 +69,7 @@ struct ReliefMappingSettings {
     int binary_search_steps = 8;
     float convergence_threshold = 0.0f;
     int max_iterations = 10;
+    bool operator==(const ReliefMappingSettings&) const = default;
 };
 
 // Interval mapping: the same linear search, then the bracketing interval is reduced by intersecting the ray with
@@ -75,6 +79,7 @@ struct IntervalMappingSettings {
     int linear_search_steps = 32;
     int max_iterations = 10;
     float convergence_threshold = 0.01f;
+    bool operator==(const IntervalMappingSettings&) const = default;
 };
 
 // Protruded displacement mapping: the base polygon at the bottom of the displacement range plus four faces
@@ -86,6 +91,7 @@ struct IntervalMappingSettings {
 struct ProtrudedDisplacementSettings {
     int linear_search_steps = 32;
     int binary_search_steps = 8;
+    bool operator==(const ProtrudedDisplacementSettings&) const = default;
 };
 
 // The curved base of quadric silhouettes (perpixel/curved_patch.h): a cylinder (one principal curvature, the
@@ -112,6 +118,7 @@ struct QuadricSilhouettesSettings {
     // false: the quadric coefficients are zero, the original relief mapping on the curved mesh (the paper's
     // Figure 9, left): no ray leaves, the silhouette is the mesh's.
     bool quadric = true;
+    bool operator==(const QuadricSilhouettesSettings&) const = default;
 };
 
 // What every method shares. The comparison shows unlit colour (as the pre-warp does); `shading` multiplies it by
@@ -131,6 +138,7 @@ struct PerPixelCommon {
     // from the exact displacement in GL_R32F. false: the papers' textures, colour in RGBA8 and depth in the relief
     // map's 8-bit alpha (254 quantization levels), both filtered in 8 bits by llvmpipe (docs/PERPIXEL.md).
     bool float_textures = true;
+    bool operator==(const PerPixelCommon&) const = default;
 };
 
 struct PerPixelSettings {
@@ -144,6 +152,7 @@ struct PerPixelSettings {
     QuadricSilhouettesSettings quadric_silhouettes;
     // Throws std::invalid_argument naming the first bad value (steps < 1, thresholds < 0, non-finite).
     void validate() const;
+    bool operator==(const PerPixelSettings&) const = default;
 };
 
 }  // namespace rtm

@@ -37,6 +37,7 @@ RenderSettings render_settings(const ViewSettings& s) {
     rs.draw.depth_correction = s.depth_correction;
     rs.draw.skips = s.skips;
     rs.draw.level = s.level;
+    rs.perpixel = s.perpixel;
     return rs;
 }
 
@@ -64,7 +65,7 @@ void LoadedRelief::draw(Renderer& renderer, const Camera& cam, const ViewSetting
         return;
     }
     if (s.method == RenderMethod::raycast) throw std::logic_error("LoadedRelief::draw: raycast is a still");
-    if (const auto pp = perpixel_method(s.method)) {  // at its default settings, as rtm render --method NAME
+    if (const auto pp = perpixel_method(s.method)) {  // with the panel's settings (the defaults, as rtm render)
         const auto t0 = Clock::now();
         quad_->perpixel().draw(renderer, cam, quad_->relief(), *pp, rs.perpixel);
         renderer.finish();

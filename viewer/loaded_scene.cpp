@@ -18,7 +18,7 @@ void LoadedScene::draw(Renderer& renderer, const Camera& cam, const ViewSettings
     RenderSettings rs = render_settings(s);
     rs.draw.depth_correction = true;  // as rtm render --scene: reliefs and polygons occlude each other correctly
     SceneFrameReport rep;
-    scene_.draw(renderer, cam, s.method, rs.prewarp, rs.draw, rep);
+    scene_.draw(renderer, cam, s.method, rs.prewarp, rs.draw, rep, {}, rs.perpixel);
     report.times.prewarp_ms += rep.times.prewarp_ms;
     report.times.upload_ms += rep.times.upload_ms;
     report.times.texture_map_ms += rep.times.texture_map_ms;

@@ -1,8 +1,10 @@
 #include "viewer/panel.h"
+#include "viewer/perpixel_panel.h"
 
 #include <imgui.h>
 
 #include <algorithm>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -90,7 +92,10 @@ glm::vec4 draw_panel(ViewSettings& s, PanelContext& c, KeyRequests& r) {
 
     section("method");
     method_combo("##method", s.method, true);
-    if (perpixel_method(s.method)) ImGui::TextDisabled("per-pixel method (reliefs, scenes), at its default settings");
+    if (const std::optional<PerPixelMethod> pp = perpixel_method(s.method)) {
+        ImGui::TextDisabled("per-pixel settings (reliefs, scenes)");
+        perpixel_settings_panel(*pp, s.perpixel, u);
+    }
     bool auto_level = s.level < 0;
     if (ImGui::Checkbox("auto level", &auto_level)) s.level = auto_level ? -1 : 0;
     if (!auto_level) {

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "objects/relief_quad.h"
+#include "perpixel/perpixel_method.h"
 
 namespace rtm::viewer {
 
@@ -21,6 +22,7 @@ struct ViewSettings {
     bool coverage = false;      // the coverage filter (two-pass only; ignored otherwise)
     double discontinuity = -1;  // threshold for marking discontinuities; -1 = the manifest's own
     int threads = 0;            // pre-warp threads, 0 = all
+    PerPixelSettings perpixel;  // the per-pixel methods' settings (the papers' defaults until the panel changes them)
 
     bool panel = false;     // the Dear ImGui panel
     bool insets = false;    // the pre-warped textures of the quads drawn, with their epipoles

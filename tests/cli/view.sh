@@ -87,6 +87,17 @@ same r_eye eye
 view v_rm --relief "$M" --orbit 30,20,2.2 --size $S --method relief-mapping
 render r_rm --orbit 30,20,2.2 --method relief-mapping
 same r_rm v_rm
+# Quadric silhouettes on a sphere patch with the exact distance: the viewer takes render's flags.
+view v_qs --relief "$M" --orbit 30,20,2.2 --size $S --method quadric-silhouettes --curved-base sphere \
+  --quadric-distance exact
+render r_qs --orbit 30,20,2.2 --method quadric-silhouettes --curved-base sphere --quadric-distance exact
+same r_qs v_qs
+render r_qc --orbit 30,20,2.2 --method quadric-silhouettes
+differ r_qc v_qs
+# The panel's per-pixel section (each method's parameters, shading, the quadric settings) draws.
+for m in quadric-silhouettes interval-mapping parallax; do
+  view "v_panel_$m" --relief "$M" --size $S --method "$m" --panel
+done
 
 # A six-face object, given by flag and by its kind: the same pixels as rtm render --object.
 O=$SRC/media/sphere.object.json
@@ -134,14 +145,15 @@ same rs_rm vs_rm
 # What a scene, an object or an orbit does not use at the start: a warning line each.
 "$RTM" view --scene "$TOWN" --size 64x48 --frames 1 --depth-correction --discontinuity 0 --fov 30 2>"$T/w1"
 "$RTM" view --object "$SRC/media/sphere.object.json" --size 64x48 --frames 1 --no-sidewalls --method parallax \
-  --orbit 30,20,2 --look-at 0,0,0 2>"$T/w2"
+  --orbit 30,20,2 --look-at 0,0,0 --curved-base sphere 2>"$T/w2"
 want='warning: --depth-correction is always on in a scene
 warning: --discontinuity applies to reliefs and objects
 warning: --no-sidewalls applies to relief quads
 warning: --method parallax draws single reliefs
 warning: --look-at with --orbit
-warning: --fov without --eye or --orbit: a scene starts at its own camera'
-if [ "$(cat "$T/w1" "$T/w2" | grep -c -F "$want")" = 6 ] && [ "$(cat "$T/w1" "$T/w2" | grep -c '')" = 6 ]; then
+warning: --fov without --eye or --orbit: a scene starts at its own camera
+warning: --curved-base applies to a relief with --method quadric-silhouettes'
+if [ "$(cat "$T/w1" "$T/w2" | grep -c -F "$want")" = 7 ] && [ "$(cat "$T/w1" "$T/w2" | grep -c '')" = 7 ]; then
   passes=$((passes + 1)); else echo "FAIL: view warnings: $(cat "$T/w1" "$T/w2")"; fails=$((fails + 1)); fi
 
 # A mesh (a box with a pyramid on top, written here) is baked on the fly: the same pixels as rtm bake then
