@@ -28,6 +28,7 @@ namespace {
 struct RenderArgs {
     std::string relief, object, scene, mesh, frames_dir, out, json, method = "two-pass", level, filter = "point";
     std::string curved_base, quadric_distance;  // quadric silhouettes' base and distance; empty: not given
+    std::string steep_texture;                  // protruded displacement's steep texture: builtin or IMG; empty: off
     CameraArgs camera;
     bool exact = false, progress = false, no_sidewalls = false, depth_correction = false, no_skips = false;
     bool method_given = false;
@@ -75,6 +76,9 @@ void warn_method_unused(const RenderArgs& a, RenderMethod method, Filter filter,
     if (method != RenderMethod::quadric_silhouettes || a.relief.empty())
         warn_unused({{!a.curved_base.empty(), "--curved-base"}, {!a.quadric_distance.empty(), "--quadric-distance"}},
                     "applies to --relief with --method quadric-silhouettes");
+    if (method != RenderMethod::protruded_displacement || a.relief.empty())
+        warn_unused({{!a.steep_texture.empty(), "--steep-texture"}},
+                    "applies to --relief with --method protruded-displacement");
 }
 
 void run_render(const RenderArgs& a) {
@@ -158,6 +162,8 @@ void run_render(const RenderArgs& a) {
     // --output-scale resamples the relief for the pre-warp's finer texture; the other methods draw it as it is.
     if (prewarps(method)) relief = apply_output_scale(std::move(relief), a.output_scale, a.relief);
     ReliefQuad quad(std::move(relief));
+    if (!a.steep_texture.empty() && a.steep_texture != "builtin")
+        quad.perpixel().set_steep_texture(read_rgba8(a.steep_texture));
     const Camera cam = a.camera.resolve(relief_bounds(quad.relief()));
     PrewarpOptions opt;
     opt.exact = a.exact;
@@ -177,6 +183,7 @@ void run_render(const RenderArgs& a) {
     rs.draw.skips = !a.no_skips;
     rs.draw.level = level_n;
     rs.perpixel.quadric_silhouettes = quadric;
+    rs.perpixel.protruded_displacement.steep_texture = !a.steep_texture.empty();
     if (a.progress || isatty(2))
         rs.progress = [](double f) { std::fprintf(stderr, "\r%s %5.1f%%", "raycast", 100 * f); };
     std::unique_ptr<GlContext> ctx;
@@ -232,6 +239,8 @@ void run_render(const RenderArgs& a) {
             j["curved_base"] = to_string(quadric.base);
             j["quadric_distance"] = quadric.exact_distance ? "exact" : "approximate";
         }
+        if (method == RenderMethod::protruded_displacement)
+            j["steep_texture"] = a.steep_texture.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.steep_texture);
         write_json(a.json, j);
     }
 }
@@ -258,6 +267,8 @@ void add_render_command(CLI::App& app) {
             ->capture_default_str();
     sub->add_option("--curved-base", a->curved_base,
                     "quadric-silhouettes: the relief bent over a cylinder (default) or a sphere patch");
+    sub->add_option("--steep-texture", a->steep_texture,
+                    "protruded-displacement: colour steep slopes from this image (repeated), or 'builtin' (bricks)");
     sub->add_option("--quadric-distance", a->quadric_distance,
                     "quadric-silhouettes: the paper's approximate ray-quadric distance (equation 7, default) or its "
                     "exact one (equation 6)");

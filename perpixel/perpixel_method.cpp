@@ -95,6 +95,15 @@ void PerPixelSettings::validate() const {
     check_steps("interval-mapping max_iterations", interval_mapping.max_iterations);
     check_nonneg("interval-mapping convergence_threshold", interval_mapping.convergence_threshold);
     check_steps("protruded-displacement linear_search_steps", protruded_displacement.linear_search_steps);
+    const ProtrudedDisplacementSettings& pd = protruded_displacement;
+    if (!(pd.steep_threshold >= 0.0f && std::isfinite(pd.steep_threshold)))
+        throw std::invalid_argument("protruded-displacement steep_threshold: expected a finite value >= 0, found " +
+                                    std::to_string(pd.steep_threshold));
+    for (const auto& [name, v] :
+         {std::pair{"steep_scale_x", pd.steep_scale_x}, {"steep_scale_y", pd.steep_scale_y}, {"steep_s0", pd.steep_s0}})
+        if (!std::isfinite(v))
+            throw std::invalid_argument(std::string("protruded-displacement ") + name +
+                                        ": expected a finite value, found " + std::to_string(v));
     if (protruded_displacement.binary_search_steps < 0 || protruded_displacement.binary_search_steps > 1024)
         throw std::invalid_argument("protruded-displacement binary_search_steps: expected 0..1024, found " +
                                     std::to_string(protruded_displacement.binary_search_steps));

@@ -87,10 +87,18 @@ struct IntervalMappingSettings {
 // a side face, maps its eye ray to where it meets the (extended) base plane and searches it from the top of the
 // range down with relief mapping's linear then binary search; outside the footprint there is no surface, so rays
 // that enter or leave through the border find the relief standing out beyond the base polygon (the paper's
-// "displacement overflow"). The paper's extra texture for steep slopes (its section 4) is not implemented.
+// "displacement overflow").
+// The paper's extra texture for steep slopes (its section 4), with steep_texture: where the height map at the
+// linear search's last point outside the surface differs from the depth of the point found by more than
+// steep_threshold (depth units, 0 to 1), the point is on a steep slope and takes its colour from a second texture
+// (PerPixelQuad::set_steep_texture; a built-in brick course, perpixel/steep_texture.h, unless set), repeated, at
+// s = (u + v) * steep_scale_x + steep_s0, t = height * steep_scale_y (height = 1 - depth).
 struct ProtrudedDisplacementSettings {
     int linear_search_steps = 32;
     int binary_search_steps = 8;
+    bool steep_texture = false;
+    float steep_threshold = 0.1f;
+    float steep_scale_x = 4.0f, steep_scale_y = 1.0f, steep_s0 = 0.0f;
     bool operator==(const ProtrudedDisplacementSettings&) const = default;
 };
 

@@ -16,6 +16,7 @@
 #include "perpixel/curved_patch.h"
 #include "perpixel/relief_map.h"
 #include "perpixel/shader_common.h"
+#include "perpixel/steep_texture.h"
 #include "texmap/gl_context.h"
 #include "texmap/gl_program.h"
 
@@ -35,20 +36,28 @@ PerPixelQuad::~PerPixelQuad() {
     if (quadric_vao_) glDeleteVertexArrays(1, &quadric_vao_);
 }
 
-unsigned PerPixelQuad::program(PerPixelMethod m, const PerPixelCommon& c, bool quadric_exact) {
+unsigned PerPixelQuad::program(PerPixelMethod m, const PerPixelCommon& c, bool quadric_exact, bool steep) {
     quadric_exact = quadric_exact && m == PerPixelMethod::quadric_silhouettes;
+    steep = steep && m == PerPixelMethod::protruded_displacement;
     const auto key = std::make_tuple(int(m), c.depth_correction, c.shading, c.shading && c.self_shadowing,
-                                     c.iteration_counts, c.float_textures, quadric_exact);
+                                     c.iteration_counts, c.float_textures, quadric_exact, steep);
     auto it = programs_.find(key);
     if (it != programs_.end()) return it->second;
     const char* vs = m == PerPixelMethod::quadric_silhouettes ? kQuadricVertexShader : kPerPixelVertexShader;
-    const GLuint p = link_program(vs, perpixel_fragment_shader(m, c, quadric_exact), to_string(m));
+    const GLuint p = link_program(vs, perpixel_fragment_shader(m, c, quadric_exact, steep), to_string(m));
     programs_[key] = p;
     return p;
 }
 
-void PerPixelQuad::prepare(PerPixelMethod m, const PerPixelCommon& common, bool quadric_exact) {
-    (void)program(m, common, quadric_exact);
+void PerPixelQuad::prepare(PerPixelMethod m, const PerPixelCommon& common, bool quadric_exact, bool steep) {
+    (void)program(m, common, quadric_exact, steep);
+}
+
+void PerPixelQuad::set_steep_texture(const ImageRGBA8& img) {
+    if (img.width <= 0 || img.height <= 0)
+        throw std::invalid_argument("steep texture: expected an image, found " + std::to_string(img.width) + "x" +
+                                    std::to_string(img.height));
+    steep_image_ = std::make_unique<ImageRGBA8>(img);
 }
 
 void PerPixelQuad::draw(Renderer& renderer, const Camera& cam, const ReliefTexture& t, PerPixelMethod m,
@@ -80,7 +89,8 @@ void PerPixelQuad::draw(Renderer& renderer, const Camera& cam, const ReliefTextu
         glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, 5 * sizeof(float), reinterpret_cast<void*>(3 * sizeof(float)));
         glBindVertexArray(0);
     }
-    const GLuint prog = program(m, s.common, s.quadric_silhouettes.exact_distance);
+    const GLuint prog = program(m, s.common, s.quadric_silhouettes.exact_distance,
+                                s.protruded_displacement.steep_texture);
     if (m == PerPixelMethod::quadric_silhouettes) return draw_quadric(cam, t, s, prog);
 
     const ReliefGeometry& g = t.geometry;
@@ -165,6 +175,22 @@ void PerPixelQuad::draw(Renderer& renderer, const Camera& cam, const ReliefTextu
             glUniform1i(loc("u_binary_search_steps"), s.protruded_displacement.binary_search_steps);
             glUniform1f(loc("u_convergence_threshold"), 0.0f);
             glUniform1i(loc("u_max_iterations"), 1);
+            if (s.protruded_displacement.steep_texture) {
+                const ProtrudedDisplacementSettings& pd = s.protruded_displacement;
+                if (!steep_ || steep_image_) {
+                    if (!steep_) steep_ = std::make_unique<GlTexture>();
+                    glActiveTexture(GL_TEXTURE3);
+                    steep_->upload(steep_image_ ? *steep_image_ : builtin_steep_texture());
+                    steep_image_.reset();
+                    glBindTexture(GL_TEXTURE_2D, steep_->id());
+                    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);  // the coordinates run past 1
+                    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+                }
+                glUniform1i(loc("u_steep"), 3);
+                glUniform4f(loc("u_steep_params"), pd.steep_threshold, pd.steep_scale_x, pd.steep_scale_y, pd.steep_s0);
+                glActiveTexture(GL_TEXTURE3);
+                glBindTexture(GL_TEXTURE_2D, steep_->id());
+            }
             break;
         case PerPixelMethod::interval_mapping:
             glUniform1i(loc("u_linear_search_steps"), s.interval_mapping.linear_search_steps);

@@ -18,6 +18,7 @@ vec3 trace(vec2 A, vec3 V, float cos_view, inout int iters) {
         if (depth_at(A + dir * ray) <= ray) { inside = ray; break; }
     }
     float outside = max(inside - size, 0.0);
+    g_linear_outside = outside;
     iters = 0;
     if (u_convergence_threshold > 0.0) {
         float mid = inside;

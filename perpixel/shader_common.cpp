@@ -39,9 +39,15 @@ uniform float u_scale, u_bias;
 uniform int u_min_steps, u_max_steps;
 uniform int u_linear_search_steps, u_binary_search_steps, u_max_iterations;
 uniform float u_convergence_threshold;
+uniform sampler2D u_steep;      // protruded displacement mapping's texture for steep slopes (RTM_STEEP), repeated
+uniform vec4 u_steep_params;    // (threshold, scale_x, scale_y, s0)
 layout(location = 0) out vec4 o_color;
 
 const int kMaxLoop = 1024;  // bounds every loop whatever the uniforms say
+
+// The linear search's last ray depth outside the height field (relief mapping's trace sets it): where protruded
+// displacement mapping reads the height map that tells a steep slope (RTM_STEEP).
+float g_linear_outside = 0.0;
 
 // Depth (0 top .. 1 bottom) of the bilinearly filtered depth map at st (t up; the image's top row is t = 1).
 float depth_at(vec2 st) {
@@ -85,6 +91,19 @@ void main() {
     vec4 c = textureLod(u_color, tc, 0.0);
     if (c.a < 0.5) discard;  // empty texels are holes
     vec3 rgb = c.rgb / c.a;
+#if RTM_STEEP
+    // Protruded displacement mapping's steep slopes (its section 4): the height map at the linear search's last point
+    // outside (point 1) against the depth of the point found; far apart, the point is on a steep slope, coloured
+    // from the second texture at s = (u + v) scale_x + s0, t = height scale_y. Outside the footprint (no surface:
+    // depth_at says 2) point 1 counts as the bottom, so the relief's border is steep where it stands above it.
+    {
+        float h1 = min(depth_at(A + Vts.xy / Vts.z * g_linear_outside), 1.0);
+        if (abs(h1 - hit.z) > u_steep_params.x) {
+            vec2 wst = vec2((hit.x + hit.y) * u_steep_params.y + u_steep_params.w, (1.0 - hit.z) * u_steep_params.z);
+            rgb = textureLod(u_steep, wst, 0.0).rgb;
+        }
+    }
+#endif
 #if RTM_SHADING
     {
         vec3 n = textureLod(u_relief, tc, 0.0).rgb * 2.0 - 1.0;  // in the (a^, b^, f) frame
@@ -129,7 +148,7 @@ void main() {
 
 extern const char* const kQuadricFragmentShader;
 
-std::string perpixel_fragment_shader(PerPixelMethod m, const PerPixelCommon& c, bool quadric_exact) {
+std::string perpixel_fragment_shader(PerPixelMethod m, const PerPixelCommon& c, bool quadric_exact, bool steep) {
     std::string s = "#version 330 core\n";
     s += "#define RTM_FLOAT_DEPTH " + std::to_string(c.float_textures ? 1 : 0) + "\n";
     if (m == PerPixelMethod::quadric_silhouettes) {
@@ -146,6 +165,7 @@ std::string perpixel_fragment_shader(PerPixelMethod m, const PerPixelCommon& c, 
     s += "#define RTM_ITERATIONS " + std::to_string(c.iteration_counts ? 1 : 0) + "\n";
     s += "#define RTM_OFFSET_LIMITING " + std::to_string(m == PerPixelMethod::parallax_offset_limiting ? 1 : 0) + "\n";
     s += "#define RTM_PROTRUDED " + std::to_string(m == PerPixelMethod::protruded_displacement ? 1 : 0) + "\n";
+    s += "#define RTM_STEEP " + std::to_string(m == PerPixelMethod::protruded_displacement && steep ? 1 : 0) + "\n";
     s += kPrelude;
     s += perpixel_trace_glsl(m);
     s += kMain;

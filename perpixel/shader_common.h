@@ -17,7 +17,9 @@ extern const char* const kPerPixelVertexShader;
 // The method's function, by method (perpixel/<method>_glsl.cpp).
 const char* perpixel_trace_glsl(PerPixelMethod m);
 // The complete fragment shader: #version, the switches of `common` as #defines, the frame and the method.
-// quadric_exact: quadric silhouettes' exact distance (QuadricSilhouettesSettings::exact_distance).
-std::string perpixel_fragment_shader(PerPixelMethod m, const PerPixelCommon& common, bool quadric_exact = false);
+// quadric_exact: quadric silhouettes' exact distance (QuadricSilhouettesSettings::exact_distance); steep: protruded
+// displacement mapping's texture for steep slopes (ProtrudedDisplacementSettings::steep_texture).
+std::string perpixel_fragment_shader(PerPixelMethod m, const PerPixelCommon& common, bool quadric_exact = false,
+                                     bool steep = false);
 
 }  // namespace rtm

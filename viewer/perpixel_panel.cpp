@@ -54,10 +54,17 @@ void perpixel_settings_panel(PerPixelMethod m, PerPixelSettings& p, float u) {
             int_slider("max iterations", p.interval_mapping.max_iterations, 1, 64, u);
             float_slider("threshold", p.interval_mapping.convergence_threshold, 0.0f, 0.1f, u, "%.4f");
             break;
-        case PerPixelMethod::protruded_displacement:
-            linear_binary(p.protruded_displacement.linear_search_steps, p.protruded_displacement.binary_search_steps,
-                          u);
+        case PerPixelMethod::protruded_displacement: {
+            ProtrudedDisplacementSettings& pd = p.protruded_displacement;
+            linear_binary(pd.linear_search_steps, pd.binary_search_steps, u);
+            ImGui::Checkbox("steep slopes: wall texture", &pd.steep_texture);
+            if (pd.steep_texture) {
+                float_slider("steep threshold", pd.steep_threshold, 0.0f, 1.0f, u, "%.2f");
+                float_slider("wall scale x", pd.steep_scale_x, 0.25f, 16.0f, u, "%.2f");
+                float_slider("wall scale y", pd.steep_scale_y, 0.25f, 16.0f, u, "%.2f");
+            }
             break;
+        }
         case PerPixelMethod::quadric_silhouettes: {
             QuadricSilhouettesSettings& q = p.quadric_silhouettes;
             linear_binary(q.linear_search_steps, q.binary_search_steps, u);

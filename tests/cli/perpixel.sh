@@ -43,6 +43,31 @@ if "$RTM" render --relief "$R" --eye 0,0,3 --size 32x32 --method relief-mapping 
 else
   echo "FAIL: render --method relief-mapping --curved-base: no warning ($(cat "$T/err"))"; fails=$((fails + 1))
 fi
+# Protruded displacement mapping's steep slopes: the built-in wall texture or an image changes the picture where the
+# relief is steep, the JSON names it, a missing image is exit 1 naming it, another method warns.
+F="$SRC/media/facade.relief.json"
+expect_ok render --relief "$F" --orbit 40,15,2.2 --size 96x96 --method protruded-displacement --out "$T/pd.png"
+for tex in builtin "$SRC/media/bricks_color.png"; do
+  expect_ok render --relief "$F" --orbit 40,15,2.2 --size 96x96 --method protruded-displacement \
+    --steep-texture "$tex" --out "$T/pd_steep.png" --json "$T/pd_steep.json"
+  expect_ok diff "$T/pd.png" "$T/pd_steep.png"
+  # The same coverage (only colours change) and not the same picture.
+  if awk '$1 == "iou" { i = $2 } $1 == "psnr" { p = $2 } END { exit !(i == 1 && p != "inf") }' "$T/stdout" &&
+    grep -q "\"steep_texture\": \"$tex\"" "$T/pd_steep.json"; then
+    passes=$((passes + 1))
+  else
+    echo "FAIL: --steep-texture $tex: $(cat "$T/stdout") $(grep steep "$T/pd_steep.json")"; fails=$((fails + 1))
+  fi
+done
+expect_fail 1 'nowhere.png' -- render --relief "$F" --eye 0,0,3 --method protruded-displacement \
+  --steep-texture "$T/nowhere.png" --out "$T/bad.png"
+if "$RTM" render --relief "$R" --eye 0,0,3 --size 32x32 --method relief-mapping --steep-texture builtin \
+  --out "$T/rm.png" 2>"$T/err" &&
+  grep -q '^rtm: warning: --steep-texture applies to --relief with --method protruded-displacement$' "$T/err"; then
+  passes=$((passes + 1))
+else
+  echo "FAIL: render --method relief-mapping --steep-texture: no warning ($(cat "$T/err"))"; fails=$((fails + 1))
+fi
 expect_fail 2 'method.*relief-maping.*relief-mapping' -- render --relief "$R" --eye 0,0,1 --method relief-maping \
   --out "$T/bad.png"
 [ -e "$T/bad.png" ] && { echo "FAIL: an output file after a usage error"; fails=$((fails + 1)); }
