@@ -4,6 +4,17 @@
 . "$(dirname "$0")/lib.bash"
 
 R="$SRC/media/bumps.relief.json"
+# expect_warning MESSAGE FLAGS...: render --method relief-mapping with FLAGS writes its image and warns "--MESSAGE".
+expect_warning() {
+  local message=$1
+  shift
+  if "$RTM" render --relief "$R" --eye 0,0,3 --size 32x32 --method relief-mapping "$@" --out "$T/rm.png" 2>"$T/err" &&
+    grep -q -- "^rtm: warning: --$message\$" "$T/err"; then
+    passes=$((passes + 1))
+  else
+    echo "FAIL: render --method relief-mapping $*: no warning --$message ($(cat "$T/err"))"; fails=$((fails + 1))
+  fi
+}
 expect_ok render --relief "$R" --orbit 30,35,2.0 --size 96x96 --method raycast --out "$T/ray.png"
 for m in parallax parallax-offset-limiting steep-parallax parallax-occlusion relief-mapping interval-mapping \
     protruded-displacement quadric-silhouettes; do
@@ -36,13 +47,7 @@ expect_fail 2 'curved-base.*"cone"' -- render --relief "$R" --eye 0,0,3 --method
   --curved-base cone --out "$T/bad.png"
 expect_fail 2 'quadric-distance.*"exactly"' -- render --relief "$R" --eye 0,0,3 --method quadric-silhouettes \
   --quadric-distance exactly --out "$T/bad.png"
-if "$RTM" render --relief "$R" --eye 0,0,3 --size 32x32 --method relief-mapping --curved-base sphere \
-  --out "$T/rm.png" 2>"$T/err" &&
-  grep -q '^rtm: warning: --curved-base applies to --relief with --method quadric-silhouettes$' "$T/err"; then
-  passes=$((passes + 1))
-else
-  echo "FAIL: render --method relief-mapping --curved-base: no warning ($(cat "$T/err"))"; fails=$((fails + 1))
-fi
+expect_warning 'curved-base applies to --relief with --method quadric-silhouettes' --curved-base sphere
 # Protruded displacement mapping's steep slopes: the built-in wall texture or an image changes the picture where the
 # relief is steep, the JSON names it, a missing image is exit 1 naming it, another method warns.
 F="$SRC/media/facade.relief.json"
@@ -61,13 +66,7 @@ for tex in builtin "$SRC/media/bricks_color.png"; do
 done
 expect_fail 1 'nowhere.png' -- render --relief "$F" --eye 0,0,3 --method protruded-displacement \
   --steep-texture "$T/nowhere.png" --out "$T/bad.png"
-if "$RTM" render --relief "$R" --eye 0,0,3 --size 32x32 --method relief-mapping --steep-texture builtin \
-  --out "$T/rm.png" 2>"$T/err" &&
-  grep -q '^rtm: warning: --steep-texture applies to --relief with --method protruded-displacement$' "$T/err"; then
-  passes=$((passes + 1))
-else
-  echo "FAIL: render --method relief-mapping --steep-texture: no warning ($(cat "$T/err"))"; fails=$((fails + 1))
-fi
+expect_warning 'steep-texture applies to --relief with --method protruded-displacement' --steep-texture builtin
 expect_fail 2 'method.*relief-maping.*relief-mapping' -- render --relief "$R" --eye 0,0,1 --method relief-maping \
   --out "$T/bad.png"
 [ -e "$T/bad.png" ] && { echo "FAIL: an output file after a usage error"; fails=$((fails + 1)); }

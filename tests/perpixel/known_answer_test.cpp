@@ -39,6 +39,19 @@ ImageRGBA8 render(Gl& gl, ReliefQuad& quad, const Camera& cam, RenderMethod m, c
     return render_relief_frame(quad, gl.renderer.get(), cam, s, t);
 }
 
+// The truth of a curved base: the relief displaced over `patch` as micro-polygons (curved_micromesh), built once and
+// drawn through the same GL path for each camera.
+struct CurvedTruth {
+    std::vector<MeshVertex> vertices;
+    std::vector<uint32_t> indices;
+    CurvedTruth(const ReliefTexture& t, const CurvedPatch& patch) { curved_micromesh(t, patch, vertices, indices); }
+    ImageRGBA8 draw(Gl& gl, const Camera& cam) const {
+        gl.renderer->begin_frame(cam);
+        gl.renderer->draw_mesh(cam, vertices, indices);
+        return gl.renderer->read_pixels(cam.width, cam.height);
+    }
+};
+
 const std::vector<CompareView>& views() {
     static const std::vector<CompareView> v = {{"frontal", 0, 0, 2.2},
                                                {"oblique", 35, 25, 2.2},
@@ -319,14 +332,10 @@ TEST(PerPixel, QuadricSilhouettesAgainstTheCurvedMicroPolygons) {
         ReliefQuad quad(to_relief(make_known_answer(name, kReliefSize)));
         const PerPixelSettings s;
         const CurvedPatch patch = curved_patch_for(quad.relief(), CurvedShape::cylinder, s.quadric_silhouettes.angle);
-        std::vector<MeshVertex> vertices;
-        std::vector<uint32_t> indices;
-        curved_micromesh(quad.relief(), patch, vertices, indices);
+        const CurvedTruth curved(quad.relief(), patch);
         for (const CompareView& v : views()) {
             const Camera cam = compare_camera(quad, v, kImage, kImage);
-            gl.renderer->begin_frame(cam);
-            gl.renderer->draw_mesh(cam, vertices, indices);
-            const ImageRGBA8 truth = gl.renderer->read_pixels(kImage, kImage);
+            const ImageRGBA8 truth = curved.draw(gl, cam);
             const ImageRGBA8 img = render(gl, quad, cam, RenderMethod::quadric_silhouettes, s);
             const DiffResult d = diff_images(truth, img);
             PerPixelSettings plain = s;
@@ -374,14 +383,10 @@ TEST(PerPixel, QuadricSilhouettesOnASphere) {
         plain.quadric_silhouettes.quadric = false;
         exact.quadric_silhouettes.exact_distance = true;
         const CurvedPatch patch = curved_patch_for(quad.relief(), CurvedShape::sphere, s.quadric_silhouettes.angle);
-        std::vector<MeshVertex> vertices;
-        std::vector<uint32_t> indices;
-        curved_micromesh(quad.relief(), patch, vertices, indices);
+        const CurvedTruth curved(quad.relief(), patch);
         for (const CompareView& v : views()) {
             const Camera cam = compare_camera(quad, v, kImage, kImage);
-            gl.renderer->begin_frame(cam);
-            gl.renderer->draw_mesh(cam, vertices, indices);
-            const ImageRGBA8 truth = gl.renderer->read_pixels(kImage, kImage);
+            const ImageRGBA8 truth = curved.draw(gl, cam);
             const ImageRGBA8 img = render(gl, quad, cam, RenderMethod::quadric_silhouettes, s);
             const DiffResult d = diff_images(truth, img);
             const DiffResult dp = diff_images(truth, render(gl, quad, cam, RenderMethod::quadric_silhouettes, plain));
@@ -429,15 +434,10 @@ TEST(PerPixel, QuadricExactDistanceAgainstTheApproximate) {
             approx.quadric_silhouettes.angle = angle;
             PerPixelSettings exact = approx;
             exact.quadric_silhouettes.exact_distance = true;
-            std::vector<MeshVertex> vertices;
-            std::vector<uint32_t> indices;
-            curved_micromesh(quad.relief(), curved_patch_for(quad.relief(), CurvedShape::cylinder, angle), vertices,
-                             indices);
+            const CurvedTruth curved(quad.relief(), curved_patch_for(quad.relief(), CurvedShape::cylinder, angle));
             for (const CompareView& v : views()) {
                 const Camera cam = compare_camera(quad, v, kImage, kImage);
-                gl.renderer->begin_frame(cam);
-                gl.renderer->draw_mesh(cam, vertices, indices);
-                const ImageRGBA8 truth = gl.renderer->read_pixels(kImage, kImage);
+                const ImageRGBA8 truth = curved.draw(gl, cam);
                 const DiffResult da = diff_images(truth,
                                                   render(gl, quad, cam, RenderMethod::quadric_silhouettes, approx));
                 const DiffResult de = diff_images(truth,

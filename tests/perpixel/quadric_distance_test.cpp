@@ -69,7 +69,8 @@ TEST(QuadricDistance, ExactDistanceIsTheNearestPointAlongU) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> coef(-3.0, 3.0), unit(0.0, 1.0);
     int exact = 0, fallback = 0;
-    for (int i = 0; i < test::sweep_cases(20000); ++i) {
+    const int cases = test::sweep_cases(20000);
+    for (int i = 0; i < cases; ++i) {
         SCOPED_TRACE("seed " + std::to_string(seed) + " case " + std::to_string(i));
         QuadricRay r;
         r.v = random_ray(rng);
@@ -128,8 +129,13 @@ TEST(QuadricDistance, ExactDistanceIsTheNearestPointAlongU) {
         EXPECT_NEAR(s, double(nearest), 1e-8 * (1.0 + std::abs(s))) << "the nearest root of its side";
     }
     std::printf("seed %llu: %d exact, %d by equation 7\n", (unsigned long long)seed, exact, fallback);
-    EXPECT_GT(exact, 10000);
-    EXPECT_GT(fallback, 100);  // concave and saddle quadrics give negative discriminants
+    // Both branches well exercised (measured: 84% exact over 20,000 cases, 85% over the first 300): half the cases
+    // at least exact, and 5% by equation 7 (concave and saddle quadrics give negative discriminants); asked of 100
+    // cases or more (RTM_SWEEP_CASES may cut the sweep shorter).
+    if (cases >= 100) {
+        EXPECT_GT(exact, cases / 2);
+        EXPECT_GT(fallback, cases / 20);
+    }
 }
 
 // The search range: on convex quadrics (both coefficients <= 0, the bulging base where silhouettes arise) the depth,
@@ -140,7 +146,8 @@ TEST(QuadricDistance, SearchRangeEndsAtTheBottomOrWhereTheRayLeaves) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> coef(0.0, 3.0);
     int leaves = 0, bottom = 0;
-    for (int i = 0; i < test::sweep_cases(5000); ++i) {
+    const int cases = test::sweep_cases(5000);
+    for (int i = 0; i < cases; ++i) {
         SCOPED_TRACE("seed " + std::to_string(seed) + " case " + std::to_string(i));
         QuadricRay r;
         r.v = random_ray(rng);
@@ -165,8 +172,12 @@ TEST(QuadricDistance, SearchRangeEndsAtTheBottomOrWhereTheRayLeaves) {
     }
     std::printf("seed %llu: %d ranges end where the ray leaves, %d at the bottom\n", (unsigned long long)seed, leaves,
                 bottom);
-    EXPECT_GT(leaves, 100);
-    EXPECT_GT(bottom, 100);
+    // Both ends well exercised (measured: 18% of the ranges at the bottom over 5,000 cases, 16% over the first 300;
+    // each case gives two ranges): a tenth of the ranges at least each, of 100 cases or more.
+    if (cases >= 100) {
+        EXPECT_GT(leaves, cases / 5);
+        EXPECT_GT(bottom, cases / 5);
+    }
     // Equation 7's range on a concave quadric: the smaller root of k t^2 - c1 t + 1 = 0 (k < 0: one positive root).
     QuadricRay bowl;
     bowl.v = glm::dvec3(0.6, 0.0, -0.8);
