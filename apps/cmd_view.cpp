@@ -21,6 +21,7 @@ struct ViewArgs {
     std::string relief, object, scene, file, screenshot, json, camera_path, keys, method = "two-pass", level, split,
                                                                                   filter = "point";
     std::string curved_base, quadric_distance;  // quadric silhouettes' base and distance; empty: not given
+    std::string steep_texture;                  // protruded displacement's steep texture: builtin or IMG; empty: off
     CameraArgs camera;
     int frames = 0, threads = 0, timed_every = 16;
     double panel_refresh_ms = 100, content_scale = 0;
@@ -60,6 +61,8 @@ void warn_view_unused(const ViewArgs& a, const std::string& kind, RenderMethod m
          {std::pair{!a.curved_base.empty(), "--curved-base"}, {!a.quadric_distance.empty(), "--quadric-distance"}})
         warn(given && (kind != "relief" || method != RenderMethod::quadric_silhouettes), flag,
              "applies to a relief with --method quadric-silhouettes");
+    warn(!a.steep_texture.empty() && (kind != "relief" || method != RenderMethod::protruded_displacement),
+         "--steep-texture", "applies to a relief with --method protruded-displacement");
     warn(!a.camera.orbit.empty() && !a.camera.look_at.empty(), "--look-at",
          "with --orbit: the viewer orbits the centre of what is shown (give --eye for a free camera)");
 }
@@ -104,6 +107,7 @@ void run_view(const ViewArgs& a) {
         throw UsageError(std::string("--keys: ") + e.what());
     }
     s.perpixel.quadric_silhouettes = parse_quadric_flags(a.curved_base, a.quadric_distance);
+    s.perpixel.protruded_displacement.steep_texture = !a.steep_texture.empty();
     s.threads = a.threads;
     s.discontinuity = a.discontinuity;
     s.panel = a.panel;
@@ -131,6 +135,8 @@ void run_view(const ViewArgs& a) {
     if (!a.scene.empty() && a.scene.find(".scene.json") == std::string::npos)
         throw IoError(a.scene + ": --scene expects NAME.scene.json");
     std::unique_ptr<viewer::Loaded> loaded = viewer::open_file(file);
+    if (!a.steep_texture.empty() && a.steep_texture != "builtin")
+        loaded->set_steep_texture(read_rgba8(a.steep_texture));
     const std::string kind = loaded->kind();
     if (kind == "scene" && a.level.empty()) s.level = -1;
     warn_view_unused(a, kind, s.method, loaded->own_camera().has_value());
@@ -208,6 +214,8 @@ void add_view_command(CLI::App& app) {
                     "quadric-silhouettes: the relief bent over a cylinder (default) or a sphere patch");
     sub->add_option("--quadric-distance", a->quadric_distance,
                     "quadric-silhouettes: approximate (equation 7, default) or exact (equation 6)");
+    sub->add_option("--steep-texture", a->steep_texture,
+                    "protruded-displacement: colour steep slopes from this image (repeated), or 'builtin' (bricks)");
     sub->add_option("--filter", a->filter, "Pre-warp resampling: point or coverage (two-pass only)")
         ->capture_default_str();
     add_threads_option(*sub, a->threads, "Pre-warp threads");

@@ -68,6 +68,9 @@ public:
     // The ray-cast truth (CPU, slow: shown as a still).
     virtual ImageRGBA8 raycast(const Camera& cam, const ViewSettings& s) = 0;
     // The file's own camera and camera path (a scene's "camera" and "camera_path"), if it has them.
+    // The texture protruded displacement mapping puts on steep slopes (`--steep-texture IMG`): a relief keeps it
+    // (over reloads); the other kinds draw no protruded displacement and ignore it.
+    virtual void set_steep_texture(const ImageRGBA8& img) { (void)img; }
     virtual std::optional<SceneCameraKey> own_camera() const { return std::nullopt; }
     virtual std::optional<CameraPath> own_camera_path() const { return std::nullopt; }
 };

@@ -47,7 +47,13 @@ void LoadedRelief::reload(double discontinuity) {
     ReliefTexture t = load_relief(path_);
     if (discontinuity >= 0) mark_discontinuities(t, discontinuity);
     quad_ = std::make_unique<ReliefQuad>(std::move(t));
+    if (steep_) quad_->perpixel().set_steep_texture(*steep_);
     discontinuity_ = discontinuity;
+}
+
+void LoadedRelief::set_steep_texture(const ImageRGBA8& img) {
+    quad_->perpixel().set_steep_texture(img);  // checks the image first
+    steep_ = std::make_unique<ImageRGBA8>(img);
 }
 
 Bounds LoadedRelief::bounds() const { return relief_bounds(quad_->relief()); }

@@ -17,8 +17,10 @@ public:
     Bounds bounds() const override;
     void draw(Renderer& renderer, const Camera& cam, const ViewSettings& s, FrameReport& report) override;
     ImageRGBA8 raycast(const Camera& cam, const ViewSettings& s) override;
+    void set_steep_texture(const ImageRGBA8& img) override;
 
 private:
+    std::unique_ptr<ImageRGBA8> steep_;  // set by set_steep_texture, given to every quad reload() makes
     std::string path_;
     double discontinuity_ = -1;  // the threshold the quad was made with (-1: the manifest's own)
     std::unique_ptr<ReliefQuad> quad_;

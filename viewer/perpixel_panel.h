@@ -1,7 +1,7 @@
 // The panel's section for the per-pixel methods: each method's parameters (named as its paper names them), the
 // settings they share (shading, self-shadowing and the light, the papers' 8-bit textures, iteration counts), and for
 // quadric silhouettes the curved base, the quadrics and the ray-quadric distance, for protruded displacement mapping
-// the texture of steep slopes (the built-in one, or the image of `rtm render --steep-texture`: not in the viewer).
+// the texture of steep slopes (the built-in one, or the image of `rtm view --steep-texture`).
 // Drawn while a per-pixel method is shown; the settings go to the draw as they are (RenderSettings::perpixel), the same
 // as `rtm render` would use.
 #pragma once

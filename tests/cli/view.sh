@@ -94,6 +94,16 @@ render r_qs --orbit 30,20,2.2 --method quadric-silhouettes --curved-base sphere 
 same r_qs v_qs
 render r_qc --orbit 30,20,2.2 --method quadric-silhouettes
 differ r_qc v_qs
+# Protruded displacement mapping's steep slopes, the built-in texture and an image: as rtm render draws them.
+F=$SRC/media/facade.relief.json
+for tex in builtin "$SRC/media/bricks_color.png"; do
+  view v_pd --relief "$F" --orbit 40,15,2.2 --size $S --method protruded-displacement --steep-texture "$tex"
+  expect_ok render --relief "$F" --orbit 40,15,2.2 --size $S --method protruded-displacement --steep-texture "$tex" \
+    --out "$T/r_pd.png"
+  same r_pd v_pd exact
+done
+expect_fail 1 'nowhere.png' -- view --relief "$F" --method protruded-displacement --steep-texture "$T/nowhere.png" \
+  --frames 1
 # The panel's per-pixel section (each method's parameters, shading, the quadric settings) draws.
 for m in quadric-silhouettes interval-mapping parallax; do
   view "v_panel_$m" --relief "$M" --size $S --method "$m" --panel
@@ -145,15 +155,16 @@ same rs_rm vs_rm
 # What a scene, an object or an orbit does not use at the start: a warning line each.
 "$RTM" view --scene "$TOWN" --size 64x48 --frames 1 --depth-correction --discontinuity 0 --fov 30 2>"$T/w1"
 "$RTM" view --object "$SRC/media/sphere.object.json" --size 64x48 --frames 1 --no-sidewalls --method parallax \
-  --orbit 30,20,2 --look-at 0,0,0 --curved-base sphere 2>"$T/w2"
+  --orbit 30,20,2 --look-at 0,0,0 --curved-base sphere --steep-texture builtin 2>"$T/w2"
 want='warning: --depth-correction is always on in a scene
 warning: --discontinuity applies to reliefs and objects
 warning: --no-sidewalls applies to relief quads
 warning: --method parallax draws single reliefs
 warning: --look-at with --orbit
 warning: --fov without --eye or --orbit: a scene starts at its own camera
-warning: --curved-base applies to a relief with --method quadric-silhouettes'
-if [ "$(cat "$T/w1" "$T/w2" | grep -c -F "$want")" = 7 ] && [ "$(cat "$T/w1" "$T/w2" | grep -c '')" = 7 ]; then
+warning: --curved-base applies to a relief with --method quadric-silhouettes
+warning: --steep-texture applies to a relief with --method protruded-displacement'
+if [ "$(cat "$T/w1" "$T/w2" | grep -c -F "$want")" = 8 ] && [ "$(cat "$T/w1" "$T/w2" | grep -c '')" = 8 ]; then
   passes=$((passes + 1)); else echo "FAIL: view warnings: $(cat "$T/w1" "$T/w2")"; fails=$((fails + 1)); fi
 
 # A mesh (a box with a pyramid on top, written here) is baked on the fly: the same pixels as rtm bake then
