@@ -190,8 +190,19 @@ std::vector<std::string> parse_relief_names(const std::string& text, const std::
     return out;
 }
 
-QuadricSilhouettesSettings parse_quadric_flags(const std::string& curved_base, const std::string& quadric_distance) {
-    QuadricSilhouettesSettings q;
+void PerPixelArgs::add_to(CLI::App& app) {
+    app.add_option("--curved-base", curved_base,
+                   "quadric-silhouettes: the relief bent over a cylinder (default) or a sphere patch");
+    app.add_option("--quadric-distance", quadric_distance,
+                   "quadric-silhouettes: the paper's approximate ray-quadric distance (equation 7, default) or its "
+                   "exact one (equation 6)");
+    app.add_option("--steep-texture", steep_texture,
+                   "protruded-displacement: colour steep slopes from this image (repeated), or 'builtin' (bricks)");
+}
+
+PerPixelSettings PerPixelArgs::settings() const {
+    PerPixelSettings s;
+    QuadricSilhouettesSettings& q = s.quadric_silhouettes;
     if (!curved_base.empty()) {
         const std::optional<CurvedShape> shape = parse_curved_shape(curved_base);
         if (!shape) throw UsageError("--curved-base: expected cylinder or sphere, found \"" + curved_base + "\"");
@@ -203,7 +214,13 @@ QuadricSilhouettesSettings parse_quadric_flags(const std::string& curved_base, c
             throw UsageError("--quadric-distance: expected approximate or exact, found \"" + quadric_distance + "\"");
         q.exact_distance = quadric_distance == "exact";
     }
-    return q;
+    s.protruded_displacement.steep_texture = !steep_texture.empty();
+    return s;
+}
+
+std::optional<ImageRGBA8> PerPixelArgs::steep_image() const {
+    if (steep_texture.empty() || steep_texture == "builtin") return std::nullopt;
+    return read_rgba8(steep_texture);
 }
 
 void parse_size(const std::string& text, const std::string& flag, int& w, int& h) {

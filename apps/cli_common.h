@@ -46,10 +46,6 @@ void warn_isa_not_run(const std::string& asked, Isa ran, const PrewarpOptions& o
 // --isa LIST: comma-separated targets, each as parse_isa_arg.
 std::vector<Isa> parse_isa_list(const std::string& text, const std::string& flag);
 void parse_size(const std::string& text, const std::string& flag, int& w, int& h);
-// Quadric silhouettes' settings from --curved-base (cylinder, sphere; empty: the default cylinder) and
-// --quadric-distance (approximate, exact; empty: approximate), as render and view take them; another value is a
-// UsageError naming it. The sphere gets as many rows as segments (the cylinder's 4 rows are straight lines).
-QuadricSilhouettesSettings parse_quadric_flags(const std::string& curved_base, const std::string& quadric_distance);
 // --output-scale N (1 to 8): the relief resampled onto a grid N times finer (warp/upsample.h) so that the pre-warp
 // writes a texture N times the source's size in each direction. Throws UsageError naming N when out of range and
 // std::runtime_error naming the relief file `path` when the result would be too large.
@@ -85,6 +81,19 @@ struct CameraArgs {
     // Builds the camera for what is rendered (its bounds give the orbit centre and the clip planes).
     Camera resolve(const Bounds& bounds) const;
     bool has_eye() const { return !eye.empty() || !orbit.empty(); }
+};
+
+// The per-pixel methods' flags render and view both take: --curved-base cylinder|sphere and --quadric-distance
+// approximate|exact (quadric silhouettes), --steep-texture builtin|IMG (protruded displacement mapping). Empty: not
+// given.
+struct PerPixelArgs {
+    std::string curved_base, quadric_distance, steep_texture;
+    void add_to(CLI::App& app);
+    // The settings they give (the papers' defaults otherwise). Throws UsageError naming a value it does not know.
+    // The sphere gets as many rows as segments (the cylinder's 4 rows are straight lines).
+    PerPixelSettings settings() const;
+    // --steep-texture's image, read (IoError naming the file), or nullopt for none or builtin.
+    std::optional<ImageRGBA8> steep_image() const;
 };
 
 // Writes JSON atomically (write_text_atomically, formats/atomic_file.h).

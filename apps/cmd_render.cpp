@@ -27,8 +27,7 @@ namespace {
 
 struct RenderArgs {
     std::string relief, object, scene, mesh, frames_dir, out, json, method = "two-pass", level, filter = "point";
-    std::string curved_base, quadric_distance;  // quadric silhouettes' base and distance; empty: not given
-    std::string steep_texture;                  // protruded displacement's steep texture: builtin or IMG; empty: off
+    PerPixelArgs perpixel;
     CameraArgs camera;
     bool exact = false, progress = false, no_sidewalls = false, depth_correction = false, no_skips = false;
     bool method_given = false;
@@ -74,10 +73,11 @@ void warn_method_unused(const RenderArgs& a, RenderMethod method, Filter filter,
     if (method != RenderMethod::raycast || a.relief.empty())
         warn_unused({{a.progress, "--progress"}}, "shows the ray caster's progress (--relief, --method raycast)");
     if (method != RenderMethod::quadric_silhouettes || a.relief.empty())
-        warn_unused({{!a.curved_base.empty(), "--curved-base"}, {!a.quadric_distance.empty(), "--quadric-distance"}},
+        warn_unused({{!a.perpixel.curved_base.empty(), "--curved-base"},
+                     {!a.perpixel.quadric_distance.empty(), "--quadric-distance"}},
                     "applies to --relief with --method quadric-silhouettes");
     if (method != RenderMethod::protruded_displacement || a.relief.empty())
-        warn_unused({{!a.steep_texture.empty(), "--steep-texture"}},
+        warn_unused({{!a.perpixel.steep_texture.empty(), "--steep-texture"}},
                     "applies to --relief with --method protruded-displacement");
 }
 
@@ -101,7 +101,8 @@ void run_render(const RenderArgs& a) {
     const Filter filter = parse_filter(a.filter, method == RenderMethod::pipelined ? Reconstruction::pipelined
                                                                                    : Reconstruction::two_pass);
     if (a.repeat < 1) throw UsageError("--repeat: expected N >= 1, found " + std::to_string(a.repeat));
-    const QuadricSilhouettesSettings quadric = parse_quadric_flags(a.curved_base, a.quadric_distance);
+    const PerPixelSettings perpixel = a.perpixel.settings();
+    const QuadricSilhouettesSettings& quadric = perpixel.quadric_silhouettes;
     // --level: 0 unless given, auto for a scene (each quad at the level its screen area asks for, no coarser than
     // its parallax allows: objects/level_choice.h; the town's margin over flat holds at auto, docs/SCENES.md).
     const std::string level = !a.level.empty() ? a.level : a.scene.empty() ? "0" : "auto";
@@ -162,8 +163,7 @@ void run_render(const RenderArgs& a) {
     // --output-scale resamples the relief for the pre-warp's finer texture; the other methods draw it as it is.
     if (prewarps(method)) relief = apply_output_scale(std::move(relief), a.output_scale, a.relief);
     ReliefQuad quad(std::move(relief));
-    if (!a.steep_texture.empty() && a.steep_texture != "builtin")
-        quad.perpixel().set_steep_texture(read_rgba8(a.steep_texture));
+    if (const std::optional<ImageRGBA8> steep = a.perpixel.steep_image()) quad.perpixel().set_steep_texture(*steep);
     const Camera cam = a.camera.resolve(relief_bounds(quad.relief()));
     PrewarpOptions opt;
     opt.exact = a.exact;
@@ -182,8 +182,7 @@ void run_render(const RenderArgs& a) {
     rs.draw.depth_correction = a.depth_correction;
     rs.draw.skips = !a.no_skips;
     rs.draw.level = level_n;
-    rs.perpixel.quadric_silhouettes = quadric;
-    rs.perpixel.protruded_displacement.steep_texture = !a.steep_texture.empty();
+    rs.perpixel = perpixel;
     if (a.progress || isatty(2))
         rs.progress = [](double f) { std::fprintf(stderr, "\r%s %5.1f%%", "raycast", 100 * f); };
     std::unique_ptr<GlContext> ctx;
@@ -240,7 +239,8 @@ void run_render(const RenderArgs& a) {
             j["quadric_distance"] = quadric.exact_distance ? "exact" : "approximate";
         }
         if (method == RenderMethod::protruded_displacement)
-            j["steep_texture"] = a.steep_texture.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.steep_texture);
+            j["steep_texture"] = a.perpixel.steep_texture.empty() ? nlohmann::json(nullptr)
+                                                                  : nlohmann::json(a.perpixel.steep_texture);
         write_json(a.json, j);
     }
 }
@@ -265,13 +265,7 @@ void add_render_command(CLI::App& app) {
                "parallax-offset-limiting, steep-parallax, parallax-occlusion, relief-mapping, interval-mapping, "
                "protruded-displacement, quadric-silhouettes (on a curved patch: --curved-base); --mesh: flat only")
             ->capture_default_str();
-    sub->add_option("--curved-base", a->curved_base,
-                    "quadric-silhouettes: the relief bent over a cylinder (default) or a sphere patch");
-    sub->add_option("--steep-texture", a->steep_texture,
-                    "protruded-displacement: colour steep slopes from this image (repeated), or 'builtin' (bricks)");
-    sub->add_option("--quadric-distance", a->quadric_distance,
-                    "quadric-silhouettes: the paper's approximate ray-quadric distance (equation 7, default) or its "
-                    "exact one (equation 6)");
+    a->perpixel.add_to(*sub);
     sub->add_flag("--exact", a->exact, "Pre-warp with unquantized displacement and double-precision coordinates");
     sub->add_option("--filter", a->filter, "Pre-warp resampling: point or coverage (Fant-style, two-pass only)")
         ->capture_default_str();

@@ -20,8 +20,7 @@ namespace {
 struct ViewArgs {
     std::string relief, object, scene, file, screenshot, json, camera_path, keys, method = "two-pass", level, split,
                                                                                   filter = "point";
-    std::string curved_base, quadric_distance;  // quadric silhouettes' base and distance; empty: not given
-    std::string steep_texture;                  // protruded displacement's steep texture: builtin or IMG; empty: off
+    PerPixelArgs perpixel;
     CameraArgs camera;
     int frames = 0, threads = 0, timed_every = 16;
     double panel_refresh_ms = 100, content_scale = 0;
@@ -57,11 +56,11 @@ void warn_view_unused(const ViewArgs& a, const std::string& kind, RenderMethod m
                                           {a.no_skips, "--no-skips"},
                                           {a.filter != "point", "--filter"}})
             warn(given, flag, "applies to reliefs; a mesh is drawn as it is");
-    for (const auto& [given, flag] :
-         {std::pair{!a.curved_base.empty(), "--curved-base"}, {!a.quadric_distance.empty(), "--quadric-distance"}})
+    for (const auto& [given, flag] : {std::pair{!a.perpixel.curved_base.empty(), "--curved-base"},
+                                      {!a.perpixel.quadric_distance.empty(), "--quadric-distance"}})
         warn(given && (kind != "relief" || method != RenderMethod::quadric_silhouettes), flag,
              "applies to a relief with --method quadric-silhouettes");
-    warn(!a.steep_texture.empty() && (kind != "relief" || method != RenderMethod::protruded_displacement),
+    warn(!a.perpixel.steep_texture.empty() && (kind != "relief" || method != RenderMethod::protruded_displacement),
          "--steep-texture", "applies to a relief with --method protruded-displacement");
     warn(!a.camera.orbit.empty() && !a.camera.look_at.empty(), "--look-at",
          "with --orbit: the viewer orbits the centre of what is shown (give --eye for a free camera)");
@@ -106,8 +105,7 @@ void run_view(const ViewArgs& a) {
     } catch (const std::invalid_argument& e) {
         throw UsageError(std::string("--keys: ") + e.what());
     }
-    s.perpixel.quadric_silhouettes = parse_quadric_flags(a.curved_base, a.quadric_distance);
-    s.perpixel.protruded_displacement.steep_texture = !a.steep_texture.empty();
+    s.perpixel = a.perpixel.settings();
     s.threads = a.threads;
     s.discontinuity = a.discontinuity;
     s.panel = a.panel;
@@ -135,8 +133,7 @@ void run_view(const ViewArgs& a) {
     if (!a.scene.empty() && a.scene.find(".scene.json") == std::string::npos)
         throw IoError(a.scene + ": --scene expects NAME.scene.json");
     std::unique_ptr<viewer::Loaded> loaded = viewer::open_file(file);
-    if (!a.steep_texture.empty() && a.steep_texture != "builtin")
-        loaded->set_steep_texture(read_rgba8(a.steep_texture));
+    if (const std::optional<ImageRGBA8> steep = a.perpixel.steep_image()) loaded->set_steep_texture(*steep);
     const std::string kind = loaded->kind();
     if (kind == "scene" && a.level.empty()) s.level = -1;
     warn_view_unused(a, kind, s.method, loaded->own_camera().has_value());
@@ -210,12 +207,7 @@ void add_view_command(CLI::App& app) {
     sub->add_option("--method", a->method, "flat, two-pass, pipelined, micromesh, raycast or a per-pixel method")
         ->capture_default_str();
     sub->add_option("--level", a->level, "Relief texture pyramid level N or auto (default 0; auto for a scene)");
-    sub->add_option("--curved-base", a->curved_base,
-                    "quadric-silhouettes: the relief bent over a cylinder (default) or a sphere patch");
-    sub->add_option("--quadric-distance", a->quadric_distance,
-                    "quadric-silhouettes: approximate (equation 7, default) or exact (equation 6)");
-    sub->add_option("--steep-texture", a->steep_texture,
-                    "protruded-displacement: colour steep slopes from this image (repeated), or 'builtin' (bricks)");
+    a->perpixel.add_to(*sub);
     sub->add_option("--filter", a->filter, "Pre-warp resampling: point or coverage (two-pass only)")
         ->capture_default_str();
     add_threads_option(*sub, a->threads, "Pre-warp threads");

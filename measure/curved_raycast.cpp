@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 
@@ -115,7 +116,7 @@ struct Curved {
         } else if (C > 0) {
             return false;
         }
-        const double half = sphere() ? INFINITY : 0.5 * p.height;
+        const double half = 0.5 * p.height;
         if (sphere()) {
             // No slab: the footprint test of g() leaves out what lies beyond the patch's latitudes.
         } else if (dv != 0) {
@@ -180,6 +181,17 @@ struct Curved {
     }
 };
 
+// Runs rows(range of image rows) over [0, height) in parallel on `threads` (0: all); each row is handled by one task
+// alone, so the output does not depend on the thread count.
+void for_rows(int height, int threads, const std::function<void(const tbb::blocked_range<int>&)>& rows) {
+    const auto loop = [&] { tbb::parallel_for(tbb::blocked_range<int>(0, height, 1), rows); };
+    if (threads > 0) {
+        task_arena_for(threads).execute(loop);
+    } else {
+        loop();
+    }
+}
+
 }  // namespace
 
 ImageRGBA8 raycast_curved_relief(const ReliefTexture& t, const CurvedPatch& p, const Camera& cam, int threads) {
@@ -195,13 +207,7 @@ ImageRGBA8 raycast_curved_relief(const ReliefTexture& t, const CurvedPatch& p, c
                 img.row(py)[px] = c.cast(o, dir);
             }
     };
-    // Each row is written by one task alone: the same output for any number of threads.
-    const auto loop = [&] { tbb::parallel_for(tbb::blocked_range<int>(0, cam.height, 1), rows); };
-    if (threads > 0) {
-        task_arena_for(threads).execute(loop);
-    } else {
-        loop();
-    }
+    for_rows(cam.height, threads, rows);
     return img;
 }
 
@@ -221,12 +227,7 @@ std::vector<uint8_t> curved_relief_shadows(const ReliefTexture& t, const CurvedP
                 if (c.hit(o, dir, x)) mask[size_t(py) * size_t(cam.width) + size_t(px)] = c.shadowed(x, l) ? 2 : 1;
             }
     };
-    const auto loop = [&] { tbb::parallel_for(tbb::blocked_range<int>(0, cam.height, 1), rows); };
-    if (threads > 0) {
-        task_arena_for(threads).execute(loop);
-    } else {
-        loop();
-    }
+    for_rows(cam.height, threads, rows);
     return mask;
 }
 

@@ -177,19 +177,18 @@ void PerPixelQuad::draw(Renderer& renderer, const Camera& cam, const ReliefTextu
             glUniform1i(loc("u_max_iterations"), 1);
             if (s.protruded_displacement.steep_texture) {
                 const ProtrudedDisplacementSettings& pd = s.protruded_displacement;
-                if (!steep_ || steep_image_) {
+                glActiveTexture(GL_TEXTURE3);
+                if (!steep_ || steep_image_) {  // the first use, or a texture set since the last upload
                     if (!steep_) steep_ = std::make_unique<GlTexture>();
-                    glActiveTexture(GL_TEXTURE3);
                     steep_->upload(steep_image_ ? *steep_image_ : builtin_steep_texture());
                     steep_image_.reset();
                     glBindTexture(GL_TEXTURE_2D, steep_->id());
                     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);  // the coordinates run past 1
                     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
                 }
+                glBindTexture(GL_TEXTURE_2D, steep_->id());
                 glUniform1i(loc("u_steep"), 3);
                 glUniform4f(loc("u_steep_params"), pd.steep_threshold, pd.steep_scale_x, pd.steep_scale_y, pd.steep_s0);
-                glActiveTexture(GL_TEXTURE3);
-                glBindTexture(GL_TEXTURE_2D, steep_->id());
             }
             break;
         case PerPixelMethod::interval_mapping:

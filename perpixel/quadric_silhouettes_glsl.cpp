@@ -144,7 +144,7 @@ void main() {
             }
         bool exact7;
         if (t7 > 0.0) {
-            float d7 = depth_exact(Vt, U, alpha, beta, t7, exact7);
+            depth_exact(Vt, U, alpha, beta, t7, exact7);  // only whether equation 6 answers at t7
             if (!exact7 && (t_bottom < 0.0 || t7 < t_bottom)) t_bottom = t7;
         }
         if (t_bottom < 0.0 && t_leave < 0.0) t_bottom = t7;  // neither found: equation 7's range

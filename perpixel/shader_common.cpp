@@ -151,18 +151,14 @@ extern const char* const kQuadricFragmentShader;
 std::string perpixel_fragment_shader(PerPixelMethod m, const PerPixelCommon& c, bool quadric_exact, bool steep) {
     std::string s = "#version 330 core\n";
     s += "#define RTM_FLOAT_DEPTH " + std::to_string(c.float_textures ? 1 : 0) + "\n";
-    if (m == PerPixelMethod::quadric_silhouettes) {
-        s += "#define RTM_DEPTH " + std::to_string(c.depth_correction ? 1 : 0) + "\n";
-        s += "#define RTM_ITERATIONS " + std::to_string(c.iteration_counts ? 1 : 0) + "\n";
-        s += "#define RTM_QUADRIC_EXACT " + std::to_string(quadric_exact ? 1 : 0) + "\n";
-        s += "#define RTM_SHADING " + std::to_string(c.shading ? 1 : 0) + "\n";
-        s += "#define RTM_SHADOWS " + std::to_string(c.shading && c.self_shadowing ? 1 : 0) + "\n";
-        return s + kQuadricFragmentShader;
-    }
     s += "#define RTM_DEPTH " + std::to_string(c.depth_correction ? 1 : 0) + "\n";
     s += "#define RTM_SHADING " + std::to_string(c.shading ? 1 : 0) + "\n";
     s += "#define RTM_SHADOWS " + std::to_string(c.shading && c.self_shadowing ? 1 : 0) + "\n";
     s += "#define RTM_ITERATIONS " + std::to_string(c.iteration_counts ? 1 : 0) + "\n";
+    if (m == PerPixelMethod::quadric_silhouettes) {
+        s += "#define RTM_QUADRIC_EXACT " + std::to_string(quadric_exact ? 1 : 0) + "\n";
+        return s + kQuadricFragmentShader;
+    }
     s += "#define RTM_OFFSET_LIMITING " + std::to_string(m == PerPixelMethod::parallax_offset_limiting ? 1 : 0) + "\n";
     s += "#define RTM_PROTRUDED " + std::to_string(m == PerPixelMethod::protruded_displacement ? 1 : 0) + "\n";
     s += "#define RTM_STEEP " + std::to_string(m == PerPixelMethod::protruded_displacement && steep ? 1 : 0) + "\n";
