@@ -62,8 +62,6 @@ void warn_view_unused(const ViewArgs& a, const std::string& kind, RenderMethod m
              "applies to a relief with --method quadric-silhouettes");
     warn(!a.perpixel.steep_texture.empty() && (kind != "relief" || method != RenderMethod::protruded_displacement),
          "--steep-texture", "applies to a relief with --method protruded-displacement");
-    warn(!a.camera.orbit.empty() && !a.camera.look_at.empty(), "--look-at",
-         "with --orbit: the viewer orbits the centre of what is shown (give --eye for a free camera)");
 }
 
 void run_view(const ViewArgs& a) {
@@ -149,7 +147,10 @@ void run_view(const ViewArgs& a) {
     } else {
         o.camera_path = a.camera_path;
     }
-    if (!ca.orbit.empty()) {
+    if (!ca.orbit.empty() && !ca.look_at.empty()) {
+        // --orbit with --look-at: render's view (the eye about the centre), orbiting the point looked at.
+        o.orbit = viewer::orbit_about(o.camera.look_at, o.camera.eye, loaded->bounds());
+    } else if (!ca.orbit.empty()) {
         const glm::dvec3 v = parse_vec3(ca.orbit, "--orbit");
         o.orbit = {v.x, v.y, v.z};
     }

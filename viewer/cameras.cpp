@@ -13,17 +13,36 @@ double radius_of(const Bounds& b) { return std::max(b.radius(), 1e-12); }
 }  // namespace
 
 void OrbitCamera::drag(double dx, double dy) {
+    given_eye.reset();
     az -= 0.3 * dx;
     el = std::clamp(el + 0.3 * dy, -89.0, 89.0);
 }
 
-void OrbitCamera::zoom(double notches) { dist = std::clamp(dist * std::pow(0.9, notches), 0.05, 1000.0); }
+void OrbitCamera::zoom(double notches) {
+    if (notches != 0) given_eye.reset();
+    dist = std::clamp(dist * std::pow(0.9, notches), 0.05, 1000.0);
+}
 
 glm::dvec3 OrbitCamera::eye(const Bounds& b) const {
+    if (given_eye) return *given_eye;
     // The formula of --orbit (apps/cli_common.cpp, CameraArgs::resolve).
     const double a = glm::radians(az), e = glm::radians(el);
     const glm::dvec3 dir(std::sin(a) * std::cos(e), std::sin(e), std::cos(a) * std::cos(e));
-    return b.centre() + radius_of(b) * dist * dir;
+    return centre(b) + radius_of(b) * dist * dir;
+}
+
+OrbitCamera orbit_about(const glm::dvec3& pivot, const glm::dvec3& eye, const Bounds& b) {
+    OrbitCamera o;
+    const glm::dvec3 d = eye - pivot;
+    const double len = glm::length(d);
+    o.pivot = pivot;
+    o.given_eye = eye;
+    o.dist = len / radius_of(b);
+    // The inverse of eye()'s direction: elevation from y, azimuth about +y from +z towards +x; the elevation within
+    // the drag's +-89 degrees, so that the first drag turns from here (straight above or below: azimuth 0).
+    o.el = len > 0 ? std::clamp(glm::degrees(std::asin(std::clamp(d.y / len, -1.0, 1.0))), -89.0, 89.0) : 0.0;
+    o.az = d.x != 0 || d.z != 0 ? glm::degrees(std::atan2(d.x, d.z)) : 0.0;
+    return o;
 }
 
 glm::dvec3 FlyCamera::forward() const {

@@ -1,9 +1,12 @@
 // The viewer's two cameras, pure maths (no window). Orbit: azimuth, elevation and distance (in bounding-sphere
-// radii) about the centre of what is loaded, as the command line's --orbit AZ,EL,D. Fly: an eye with a heading
+// radii) about the centre of what is loaded, as the command line's --orbit AZ,EL,D, or about a pivot (--orbit with
+// --look-at: the point looked at). Fly: an eye with a heading
 // (yaw about +y, pitch) moved with WASD and turned by the mouse. Both give a Camera for a bounding sphere.
 #pragma once
 
 #include <glm/vec3.hpp>
+
+#include <optional>
 
 #include "objects/bounds.h"
 #include "texmap/camera.h"
@@ -11,12 +14,30 @@
 namespace rtm::viewer {
 
 struct OrbitCamera {
-    double az = 30, el = 20, dist = 2.2;            // degrees, degrees, radii
+    OrbitCamera() = default;
+    OrbitCamera(double azimuth, double elevation, double distance) : az(azimuth), el(elevation), dist(distance) {}
+    double az = 30, el = 20, dist = 2.2;  // degrees, degrees, radii
+    // The point orbited and looked at; none: the centre of what is loaded.
+    std::optional<glm::dvec3> pivot;
+    // The eye exactly as given (orbit_about), until the camera moves: az, el and dist recomputed from it give it back
+    // only to within rounding, and the first frame is then the picture rtm render draws.
+    std::optional<glm::dvec3> given_eye;
     void drag(double dx_pixels, double dy_pixels);  // 0.3 degree per pixel, elevation within +-89
     void zoom(double wheel_notches);                // 0.9 per notch, distance within [0.05, 1000]
+    glm::dvec3 centre(const Bounds& b) const { return pivot ? *pivot : b.centre(); }
     glm::dvec3 eye(const Bounds& b) const;
-    void frame() { dist = 2.2; }  // F: back to the default distance
+    // F: back to the default distance about the centre of what is loaded.
+    void frame() {
+        dist = 2.2;
+        pivot.reset();
+        given_eye.reset();
+    }
 };
+
+// The orbit camera about `pivot` that starts at `eye` (its distance in radii of `b`): --orbit AZ,EL,D with --look-at
+// P starts at the view rtm render draws (the eye at AZ,EL,D about the centre, looking at P) and orbits P.
+// `eye` != `pivot` (the command line's camera check).
+OrbitCamera orbit_about(const glm::dvec3& pivot, const glm::dvec3& eye, const Bounds& b);
 
 struct FlyCamera {
     glm::dvec3 eye{0.0, 0.0, 1.0};

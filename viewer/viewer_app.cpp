@@ -185,8 +185,8 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
         fly.look_from(cam.eye, cam.look_at);
         s.fly = true;
     } else {
-        fly.look_from(orbit.eye(bounds), bounds.centre());
-        look_distance = glm::length(bounds.centre() - fly.eye);
+        fly.look_from(orbit.eye(bounds), orbit.centre(bounds));
+        look_distance = glm::length(orbit.centre(bounds) - fly.eye);
     }
     bool was_fly = s.fly;
 
@@ -354,7 +354,7 @@ ViewerResult run_viewer(std::unique_ptr<Loaded> loaded, const ViewerOptions& o) 
             look_at = fly.eye + fly.forward() * look_distance;
         } else {
             eye = orbit.eye(bounds);
-            look_at = bounds.centre();
+            look_at = orbit.centre(bounds);
         }
         Camera base = cam;
         base.width = ctx->width();

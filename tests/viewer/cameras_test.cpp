@@ -33,6 +33,38 @@ TEST(OrbitCamera, DragClampsElevationAndZoomClampsDistance) {
     EXPECT_EQ(o.dist, 2.2);
 }
 
+// --orbit with --look-at: the orbit starts at the eye given and turns about the point looked at.
+TEST(OrbitCamera, AboutAPivotStartsAtTheEyeAndKeepsItsDistance) {
+    const Bounds b = unit_box();
+    const glm::dvec3 pivot(2.5, -1.0, 0.5);
+    OrbitCamera about_centre{40, 25, 1.7};
+    const glm::dvec3 eye = about_centre.eye(b);  // render's eye for --orbit 40,25,1.7
+    OrbitCamera o = orbit_about(pivot, eye, b);
+    EXPECT_EQ(o.eye(b), eye);  // exactly: the first frame is render's picture
+    EXPECT_EQ(o.centre(b), pivot);
+    // The angles and distance recomputed from it give the eye back to rounding (degrees through asin and atan2 and
+    // back through sin and cos: a few ulps of the coordinates, about 1e-15 here).
+    OrbitCamera moved = o;
+    moved.drag(0, 0);
+    EXPECT_FALSE(moved.given_eye.has_value());
+    EXPECT_NEAR(glm::length(moved.eye(b) - eye), 0.0, 1e-13);
+    // A drag turns about the pivot at the same distance; a zoom scales that distance.
+    const double r = glm::length(eye - pivot);
+    moved.drag(120, -35);
+    EXPECT_NEAR(glm::length(moved.eye(b) - pivot), r, 1e-13);
+    EXPECT_GT(glm::length(moved.eye(b) - eye), 0.1);
+    moved.zoom(2);
+    EXPECT_NEAR(glm::length(moved.eye(b) - pivot), 0.81 * r, 1e-13);
+    // F frames what is loaded: its centre at the default distance.
+    moved.frame();
+    EXPECT_EQ(moved.centre(b), b.centre());
+    EXPECT_NEAR(glm::length(moved.eye(b) - b.centre()), 2.2 * b.radius(), 1e-13);
+    // An eye straight above the pivot: elevation held at the drag's 89 degrees, the given eye still exact.
+    const OrbitCamera above = orbit_about(pivot, pivot + glm::dvec3(0, 3, 0), b);
+    EXPECT_EQ(above.el, 89.0);
+    EXPECT_EQ(above.eye(b), pivot + glm::dvec3(0, 3, 0));
+}
+
 TEST(FlyCamera, LookFromFacesTheTarget) {
     FlyCamera f;
     const glm::dvec3 eye(1, 2, 3), target(-2, 0.5, -1);
