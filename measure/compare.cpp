@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 
 #include "formats/image_io.h"
 #include "measure/pareto.h"
@@ -61,6 +62,7 @@ Timed render_timed(CompareSource& src, Renderer& renderer, const Camera& cam, co
         StageTimes st;
         t.image = e.curved() && e.family == "truth"
                       ? src.render_curved_truth(renderer, cam, e.render.method,
+                                                e.render.perpixel.quadric_silhouettes.base,
                                                 e.render.perpixel.quadric_silhouettes.angle, o.threads, st)
                       : src.render(renderer, cam, s, e.output_scale, st);
         if (frames > 1 && i == 0) continue;  // the first frame warms up (uploads, shader compiles, caches)
@@ -93,9 +95,10 @@ std::string file_stem(const std::string& id) {
     return s;
 }
 
-const CompareEntry* find_entry(const std::vector<CompareEntry>& m, RenderMethod method, bool curved = false) {
+const CompareEntry* find_entry(const std::vector<CompareEntry>& m, RenderMethod method,
+                               const std::string& base = "flat") {
     for (const CompareEntry& e : m)
-        if (e.render.method == method && e.family == "truth" && e.curved() == curved) return &e;
+        if (e.render.method == method && e.family == "truth" && e.base == base) return &e;
     return nullptr;
 }
 
@@ -122,8 +125,12 @@ CompareRun run_comparison(const std::vector<CompareSource*>& sources, const Comp
     const CompareEntry* rc_entry = find_entry(o.methods, RenderMethod::raycast);
     const CompareEntry& mm = mm_entry ? *mm_entry : *find_entry(defaults, RenderMethod::micromesh);
     const CompareEntry& rc = rc_entry ? *rc_entry : *find_entry(defaults, RenderMethod::raycast);
-    const CompareEntry* cm_entry = find_entry(o.methods, RenderMethod::micromesh, true);
-    const CompareEntry& cm = cm_entry ? *cm_entry : *find_entry(defaults, RenderMethod::micromesh, true);
+    // Each curved base's reference, its micro-polygon mesh.
+    std::map<std::string, const CompareEntry*> curved_ref;
+    for (const char* base : kCurvedBases) {
+        const CompareEntry* listed = find_entry(o.methods, RenderMethod::micromesh, base);
+        curved_ref[base] = listed ? listed : find_entry(defaults, RenderMethod::micromesh, base);
+    }
 
     const auto save = [&](const std::string& rel, const ImageRGBA8& img) {
         if (o.out_dir.empty()) return std::string();
@@ -147,26 +154,31 @@ CompareRun run_comparison(const std::vector<CompareSource*>& sources, const Comp
             auto& truth = run.truths[src->name][v.name];
             truth["micromesh"] = save(dir + "micromesh.png", mesh.image);
             truth["raycast"] = has_rc ? save(dir + "raycast.png", ray.image) : std::string();
-            // The curved base's truth, when the source renders any curved entry of the run.
-            const bool has_curved = std::any_of(run.methods.begin(), run.methods.end(),
-                                                [&](const CompareEntry* e) { return e->curved() && src->renders(*e); });
-            Timed curved;
-            if (has_curved) {
-                curved = render_timed(*src, renderer, cam, cm, o);
-                truth[cm.id] = save(dir + file_stem(cm.id) + ".png", curved.image);
+            // Each curved base's truth, when the source renders any entry of that base in the run.
+            std::map<std::string, Timed> curved;
+            for (const char* base : kCurvedBases) {
+                const bool has = std::any_of(run.methods.begin(), run.methods.end(), [&](const CompareEntry* e) {
+                    return e->base == base && src->renders(*e);
+                });
+                if (!has) continue;
+                const CompareEntry& cm = *curved_ref.at(base);
+                curved[base] = render_timed(*src, renderer, cam, cm, o);
+                truth[cm.id] = save(dir + file_stem(cm.id) + ".png", curved[base].image);
             }
 
             for (const CompareEntry* e : run.methods) {
                 if (!src->renders(*e)) continue;
-                const bool is_mesh = e == &mm, is_ray = e == &rc, is_curved_truth = e == &cm;
+                const bool is_mesh = e == &mm, is_ray = e == &rc;
+                const bool is_curved_truth = e->curved() && e == curved_ref.at(e->base);
                 const bool is_truth = is_mesh || is_ray || is_curved_truth;
                 const Timed t = is_mesh           ? mesh
                                 : is_ray          ? ray
-                                : is_curved_truth ? curved
+                                : is_curved_truth ? curved.at(e->base)
                                                   : render_timed(*src, renderer, cam, *e, o);
-                // The curved base is measured against the curved mesh alone: the flat truths render another surface.
-                const ImageRGBA8& truth_image = e->curved() ? curved.image : ref;
-                const ImageRGBA8& mesh_image = e->curved() ? curved.image : mesh.image;
+                // A curved base is measured against its own curved mesh alone: the other truths render other
+                // surfaces.
+                const ImageRGBA8& truth_image = e->curved() ? curved.at(e->base).image : ref;
+                const ImageRGBA8& mesh_image = e->curved() ? curved.at(e->base).image : mesh.image;
                 CompareRow r;
                 r.source = src->name;
                 r.view = v.name;
@@ -175,7 +187,7 @@ CompareRun run_comparison(const std::vector<CompareSource*>& sources, const Comp
                 r.setting = e->setting;
                 r.family = e->family;
                 r.base = e->base;
-                r.truth = e->curved() ? cm.id : has_rc ? rc.method : mm.method;
+                r.truth = e->curved() ? curved_ref.at(e->base)->id : has_rc ? rc.method : mm.method;
                 r.ms = t.ms;
                 if (e->family == "pre-warp") {
                     r.has_stages = true;
@@ -186,7 +198,7 @@ CompareRun run_comparison(const std::vector<CompareSource*>& sources, const Comp
                 r.vs_micromesh = diff_images(mesh_image, t.image);
                 r.silhouette_px = silhouette_error(truth_image, t.image);
                 if (is_truth) {
-                    r.image = truth[is_curved_truth ? cm.id : e->method];
+                    r.image = truth[is_curved_truth ? e->id : e->method];
                 } else {
                     r.image = save(dir + file_stem(e->id) + ".png", t.image);
                 }
@@ -338,10 +350,10 @@ nlohmann::json comparison_json(const std::vector<CompareSource*>& sources, const
         std::vector<const CompareRow*> mine;
         for (const CompareRow* r : all)
             if (r->source == s->name) mine.push_back(r);
-        for (const char* base : {"flat", "curved"})
+        for (const char* base : kCompareBases)
             for (nlohmann::json& x : summarize(s->name, base, run.methods, mine)) summary.push_back(std::move(x));
     }
-    for (const char* base : {"flat", "curved"})
+    for (const char* base : kCompareBases)
         for (nlohmann::json& x : summarize("all", base, run.methods, all)) summary.push_back(std::move(x));
     j["summary"] = summary;
     return j;
@@ -419,8 +431,9 @@ std::string comparison_csv(const nlohmann::json& results) {
 std::string comparison_markdown(const nlohmann::json& results) {
     std::string s = "### " + results.value("title", std::string("rtm compare")) +
                     "\n\nMeans over the views of the error against the row's truth (raycast for a relief, "
-                    "micromesh for an object or a scene, curved-micromesh for the curved base: the relief bent over "
-                    "the cylinder patch of quadric silhouettes): PSNR and RMSE over the pixels covered in both, "
+                    "micromesh for an object or a scene, curved-micromesh and sphere-micromesh for the curved bases: "
+                    "the relief bent over the cylinder and the sphere patch of quadric silhouettes): PSNR and RMSE "
+                    "over the pixels covered in both, "
                     "coverage IoU; frame time: the median over the views of each view's median frame. Pareto: on the "
                     "run-time-against-RMSE front of its source and base. Every row per view: results.csv.\n\n"
                     "| source | method | setting | family | truth | frame ms | PSNR dB | RMSE | IoU | Pareto |\n"

@@ -54,13 +54,15 @@ constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
 
 struct CompareRow {
     std::string source, view, method_id, method, setting, family;
-    std::string base = "flat";  // the entry's base: "flat" or "curved" (CompareEntry::base)
-    std::string truth;          // what `error` is measured against: "raycast", "micromesh" or "curved-micromesh"
-    double ms = 0;              // median frame time
-    StageTimes stages;          // medians per stage (pre-warp family only; `other` = total - the three)
+    std::string base = "flat";  // the entry's base: "flat", "curved" or "sphere" (CompareEntry::base)
+    // What `error` is measured against: "raycast", "micromesh", or the curved base's mesh, "curved-micromesh" or
+    // "sphere-micromesh".
+    std::string truth;
+    double ms = 0;      // median frame time
+    StageTimes stages;  // medians per stage (pre-warp family only; `other` = total - the three)
     bool has_stages = false;
     DiffResult error;                   // against `truth`
-    DiffResult vs_micromesh;            // against the micro-polygon mesh (the curved one for the curved base)
+    DiffResult vs_micromesh;            // against the micro-polygon mesh (a curved base's own for a curved base)
     double silhouette_px = kNoValue;    // silhouette error against the reference truth
     double iterations_mean = kNoValue;  // per-pixel search iterations over the covered pixels
     std::string image, heatmap, iterations_image;  // relative to out_dir; empty = none
@@ -70,8 +72,8 @@ struct CompareRun {
     std::vector<CompareView> views;
     std::vector<const CompareEntry*> methods;  // the entries that rendered at least one source
     std::vector<CompareRow> rows;              // per source, view, method in that order
-    // truths[source][view]["raycast" | "micromesh" | "curved-micromesh"] = image path ("" when not rendered or not
-    // written; curved-micromesh only where the curved base was rendered)
+    // truths[source][view]["raycast" | "micromesh" | "curved-micromesh" | "sphere-micromesh"] = image path ("" when
+    // not rendered or not written; a curved base's mesh only where that base was rendered)
     std::map<std::string, std::map<std::string, std::map<std::string, std::string>>> truths;
 };
 

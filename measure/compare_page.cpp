@@ -137,7 +137,7 @@ std::string header(const CompareResults& r) {
     for (size_t i = 0; i < facts.size(); ++i) s += (i ? " &#183; " : "") + esc(facts[i]);
     s += "</p>\n<nav><a href=\"#reading\">Reading</a> &#183; <a href=\"#plots\">Time against error</a> &#183; "
          "<a href=\"#summary\">Summary</a> &#183; <a href=\"#views\">Views</a> &#183; <a href=\"#curved\">The "
-         "curved base</a> &#183; <a href=\"#steps\">The "
+         "curved bases</a> &#183; <a href=\"#steps\">The "
          "pre-warp step by step</a> &#183; <a href=\"results.csv\">results.csv</a> &#183; <a "
          "href=\"results.json\">results.json</a></nav></header>\n";
     return s;
@@ -151,16 +151,17 @@ std::string reading(const CompareResults& r) {
     return s;
 }
 
-// The plot blocks of one base: over all sources (when the file has "all" rows of it) and per source. The curved
-// base's blocks carry data-base="curved" and their points are coloured by whether the quadrics are on.
-std::string plot_blocks(const CompareResults& r, bool curved) {
+// The plot blocks of one base: over all sources (when the file has "all" rows of it) and per source. A curved
+// base's blocks carry data-base="BASE" and their points are coloured by whether the quadrics are on.
+std::string plot_blocks(const CompareResults& r, const std::string& base) {
+    const bool curved = is_curved_base(base);
     std::string s;
     std::vector<std::pair<std::string, std::string>> blocks;  // source key, heading
-    if (!r.summary_of("all", curved).empty()) blocks.push_back({"all", "All sources"});
+    if (!r.summary_of("all", base).empty()) blocks.push_back({"all", "All sources"});
     for (const ResultSource& src : r.sources) blocks.push_back({src.name, src.name});
     int n = 0;
     for (const auto& [key, heading] : blocks) {
-        std::vector<SummaryRow> rows = r.summary_of(key, curved);
+        std::vector<SummaryRow> rows = r.summary_of(key, base);
         if (rows.empty()) continue;
         if (curved)
             for (SummaryRow& x : rows)
@@ -168,9 +169,9 @@ std::string plot_blocks(const CompareResults& r, bool curved) {
                     x.family = x.setting.rfind("no-quadric-", 0) == 0 ? "no quadrics"
                                : x.setting.rfind("exact-", 0) == 0    ? "exact distance"
                                                                       : "quadrics";
-        const TimeErrorPlot plot = time_error_plot(rows, (curved ? "curved-plot-" : "plot-") + std::to_string(n++));
-        s += "<div class=\"plot-block\" data-source=\"" + esc(key) + "\"" + (curved ? " data-base=\"curved\"" : "") +
-             "><h3>" + esc(heading) + "</h3>\n" + plot.svg;
+        const TimeErrorPlot plot = time_error_plot(rows, (curved ? base + "-plot-" : "plot-") + std::to_string(n++));
+        s += "<div class=\"plot-block\" data-source=\"" + esc(key) + "\"" +
+             (curved ? " data-base=\"" + esc(base) + "\"" : "") + "><h3>" + esc(heading) + "</h3>\n" + plot.svg;
         if (!plot.left_out.empty()) {
             s += "<p class=\"note\">Not plotted (no time or no RMSE): ";
             for (size_t i = 0; i < plot.left_out.size(); ++i) s += (i ? ", " : "") + esc(plot.left_out[i]);
@@ -185,9 +186,10 @@ std::string plots(const CompareResults& r) {
     return "<section id=\"plots\"><h2>Run time against error</h2>\n<p>One point per method and setting: "
            "the median frame time over the views (log scale) against the mean RMSE over the views. Colour "
            "by family; the Pareto front (no method both faster and more accurate) is the dashed step line, "
-           "its points ringed. Hover a point for its figures. The curved base (quadric silhouettes) has a truth of "
-           "its own and a plot of its own: <a href=\"#curved\">below</a>.</p>\n<div class=\"plots\">\n" +
-           plot_blocks(r, false) + "</div>\n</section>\n";
+           "its points ringed. Hover a point for its figures. The curved bases (quadric silhouettes on a cylinder and "
+           "on a sphere patch) have truths of their own and plots of their own: <a href=\"#curved\">below</a>.</p>\n"
+           "<div class=\"plots\">\n" +
+           plot_blocks(r, "flat") + "</div>\n</section>\n";
 }
 
 std::string summary_table(const CompareResults& r) {
@@ -231,12 +233,12 @@ std::string row_caption(const ResultRow& row) {
 }
 
 // The method ids of the rows of one base, in the methods' order (then any only the rows name).
-std::vector<std::string> ids_of(const CompareResults& r, bool curved) {
+std::vector<std::string> ids_of(const CompareResults& r, const std::string& base) {
     std::vector<std::string> ids;
     for (const ResultMethod& m : r.methods)
-        if (is_curved_base(m.base) == curved) ids.push_back(m.id);
+        if (base_name(m.base) == base) ids.push_back(m.id);
     for (const ResultRow& row : r.rows)
-        if (row.curved() == curved && std::find(ids.begin(), ids.end(), row.method_id) == ids.end())
+        if (base_name(row.base) == base && std::find(ids.begin(), ids.end(), row.method_id) == ids.end())
             ids.push_back(row.method_id);
     return ids;
 }
@@ -281,33 +283,50 @@ std::string views(const CompareResults& r) {
            "truths first (the exact ray caster, the micro-polygon mesh), then every method; under each picture its "
            "error heat map against the ray caster and, for the searching methods, the per-pixel iteration "
            "count.</p>\n" +
-           view_grids(r, ids_of(r, false), {"raycast", "micromesh"}, "the ray caster") + "</section>\n";
+           view_grids(r, ids_of(r, "flat"), {"raycast", "micromesh"}, "the ray caster") + "</section>\n";
 }
 
-// Relief mapping with quadric silhouettes on the curved base: its own plot and front, and its pictures.
+// Relief mapping with quadric silhouettes on the curved bases: each base's own plot and front, and its pictures.
 std::string curved_section(const CompareResults& r) {
     std::string s =
-        "<section id=\"curved\"><h2>The curved base: quadric silhouettes</h2>\n<p>Relief mapping with quadric "
-        "silhouettes (Oliveira and Policarpo 2005) draws the relief bent over a cylinder patch "
-        "(perpixel/curved_patch.h), so every row here is measured against the truth of that same curved surface, "
-        "the curved micro-polygon mesh (curved-micromesh), never against the flat truths above; its points are kept "
-        "out of the flat plot. A second truth, curved-raycast (the same bent relief cast on the CPU), is a row "
-        "measured against the mesh: how far the two truths agree. Beside each setting, the same shader without the "
-        "quadrics "
+        "<section id=\"curved\"><h2>The curved bases: quadric silhouettes</h2>\n<p>Relief mapping with quadric "
+        "silhouettes (Oliveira and Policarpo 2005) draws the relief bent over a curved patch "
+        "(perpixel/curved_patch.h), so every row here is measured against the truth of that same curved surface, its "
+        "micro-polygon mesh, never against the flat truths above; its points are kept out of the flat plot. A second "
+        "truth (the same bent relief cast on the CPU) is a row measured against the mesh: how far the two truths "
+        "agree. Beside each setting, the same shader without the quadrics "
         "(quadric-silhouettes:no-quadric-...): the original relief mapping on the curved mesh, whose silhouette is "
-        "the mesh's. And the paper's exact ray-quadric distance (quadric-silhouettes:exact-..., its equation 6) "
-        "beside the approximate one it uses (equation 7): equation 6 measures along the direction perpendicular to "
-        "the ray, which on a flat base is the depth divided by the sine of the ray's angle from the normal, so it "
-        "draws the relief too shallow and loses rays that equation 7 takes to the bottom. Same views, timing and "
-        "error measures as above.</p>\n";
-    const std::vector<std::string> ids = ids_of(r, true);
-    bool any = false;
-    for (const ResultRow& row : r.rows) any |= row.curved();
-    if (!any)
+        "the mesh's. Same views, timing and error measures as above.</p>\n";
+    struct Base {
+        const char *name, *heading, *text;
+    };
+    const Base bases[] = {
+        {"curved", "The cylinder patch",
+         "The relief bent over a cylinder patch, measured against curved-micromesh (curved-raycast is the second "
+         "truth), at each of relief mapping's settings. And the paper's exact ray-quadric distance "
+         "(quadric-silhouettes:exact-..., its equation 6) beside the approximate one it uses (equation 7): equation 6 "
+         "measures along the direction perpendicular to the ray, which on a flat base is the depth divided by the "
+         "sine of the ray's angle from the normal, so it draws the relief too shallow and loses rays that equation 7 "
+         "takes to the bottom."},
+        {"sphere", "The sphere patch",
+         "The relief bent over a sphere patch of the same radius (the paraboloid of the paper's Figure 7 (a): it "
+         "curves along both axes, so the quadric is curved in both), measured against sphere-micromesh "
+         "(sphere-raycast is the second truth), at relief mapping's default setting."},
+    };
+    bool any_curved = false;
+    for (const Base& b : bases) {
+        bool any = false;
+        for (const ResultRow& row : r.rows) any |= row.base == b.name;
+        any_curved |= any;
+        if (!any) continue;
+        s += "<h3 id=\"" + std::string(b.name) + "-base\">" + b.heading + "</h3>\n<p>" + b.text + "</p>\n";
+        s += "<div class=\"plots\">\n" + plot_blocks(r, b.name) + "</div>\n";
+        const std::string truth = curved_truth_id(b.name, "micromesh");
+        s += view_grids(r, ids_of(r, b.name), {truth.c_str()}, "the curved micro-polygon mesh (" + truth + ")");
+    }
+    if (!any_curved)
         return s +
                "<p class=\"note\">Not part of this run (an object or a scene has no curved base).</p>\n</section>\n";
-    s += "<div class=\"plots\">\n" + plot_blocks(r, true) + "</div>\n";
-    s += view_grids(r, ids, {"curved-micromesh"}, "the curved micro-polygon mesh");
     return s + "</section>\n";
 }
 

@@ -250,19 +250,19 @@ std::string iterations_sentence(const CompareResults& r) {
     return s;
 }
 
-// What the quadrics gain on the curved base: each quadric-silhouettes setting against the same setting without the
-// quadrics ("no-quadric-" + setting), both measured against the curved micro-polygon mesh, over every source and
-// view: the coverage IoU and the silhouette distance (where the quadrics act), the RMSE over the common pixels and
-// the frame time; and the same at the most grazing view.
-std::string curved_sentence(const CompareResults& r) {
+// What the quadrics gain on a curved base ("curved": the cylinder patch, "sphere"): each quadric-silhouettes setting
+// against the same setting without the quadrics ("no-quadric-" + setting), both measured against the base's curved
+// micro-polygon mesh, over every source and view: the coverage IoU and the silhouette distance (where the quadrics
+// act), the RMSE over the common pixels and the frame time; and the same at the most grazing view.
+std::string curved_sentence(const CompareResults& r, const std::string& base) {
     struct Pair {
         std::string with, without;
     };
     std::vector<Pair> pairs;
     for (const ResultMethod& m : r.methods) {
-        if (!is_curved_base(m.base) || m.family == "truth" || m.setting.rfind("no-quadric-", 0) == 0) continue;
+        if (m.base != base || m.family == "truth" || m.setting.rfind("no-quadric-", 0) == 0) continue;
         for (const ResultMethod& b : r.methods)
-            if (is_curved_base(b.base) && b.method == m.method && b.setting == "no-quadric-" + m.setting)
+            if (b.base == base && b.method == m.method && b.setting == "no-quadric-" + m.setting)
                 pairs.push_back({m.id, b.id});
     }
     if (pairs.empty()) return {};
@@ -299,10 +299,11 @@ std::string curved_sentence(const CompareResults& r) {
         parts.push_back(part);
     }
     if (parts.empty()) return {};
-    std::string s =
-        "On the curved base (the relief bent over a cylinder patch, every row measured against the curved "
-        "micro-polygon mesh), the quadrics against the same search without them (means over the sources "
-        "and views): ";
+    std::string s = std::string("On the ") + (base == "sphere" ? "sphere" : "cylinder") +
+                    " patch (the relief bent over " + (base == "sphere" ? "a sphere" : "a cylinder") +
+                    ", every row measured against its curved micro-polygon mesh, " +
+                    curved_truth_id(base, "micromesh") +
+                    "), the quadrics against the same search without them (means over the sources and views): ";
     for (size_t i = 0; i < parts.size(); ++i) s += (i ? "; " : "") + parts[i];
     s += ". The quadrics raised the coverage IoU at " + std::to_string(better_iou) + " of " + std::to_string(compared) +
          " settings and brought the silhouette closer at " + std::to_string(better_sil) +
@@ -323,9 +324,9 @@ std::string curved_sentence(const CompareResults& r) {
     // The paper's exact distance (equation 6) against the approximate one (equation 7) at the same steps.
     std::vector<std::string> exact;
     for (const ResultMethod& m : r.methods) {
-        if (!is_curved_base(m.base) || m.setting.rfind("exact-", 0) != 0) continue;
+        if (m.base != base || m.setting.rfind("exact-", 0) != 0) continue;
         for (const ResultMethod& b : r.methods) {
-            if (!is_curved_base(b.base) || b.method != m.method || b.setting != m.setting.substr(6)) continue;
+            if (b.base != base || b.method != m.method || b.setting != m.setting.substr(6)) continue;
             const double ie = mean_of(m.id, &ResultRow::iou, ""), ia = mean_of(b.id, &ResultRow::iou, "");
             const double re = mean_of(m.id, &ResultRow::rmse, ""), ra = mean_of(b.id, &ResultRow::rmse, "");
             if (!std::isfinite(ie) || !std::isfinite(ia)) continue;
@@ -368,8 +369,9 @@ std::string missing_sentence(const CompareResults& r) {
 
 std::vector<std::string> compare_reading(const CompareResults& r) {
     std::vector<std::string> out;
-    for (std::string s : {front_sentence(r), prewarp_cost_sentence(r), grazing_sentence(r), silhouette_sentence(r),
-                          iterations_sentence(r), curved_sentence(r), missing_sentence(r)}) {
+    for (std::string s :
+         {front_sentence(r), prewarp_cost_sentence(r), grazing_sentence(r), silhouette_sentence(r),
+          iterations_sentence(r), curved_sentence(r, "curved"), curved_sentence(r, "sphere"), missing_sentence(r)}) {
         while (!s.empty() && s.back() == ' ') s.pop_back();
         if (!s.empty()) out.push_back(std::move(s));
     }

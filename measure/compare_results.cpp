@@ -57,10 +57,10 @@ const ResultRow* CompareResults::row(const std::string& source, const std::strin
     return nullptr;
 }
 
-std::vector<SummaryRow> CompareResults::summary_of(const std::string& source, bool curved) const {
+std::vector<SummaryRow> CompareResults::summary_of(const std::string& source, const std::string& base) const {
     std::vector<SummaryRow> out;
     for (const SummaryRow& s : summary)
-        if (s.source == source && s.curved() == curved) out.push_back(s);
+        if (s.source == source && base_name(s.base) == base) out.push_back(s);
     return out;
 }
 

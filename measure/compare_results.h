@@ -9,6 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "measure/compare_base.h"
+
 namespace rtm {
 
 struct ResultSource {
@@ -24,12 +26,9 @@ struct ResultView {
     double angle_from_normal() const;
 };
 
-// "curved": the curved base of quadric silhouettes (measured against curved-micromesh); anything else is flat.
-inline bool is_curved_base(const std::string& base) { return base == "curved"; }
-
 struct ResultMethod {
     std::string id, method, family, setting;
-    std::string base;  // "flat" or "curved"; empty (older files): flat
+    std::string base;  // "flat", "curved" or "sphere" (measure/compare_base.h); empty (older files): flat
 };
 
 struct ResultRow {
@@ -37,7 +36,7 @@ struct ResultRow {
     double ms, psnr, rmse, iou, silhouette_px, psnr_vs_micromesh, iou_vs_micromesh, iterations_mean;
     std::map<std::string, double> stages;          // prewarp, upload, texmap, other (ms); empty for other families
     std::string image, heatmap, iterations_image;  // paths relative to the page, empty when absent
-    std::string base, truth;                       // "flat"/"curved" (empty: flat); what the errors are against
+    std::string base, truth;                       // as ResultMethod's; what the errors are against
     bool curved() const { return is_curved_base(base); }
 };
 
@@ -61,8 +60,9 @@ struct CompareResults {
     std::vector<SummaryRow> summary;
 
     const ResultRow* row(const std::string& source, const std::string& view, const std::string& method_id) const;
-    // The summary rows of `source` of the flat base, or of the curved base, in the file's order.
-    std::vector<SummaryRow> summary_of(const std::string& source, bool curved = false) const;
+    // The summary rows of `source` on `base` ("flat", "curved", "sphere"; empty in the file: flat), in the file's
+    // order.
+    std::vector<SummaryRow> summary_of(const std::string& source, const std::string& base = "flat") const;
 };
 
 // Throws std::invalid_argument naming the field when `j` is not an object or a field has the wrong type.

@@ -9,6 +9,7 @@
 #include "warp/upsample.h"
 
 #include <map>
+#include <utility>
 #include <stdexcept>
 #include <vector>
 
@@ -39,21 +40,20 @@ public:
             it = scaled_.emplace(output_scale, ReliefQuad(upsample(quad_.relief(), output_scale))).first;
         return render_relief_frame(it->second, &renderer, cam, s, times);
     }
-    ImageRGBA8 render_curved_truth(Renderer& renderer, const Camera& cam, RenderMethod method, double angle,
-                                   int threads, StageTimes& times) override {
+    ImageRGBA8 render_curved_truth(Renderer& renderer, const Camera& cam, RenderMethod method, CurvedShape shape,
+                                   double angle, int threads, StageTimes& times) override {
         if (method == RenderMethod::raycast) {
             const auto t0 = Clock::now();
-            ImageRGBA8 img = raycast_curved_relief(quad_.relief(),
-                                                   curved_patch_for(quad_.relief(), CurvedShape::cylinder, angle), cam,
+            ImageRGBA8 img = raycast_curved_relief(quad_.relief(), curved_patch_for(quad_.relief(), shape, angle), cam,
                                                    threads);
             times.total_ms += ms_since(t0);
             return img;
         }
-        CurvedMesh& m = curved_[angle];
+        CurvedMesh& m = curved_[{shape, angle}];
         if (m.vertices.empty()) {
             m.origin = quad_.relief().geometry.origin;  // positions relative to it: far from 0 they keep their digits
-            curved_micromesh(quad_.relief(), curved_patch_for(quad_.relief(), CurvedShape::cylinder, angle), m.vertices,
-                             m.indices, m.origin);
+            curved_micromesh(quad_.relief(), curved_patch_for(quad_.relief(), shape, angle), m.vertices, m.indices,
+                             m.origin);
         }
         const auto t0 = Clock::now();
         renderer.begin_frame(cam);
@@ -72,8 +72,9 @@ private:
         glm::dvec3 origin{0.0};
     };
     ReliefQuad quad_;
-    std::map<int, ReliefQuad> scaled_;     // the relief at each output scale asked for, built once
-    std::map<double, CurvedMesh> curved_;  // the curved micro-polygon mesh at each bend asked for, built once
+    std::map<int, ReliefQuad> scaled_;  // the relief at each output scale asked for, built once
+    // The curved micro-polygon mesh of each patch and bend asked for, built once.
+    std::map<std::pair<CurvedShape, double>, CurvedMesh> curved_;
 };
 
 class ObjectSource final : public CompareSource {
@@ -113,7 +114,8 @@ private:
 
 }  // namespace
 
-ImageRGBA8 CompareSource::render_curved_truth(Renderer&, const Camera&, RenderMethod, double, int, StageTimes&) {
+ImageRGBA8 CompareSource::render_curved_truth(Renderer&, const Camera&, RenderMethod, CurvedShape, double, int,
+                                              StageTimes&) {
     throw std::logic_error(name + ": only a relief renders the curved base");
 }
 

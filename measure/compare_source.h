@@ -2,8 +2,9 @@
 // comparison loop does not care which. A relief renders every method of the sweep (measure/compare_sweep.h) and
 // has both truths (raycast, micromesh); an object or a scene renders flat, the pre-warp and micromesh only: the
 // per-pixel methods and the ray caster trace one height field, so their rows are omitted there, and micromesh is
-// the truth the errors are measured against. Only a relief renders the curved base (CompareEntry::curved()): the
-// relief bent over the cylinder patch of quadric silhouettes, and its truth, the curved micro-polygon mesh.
+// the truth the errors are measured against. Only a relief renders the curved bases (CompareEntry::curved()): the
+// relief bent over the cylinder or the sphere patch of quadric silhouettes, and their truths, the curved
+// micro-polygon meshes.
 #pragma once
 
 #include <memory>
@@ -32,12 +33,12 @@ public:
     // only: renders() is false for it elsewhere) draws the relief resampled onto a finer grid (warp/upsample.h).
     virtual ImageRGBA8 render(Renderer& renderer, const Camera& cam, const RenderSettings& s, int output_scale,
                               StageTimes& times) = 0;
-    // A truth of the curved base, the relief displaced over the cylinder patch bent through `angle` radians:
-    // `method` micromesh draws it as micro-polygons (perpixel/curved_patch.h, curved_micromesh), raycast casts it
-    // on the CPU with `threads` (measure/curved_raycast.h); one frame, `times` accumulates its time. Reliefs only
-    // (renders() is false for the curved entries elsewhere): throws std::logic_error otherwise.
-    virtual ImageRGBA8 render_curved_truth(Renderer& renderer, const Camera& cam, RenderMethod method, double angle,
-                                           int threads, StageTimes& times);
+    // A truth of a curved base, the relief displaced over the `shape` patch (cylinder or sphere) bent through
+    // `angle` radians: `method` micromesh draws it as micro-polygons (perpixel/curved_patch.h, curved_micromesh),
+    // raycast casts it on the CPU with `threads` (measure/curved_raycast.h); one frame, `times` accumulates its
+    // time. Reliefs only (renders() is false for the curved entries elsewhere): throws std::logic_error otherwise.
+    virtual ImageRGBA8 render_curved_truth(Renderer& renderer, const Camera& cam, RenderMethod method,
+                                           CurvedShape shape, double angle, int threads, StageTimes& times);
     // The relief quad (for the page's step-by-step section); null for objects and scenes.
     virtual ReliefQuad* relief() { return nullptr; }
 };

@@ -1,5 +1,7 @@
 #include "measure/compare_sweep.h"
 
+#include "perpixel/curved_patch.h"
+
 namespace rtm {
 
 namespace {
@@ -151,45 +153,67 @@ std::vector<CompareEntry> compare_sweep(bool quick) {
     // same shader with zero quadric coefficients ("no-quadric-", the paper's Figure 9, left), so that the pair at
     // one setting differs by the quadrics alone. The patch is the default one (angle 1.2, 32 x 4 quads).
     const QuadricSilhouettesSettings q;
-    const nlohmann::json patch = {{"angle", q.angle}, {"segments", q.segments}, {"rows", q.rows}};
+    const auto patch_of = [](const QuadricSilhouettesSettings& p) {
+        return nlohmann::json{{"shape", to_string(p.base)},
+                              {"angle", p.angle},
+                              {"segments", p.segments},
+                              {"rows", p.rows}};
+    };
+    // One quadric-silhouettes entry on `base` with the patch and steps of `p`; `prefix` names it.
+    const auto quadric_entry = [&](const std::string& base, const std::string& prefix,
+                                   const QuadricSilhouettesSettings& p) {
+        nlohmann::json params = {{"linear_search_steps", p.linear_search_steps},
+                                 {"binary_search_steps", p.binary_search_steps},
+                                 {"quadric", p.quadric}};
+        if (p.exact_distance) params["exact_distance"] = true;
+        params["patch"] = patch_of(p);
+        CompareEntry e = entry(RenderMethod::quadric_silhouettes,
+                               prefix + steps("l", p.linear_search_steps, "b", p.binary_search_steps), "per-pixel",
+                               std::move(params));
+        e.base = base;
+        e.render.perpixel.quadric_silhouettes = p;
+        return e;
+    };
+    // A curved base's truths: its micro-polygon mesh (the reference of its rows) and a CPU ray caster of the same
+    // bent relief (measure/curved_raycast.h), a row measured against the mesh: how far the two truths agree.
+    const auto truths_of = [&](const std::string& base, const QuadricSilhouettesSettings& p) {
+        for (RenderMethod m : {RenderMethod::micromesh, RenderMethod::raycast}) {
+            CompareEntry truth = entry(m, "", "truth", {{"patch", patch_of(p)}});
+            truth.id = truth.method = curved_truth_id(base, to_string(m));
+            truth.base = base;
+            truth.render.perpixel.quadric_silhouettes = p;
+            out.push_back(truth);
+        }
+    };
     for (bool quadric : {true, false})
         for (const LinBin& s : pick(search, quick)) {
-            nlohmann::json params = {{"linear_search_steps", s.first},
-                                     {"binary_search_steps", s.second},
-                                     {"quadric", quadric},
-                                     {"patch", patch}};
-            CompareEntry e = entry(RenderMethod::quadric_silhouettes,
-                                   std::string(quadric ? "" : "no-quadric-").append(steps("l", s.first, "b", s.second)),
-                                   "per-pixel", std::move(params));
-            e.base = "curved";
-            e.render.perpixel.quadric_silhouettes.linear_search_steps = s.first;
-            e.render.perpixel.quadric_silhouettes.binary_search_steps = s.second;
-            e.render.perpixel.quadric_silhouettes.quadric = quadric;
-            out.push_back(e);
+            QuadricSilhouettesSettings p = q;
+            p.linear_search_steps = s.first;
+            p.binary_search_steps = s.second;
+            p.quadric = quadric;
+            out.push_back(quadric_entry("curved", quadric ? "" : "no-quadric-", p));
         }
     // The paper's exact ray-quadric distance (equation 6, perpixel/quadric_distance.h) at the default steps, beside
     // the approximate one it uses (equation 7): its Figure 11 and its claim of twice the speed for the approximation.
     {
-        const QuadricSilhouettesSettings d;
-        CompareEntry e = entry(RenderMethod::quadric_silhouettes,
-                               "exact-" + steps("l", d.linear_search_steps, "b", d.binary_search_steps), "per-pixel",
-                               {{"linear_search_steps", d.linear_search_steps},
-                                {"binary_search_steps", d.binary_search_steps},
-                                {"quadric", true},
-                                {"exact_distance", true},
-                                {"patch", patch}});
-        e.base = "curved";
-        e.render.perpixel.quadric_silhouettes.exact_distance = true;
-        out.push_back(e);
+        QuadricSilhouettesSettings p = q;
+        p.exact_distance = true;
+        out.push_back(quadric_entry("curved", "exact-", p));
     }
-    // Its truths: the curved micro-polygon mesh (the reference of the curved rows) and a CPU ray caster of the same
-    // bent relief (measure/curved_raycast.h), a row measured against the mesh: how far the two truths agree.
-    for (RenderMethod m : {RenderMethod::micromesh, RenderMethod::raycast}) {
-        CompareEntry truth = entry(m, "", "truth", {{"patch", patch}});
-        truth.id = truth.method = std::string("curved-").append(to_string(m));
-        truth.base = "curved";
-        out.push_back(truth);
+    truths_of("curved", q);
+
+    // The sphere base (the paraboloid of the paper's Figure 7 (a)): the default steps with and without the quadrics,
+    // in both sweeps; a sphere curves along both axes, so its mesh has as many rows as segments (as rtm render
+    // --curved-base sphere draws it).
+    QuadricSilhouettesSettings sphere = q;
+    sphere.base = CurvedShape::sphere;
+    sphere.rows = sphere.segments;
+    for (bool quadric : {true, false}) {
+        QuadricSilhouettesSettings p = sphere;
+        p.quadric = quadric;
+        out.push_back(quadric_entry("sphere", quadric ? "sphere-" : "no-quadric-sphere-", p));
     }
+    truths_of("sphere", sphere);
     return out;
 }
 

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # The comparison page in headless Chromium: the synthetic comparison's page (compare_page_fixture, built beside rtm)
 # opens with no console error, every picture (those in the closed per-view grids too) and every plot (the flat
-# base's 3 and the curved base's 3) loads and draws, and a screenshot is written. The page
-# records script errors and pictures that fail to load on <body>'s attributes (measure/compare_page.cpp), read back
-# here from the DOM Chromium dumps. Skipped (exit 77) when /usr/bin/chromium is absent: scripts/setup.sh installs it.
+# base's 3 and each curved base's 3: the cylinder's and the sphere's) loads and draws, and a screenshot is written.
+# The page records script errors and pictures that fail to load on <body>'s attributes (measure/compare_page.cpp),
+# read back here from the DOM Chromium dumps. Skipped (exit 77) when /usr/bin/chromium is absent: scripts/setup.sh
+# installs it.
 . "$(dirname "$0")/lib.bash"
 
 CHROMIUM=/usr/bin/chromium
@@ -38,10 +39,10 @@ check "the page's load handler ran (body: $body)" [ "$(attr data-status)" = read
 check "no script error or failed picture: $(sed -n '/<pre id="page-errors">/,/<\/pre>/p' "$T/dom.html" | head -5)" \
   [ "$(attr data-errors)" = 0 ]
 check "every picture loaded ($(attr data-images-loaded) of $(attr data-images))" \
-  [ "$(attr data-images)" = 131 -a "$(attr data-images-loaded)" = 131 ]
+  [ "$(attr data-images)" = 173 -a "$(attr data-images-loaded)" = 173 ]
 check "every plot drawn ($(attr data-plots-drawn) of $(attr data-plots))" \
-  [ "$(attr data-plots)" = 6 -a "$(attr data-plots-drawn)" = 6 ]
-check "one point per method id in each of the 6 plots ($(attr data-plot-points))" [ "$(attr data-plot-points)" = 21 ]
+  [ "$(attr data-plots)" = 9 -a "$(attr data-plots-drawn)" = 9 ]
+check "one point per method id in each of the 9 plots ($(attr data-plot-points))" [ "$(attr data-plot-points)" = 27 ]
 console=$(grep -E 'CONSOLE|Uncaught' "$T/chromium.log" | head -5)
 check "no console message: $console" [ -z "$console" ]
 

@@ -44,7 +44,8 @@ json write_compare_fixture(const std::string& dir) {
         const char* setting;
         double ms, rmse;  // at the frontal view of "bumps"
         bool iterations;
-        bool curved = false;  // the curved base: measured against curved-micromesh
+        const char* base = "flat";  // "curved", "sphere": measured against that base's curved mesh
+        bool curved() const { return base != std::string("flat"); }
     };
     const M methods[] = {{"flat", "flat", "conventional", "", 0.8, 30.0, false},
                          {"two-pass", "two-pass", "pre-warp", "", 7.0, 6.0, false},
@@ -52,11 +53,15 @@ json write_compare_fixture(const std::string& dir) {
                          {"relief-mapping:16-6", "relief-mapping", "per-pixel", "16-6", 6.0, 4.0, true},
                          {"interval-mapping:8-2", "interval-mapping", "per-pixel", "8-2", 7.0, 4.2, true},
                          {"quadric-silhouettes:l8-b2", "quadric-silhouettes", "per-pixel", "l8-b2", 5.0, 5.0, true,
-                          true},
+                          "curved"},
                          {"quadric-silhouettes:no-quadric-l8-b2", "quadric-silhouettes", "per-pixel",
-                          "no-quadric-l8-b2", 4.0, 8.0, true, true}};
+                          "no-quadric-l8-b2", 4.0, 8.0, true, "curved"},
+                         {"quadric-silhouettes:sphere-l8-b2", "quadric-silhouettes", "per-pixel", "sphere-l8-b2", 6.0,
+                          6.0, true, "sphere"},
+                         {"quadric-silhouettes:no-quadric-sphere-l8-b2", "quadric-silhouettes", "per-pixel",
+                          "no-quadric-sphere-l8-b2", 5.5, 9.0, true, "sphere"}};
     json j;
-    j["title"] = "fixture (2 sources, 3 views, 5 flat methods, 2 curved)";
+    j["title"] = "fixture (2 sources, 3 views, 5 flat methods, 2 on the cylinder, 2 on the sphere)";
     j["image_size"] = {32, 32};
     j["machine"] = "test machine";
     j["threads"] = 2;
@@ -74,7 +79,7 @@ json write_compare_fixture(const std::string& dir) {
                                 {"method", m.method},
                                 {"family", m.family},
                                 {"setting", m.setting},
-                                {"base", m.curved ? "curved" : "flat"},
+                                {"base", m.base},
                                 {"params", json::object()}});
     int seed = 0;
     struct Acc {
@@ -86,7 +91,7 @@ json write_compare_fixture(const std::string& dir) {
         for (int vi = 0; vi < 3; ++vi) {
             const std::string view = views[vi].name, folder = "img/" + src + "/" + view;
             std::filesystem::create_directories(dir + "/" + folder);
-            for (const char* truth : {"raycast", "micromesh", "curved-micromesh"}) {
+            for (const char* truth : {"raycast", "micromesh", "curved-micromesh", "sphere-micromesh"}) {
                 picture(dir + "/" + folder + "/" + truth + ".png", ++seed);
                 j["truths"][src][view][truth] = folder + "/" + truth + ".png";
             }
@@ -105,14 +110,14 @@ json write_compare_fixture(const std::string& dir) {
                             {"method", m.method},
                             {"setting", m.setting},
                             {"family", m.family},
-                            {"base", m.curved ? "curved" : "flat"},
-                            {"truth", m.curved ? "curved-micromesh" : "raycast"},
+                            {"base", m.base},
+                            {"truth", m.curved() ? std::string(m.base) + "-micromesh" : "raycast"},
                             {"ms", ms},
                             {"stages", json::object()},
                             {"psnr", 20 * std::log10(255.0 / rmse)},
                             {"rmse", rmse},
                             {"iou", 1.0 - 0.02 * vi * (m.family == std::string("per-pixel") ? 2 : 1) -
-                                        (m.curved && m.setting[0] == 'n' ? 0.05 : 0.0)},
+                                        (m.curved() && m.setting[0] == 'n' ? 0.05 : 0.0)},
                             {"silhouette_px", 0.5 + vi * (m.family == std::string("per-pixel") ? 2.0 : 0.7)},
                             {"psnr_vs_micromesh", 20 * std::log10(255.0 / rmse) - 1},
                             {"iou_vs_micromesh", 0.99},
@@ -150,18 +155,18 @@ json write_compare_fixture(const std::string& dir) {
         return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
     };
     for (const std::string key : {"bumps", "steps", "all"})
-        for (bool curved : {false, true}) {  // each base has a Pareto front of its own
+        for (const std::string base : {"flat", "curved", "sphere"}) {  // each base has a Pareto front of its own
             std::vector<json> rows;
             for (const M& m : methods) {
-                if (m.curved != curved) continue;
+                if (m.base != base) continue;
                 const Acc& a = acc[key][m.id];
                 rows.push_back({{"source", key},
                                 {"method_id", m.id},
                                 {"method", m.method},
                                 {"setting", m.setting},
                                 {"family", m.family},
-                                {"base", m.curved ? "curved" : "flat"},
-                                {"truth", m.curved ? "curved-micromesh" : "raycast"},
+                                {"base", m.base},
+                                {"truth", m.curved() ? std::string(m.base) + "-micromesh" : "raycast"},
                                 {"ms", median(a.ms)},
                                 {"psnr", mean(a.psnr)},
                                 {"rmse", mean(a.rmse)},

@@ -94,11 +94,12 @@ struct PlotPoint {
     bool pareto, ringed;
 };
 
-// The points of the plot of `source` (of the flat or the curved base) in the page: <g class="pt" data-id=...
+// The points of the plot of `source` on `base` ("flat", "curved", "sphere") in the page: <g class="pt" data-id=...
 // data-pareto=...> and whether the point carries the front's ring.
-std::vector<PlotPoint> plot_points(const std::string& html, const std::string& source, bool curved = false) {
+std::vector<PlotPoint> plot_points(const std::string& html, const std::string& source,
+                                   const std::string& base = "flat") {
     const size_t block = html.find("<div class=\"plot-block\" data-source=\"" + source + "\"" +
-                                   (curved ? " data-base=\"curved\">" : ">"));
+                                   (base != "flat" ? " data-base=\"" + base + "\">" : ">"));
     if (block == std::string::npos) return {};
     const std::string svg = html.substr(block, html.find("</svg>", block) - block);
     std::vector<PlotPoint> out;
@@ -136,47 +137,48 @@ TEST_F(ComparePage, EveryPictureItNamesExists) {
     int n = 0;
     for (auto it = std::sregex_iterator(html.begin(), html.end(), src); it != std::sregex_iterator(); ++it, ++n)
         EXPECT_TRUE(std::filesystem::is_regular_file(dir.path() / (*it)[1].str())) << (*it)[1].str();
-    // 2 sources x 3 views x (2 truths + 5 methods x 2 pictures + 2 iteration maps, and on the curved base its truth
+    // 2 sources x 3 views x (2 truths + 5 methods x 2 pictures + 2 iteration maps, and on each curved base its truth
     // and 2 methods x 3 pictures), and 5 step-by-step pictures.
-    EXPECT_EQ(n, 2 * 3 * (2 + 5 * 2 + 2 + 1 + 2 * 3) + 5);
+    EXPECT_EQ(n, 2 * 3 * (2 + 5 * 2 + 2 + 2 * (1 + 2 * 3)) + 5);
     for (const char* f : {"source", "displacement", "horizontal", "prewarped", "frame"})
         EXPECT_NE(html.find(std::string("src=\"steps/") + f + ".png\""), std::string::npos) << f;
 }
 
 TEST_F(ComparePage, PlotsHaveOnePointPerMethodIdAndTheFrontIsTheParetoRows) {
-    for (bool curved : {false, true})
+    for (const std::string base : {"flat", "curved", "sphere"})
         for (const char* source : {"all", "bumps", "steps"}) {
-            SCOPED_TRACE(std::string(source) + (curved ? " curved" : " flat"));
+            SCOPED_TRACE(std::string(source) + " " + base);
+            const bool curved = base != "flat";
             std::map<std::string, bool> want;
             for (const auto& s : results["summary"])
-                if (s["source"] == source && (s["base"] == "curved") == curved)
+                if (s["source"] == source && s["base"] == base)
                     want[s["method_id"].get<std::string>()] = s["pareto"].get<bool>();
-            // The flat plot: the 5 flat methods; the curved base's: its 2, kept out of the flat plot.
+            // The flat plot: the 5 flat methods; each curved base's: its 2, kept out of the other plots.
             ASSERT_EQ(want.size(), curved ? 2u : 5u);
             std::map<std::string, bool> got;
             int front = 0;
-            for (const PlotPoint& p : plot_points(html, source, curved)) {
+            for (const PlotPoint& p : plot_points(html, source, base)) {
                 EXPECT_TRUE(got.emplace(p.id, p.pareto).second) << "two points for " << p.id;
                 EXPECT_EQ(p.ringed, p.pareto) << p.id;
                 front += p.pareto;
             }
             EXPECT_EQ(got, want);
             EXPECT_GE(front, 1);
-            // The fixture's fronts: flat, parallax, relief-mapping (two-pass and interval lose); on the curved base
+            // The fixture's fronts: flat, parallax, relief-mapping (two-pass and interval lose); on each curved base
             // both (without the quadrics: faster, larger RMSE).
             EXPECT_EQ(front, curved ? 2 : 3);
         }
 }
 
 // The per-view grids are collapsible: one <details> per source and view of each base, the first view of each source
-// open; the curved base's grids come after its own heading and hold the curved truth, never the flat ones.
+// open; each curved base's grids come after its own heading and hold its own truth, never another base's.
 TEST_F(ComparePage, ViewGridsCollapseWithTheFirstViewOpen) {
     static const std::regex details(R"re(<details class="view"( open="open")?><summary>([a-z0-9_]+) )re");
     std::vector<std::pair<std::string, bool>> got;
     for (auto it = std::sregex_iterator(html.begin(), html.end(), details); it != std::sregex_iterator(); ++it)
         got.push_back({(*it)[2].str(), (*it)[1].matched});
     const std::vector<std::string> views = {"az00_el00", "az45_el20", "az80_el05"};
-    ASSERT_EQ(got.size(), 2u * 2u * 3u);  // 2 bases x 2 sources x 3 views
+    ASSERT_EQ(got.size(), 3u * 2u * 3u);  // 3 bases x 2 sources x 3 views
     for (size_t i = 0; i < got.size(); ++i) {
         EXPECT_EQ(got[i].first, views[i % 3]) << i;
         EXPECT_EQ(got[i].second, i % 3 == 0) << i;
@@ -189,6 +191,16 @@ TEST_F(ComparePage, ViewGridsCollapseWithTheFirstViewOpen) {
     EXPECT_NE(curved_part.find("curved-micromesh.png"), std::string::npos);
     EXPECT_NE(curved_part.find("quadric-silhouettes_no-quadric-l8-b2_heat.png"), std::string::npos);
     EXPECT_EQ(curved_part.find("/raycast.png"), std::string::npos);
+    const size_t cylinder = html.find("<h3 id=\"curved-base\">"), sphere = html.find("<h3 id=\"sphere-base\">");
+    ASSERT_NE(cylinder, std::string::npos);
+    ASSERT_NE(sphere, std::string::npos);
+    ASSERT_LT(cylinder, sphere);
+    const std::string cylinder_part = html.substr(cylinder, sphere - cylinder), sphere_part = html.substr(sphere);
+    EXPECT_EQ(cylinder_part.find("sphere-micromesh.png"), std::string::npos);
+    EXPECT_EQ(cylinder_part.find("sphere-l8-b2"), std::string::npos);
+    EXPECT_NE(sphere_part.find("sphere-micromesh.png"), std::string::npos);
+    EXPECT_NE(sphere_part.find("quadric-silhouettes_no-quadric-sphere-l8-b2_heat.png"), std::string::npos);
+    EXPECT_EQ(sphere_part.find("curved-micromesh.png"), std::string::npos);
 }
 
 TEST_F(ComparePage, TheReadingQuotesTheMeasuredValues) {
@@ -210,10 +222,15 @@ TEST_F(ComparePage, TheReadingQuotesTheMeasuredValues) {
     EXPECT_NE(all.find("1 without an IoU"), std::string::npos);
     // The curved base: the quadrics against the same search without them, from the fixture's IoU (lower by 0.05
     // without the quadrics) and RMSE (5 against 8 at the frontal view, the same factors elsewhere).
-    EXPECT_NE(all.find("On the curved base"), std::string::npos);
+    EXPECT_NE(all.find("On the cylinder patch"), std::string::npos);
     EXPECT_NE(all.find("quadric-silhouettes:l8-b2 IoU 0.9600 against 0.9100"), std::string::npos);
     EXPECT_NE(all.find("raised the coverage IoU at 1 of 1 settings"), std::string::npos);
     EXPECT_NE(all.find("the IoU: quadric-silhouettes:l8-b2 0.9200 against 0.8700"), std::string::npos);
+    // And the sphere patch, a sentence of its own against its own mesh (the fixture's sphere rows: the same IoU).
+    EXPECT_NE(all.find("On the sphere patch (the relief bent over a sphere, every row measured against its curved "
+                       "micro-polygon mesh, sphere-micromesh)"),
+              std::string::npos);
+    EXPECT_NE(all.find("quadric-silhouettes:sphere-l8-b2 IoU 0.9600 against 0.9100"), std::string::npos);
     EXPECT_EQ(all.find("nan"), std::string::npos);
     EXPECT_EQ(html.find(">nan"), std::string::npos);
     EXPECT_EQ(html.find(">-nan"), std::string::npos);

@@ -99,21 +99,30 @@ TEST(CompareResults, SummaryParetoAndCsv) {
     EXPECT_EQ(lines, 10u);  // header + 9 rows
 }
 
-// The curved base in the sweep: quadric silhouettes at relief mapping's steps, each beside the same steps without
-// the quadrics, and its truths, the curved mesh and the curved ray caster; --quick keeps 2 steps of each.
+// The curved bases in the sweep: on the cylinder patch quadric silhouettes at relief mapping's steps, each beside
+// the same steps without the quadrics, and its truths, the curved mesh and the curved ray caster (--quick keeps 2
+// steps of each); on the sphere patch the default steps with and without the quadrics, and its two truths. Each
+// entry's patch is its base's, in its settings and its params.
 TEST(CompareSweep, TheCurvedBasePairsEachQuadricSettingWithTheSameStepsWithout) {
     for (bool quick : {false, true}) {
-        std::vector<std::string> with, without, truths, relief_mapping, exact;
+        std::vector<std::string> with, without, truths, relief_mapping, exact, sphere;
         for (const CompareEntry& e : compare_sweep(quick)) {
             if (e.method == "relief-mapping") relief_mapping.push_back(e.setting);
             if (!e.curved()) continue;
+            const auto& q = e.render.perpixel.quadric_silhouettes;
+            EXPECT_EQ(q.base, e.base == "sphere" ? CurvedShape::sphere : CurvedShape::cylinder) << e.id;
+            EXPECT_EQ(e.params.at("patch").at("shape"), e.base == "sphere" ? "sphere" : "cylinder") << e.id;
+            EXPECT_EQ(q.rows, e.base == "sphere" ? q.segments : 4) << e.id;  // as rtm render draws each patch
             if (e.family == "truth") {
                 truths.push_back(e.id);
-                EXPECT_EQ(e.id, std::string("curved-").append(to_string(e.render.method)));
+                EXPECT_EQ(e.id, e.base + "-" + to_string(e.render.method));
+            } else if (e.base == "sphere") {
+                EXPECT_EQ(e.render.method, RenderMethod::quadric_silhouettes) << e.id;
+                EXPECT_EQ(q.quadric, e.params.at("quadric").get<bool>()) << e.id;
+                sphere.push_back(e.setting);
             } else {
                 EXPECT_EQ(e.render.method, RenderMethod::quadric_silhouettes) << e.id;
                 EXPECT_EQ(e.family, "per-pixel") << e.id;  // iteration counts, as the other searches
-                const auto& q = e.render.perpixel.quadric_silhouettes;
                 EXPECT_EQ(q.quadric, e.params.at("quadric").get<bool>()) << e.id;
                 EXPECT_EQ(q.linear_search_steps, e.params.at("linear_search_steps").get<int>()) << e.id;
                 EXPECT_EQ(q.binary_search_steps, e.params.at("binary_search_steps").get<int>()) << e.id;
@@ -121,7 +130,9 @@ TEST(CompareSweep, TheCurvedBasePairsEachQuadricSettingWithTheSameStepsWithout) 
                 (q.exact_distance ? exact : q.quadric ? with : without).push_back(e.setting);
             }
         }
-        EXPECT_EQ(truths, (std::vector<std::string>{"curved-micromesh", "curved-raycast"}));
+        EXPECT_EQ(truths, (std::vector<std::string>{"curved-micromesh", "curved-raycast", "sphere-micromesh",
+                                                    "sphere-raycast"}));
+        EXPECT_EQ(sphere, (std::vector<std::string>{"sphere-l32-b8", "no-quadric-sphere-l32-b8"}));
         EXPECT_EQ(with, relief_mapping);
         ASSERT_EQ(without.size(), with.size());
         for (size_t i = 0; i < with.size(); ++i) EXPECT_EQ(without[i], "no-quadric-" + with[i]);
