@@ -206,8 +206,7 @@ PerPixelSettings PerPixelArgs::settings() const {
     if (!curved_base.empty()) {
         const std::optional<CurvedShape> shape = parse_curved_shape(curved_base);
         if (!shape) throw UsageError("--curved-base: expected cylinder or sphere, found \"" + curved_base + "\"");
-        q.base = *shape;
-        if (q.base == CurvedShape::sphere) q.rows = q.segments;
+        q.set_base(*shape);
     }
     if (!quadric_distance.empty()) {
         if (quadric_distance != "approximate" && quadric_distance != "exact")

@@ -206,8 +206,7 @@ std::vector<CompareEntry> compare_sweep(bool quick) {
     // in both sweeps; a sphere curves along both axes, so its mesh has as many rows as segments (as rtm render
     // --curved-base sphere draws it).
     QuadricSilhouettesSettings sphere = q;
-    sphere.base = CurvedShape::sphere;
-    sphere.rows = sphere.segments;
+    sphere.set_base(CurvedShape::sphere);
     for (bool quadric : {true, false}) {
         QuadricSilhouettesSettings p = sphere;
         p.quadric = quadric;

@@ -126,6 +126,12 @@ struct QuadricSilhouettesSettings {
     // false: the quadric coefficients are zero, the original relief mapping on the curved mesh (the paper's
     // Figure 9, left): no ray leaves, the silhouette is the mesh's.
     bool quadric = true;
+    // The patch `shape` with its mesh's rows: the cylinder's default 4, as many as the segments on the sphere (what
+    // rtm render --curved-base, the viewer's panel and rtm compare draw).
+    void set_base(CurvedShape shape) {
+        base = shape;
+        rows = shape == CurvedShape::sphere ? segments : QuadricSilhouettesSettings{}.rows;
+    }
     bool operator==(const QuadricSilhouettesSettings&) const = default;
 };
 

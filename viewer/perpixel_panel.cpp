@@ -73,10 +73,7 @@ void perpixel_settings_panel(PerPixelMethod m, PerPixelSettings& p, float u) {
             ImGui::SameLine();
             ImGui::RadioButton("sphere", &base, 1);
             const CurvedShape shape = base == 1 ? CurvedShape::sphere : CurvedShape::cylinder;
-            if (shape != q.base) {
-                q.base = shape;
-                q.rows = shape == CurvedShape::sphere ? q.segments : QuadricSilhouettesSettings{}.rows;
-            }
+            if (shape != q.base) q.set_base(shape);
             float angle = float(q.angle);
             if (float_slider("bend (rad)", angle, 0.05f, 3.0f, u, "%.2f")) q.angle = angle;
             ImGui::Checkbox("quadrics (off: the mesh's silhouette)", &q.quadric);
