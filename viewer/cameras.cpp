@@ -1,5 +1,7 @@
 #include "viewer/cameras.h"
 
+#include "texmap/camera_rig.h"
+
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
@@ -25,10 +27,7 @@ void OrbitCamera::zoom(double notches) {
 
 glm::dvec3 OrbitCamera::eye(const Bounds& b) const {
     if (given_eye) return *given_eye;
-    // The formula of --orbit (apps/cli_common.cpp, CameraArgs::resolve).
-    const double a = glm::radians(az), e = glm::radians(el);
-    const glm::dvec3 dir(std::sin(a) * std::cos(e), std::sin(e), std::cos(a) * std::cos(e));
-    return centre(b) + radius_of(b) * dist * dir;
+    return orbit_eye(centre(b), radius_of(b), {az, el, dist});  // --orbit's formula (texmap/camera_rig.h)
 }
 
 OrbitCamera orbit_about(const glm::dvec3& pivot, const glm::dvec3& eye, const Bounds& b) {
